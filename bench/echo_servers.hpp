@@ -1,0 +1,65 @@
+#pragma once
+
+#include "unique_fd.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+
+namespace rigsim::bench {
+
+/*
+ * The floor: the cheapest server possible on each transport, so that the
+ * daemon's round trip can be read as a ratio over what the kernel alone costs.
+ * Each is one thread doing blocking read-then-write-back, no event loop.
+ */
+
+/// Echoes everything one TCP client sends; listens on 127.0.0.1, ephemeral port.
+class TcpEchoServer {
+public:
+    TcpEchoServer();
+    ~TcpEchoServer();
+    TcpEchoServer(const TcpEchoServer&) = delete;
+    TcpEchoServer& operator=(const TcpEchoServer&) = delete;
+
+    /// The port it listens on.
+    std::uint16_t port() const { return port_; }
+
+private:
+    void run();
+
+    UniqueFd listener_;
+    std::uint16_t port_ = 0;
+    std::atomic<bool> stopping_{false};
+    /// The accepted connection; closed by the destructor after the join.
+    std::atomic<int> connection_fd_{-1};
+    std::thread thread_;
+};
+
+/// Echoes everything written to a raw pty; clients open slave_path().
+class PtyEchoServer {
+public:
+    PtyEchoServer();
+    ~PtyEchoServer();
+    PtyEchoServer(const PtyEchoServer&) = delete;
+    PtyEchoServer& operator=(const PtyEchoServer&) = delete;
+
+    /// The slave device, e.g. /dev/pts/7.
+    const std::string& slave_path() const { return slave_path_; }
+
+private:
+    void run();
+
+    UniqueFd master_;
+    /*
+     * Held open for the server's lifetime: with no slave open, reads on the
+     * master fail with EIO. Also the way to wake the thread on shutdown.
+     */
+    UniqueFd slave_;
+    std::string slave_path_;
+    std::atomic<bool> stopping_{false};
+    std::thread thread_;
+};
+
+}  // namespace rigsim::bench

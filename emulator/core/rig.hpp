@@ -1,0 +1,67 @@
+#pragma once
+// A running rig: its clock, its devices and their endpoints, on one io_context.
+
+#include "emulator/core/clock.hpp"
+#include "emulator/core/device.hpp"
+#include "emulator/core/logging.hpp"
+#include "emulator/core/rig_config.hpp"
+#include "emulator/core/ticker.hpp"
+#include "emulator/transport/pty_endpoint.hpp"
+#include "emulator/transport/tcp_endpoint.hpp"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/address.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rigsim {
+
+struct RigOptions {
+    std::string pty_dir = "/tmp/rigsim";   ///< where pty symlinks go unless the config names one
+    bool ephemeral_ports = false;           ///< every TCP endpoint on port 0
+    boost::asio::ip::address bind = boost::asio::ip::make_address("127.0.0.1");
+    double time_scale = 1.0;
+    LogLevels log_levels;
+};
+
+/// Where a client reaches one device.
+struct DeviceEndpoints {
+    std::string name;
+    Protocol protocol;
+    std::string model;
+    std::string tcp;   ///< "127.0.0.1:40100"
+    std::string pty;   ///< symlink path
+};
+
+class Rig {
+public:
+    /// Builds every device and opens every endpoint (throws on failure to bind or open).
+    Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options);
+    ~Rig();
+    Rig(const Rig&) = delete;
+    Rig& operator=(const Rig&) = delete;
+
+    void start();
+    /// Stop I/O, remove pty symlinks.
+    void stop();
+
+    const std::vector<DeviceEndpoints>& endpoints() const { return endpoints_; }
+    Clock& clock() { return clock_; }
+
+private:
+    struct Entry;
+
+    Clock clock_;
+    Ticker ticker_;
+    std::vector<std::unique_ptr<Entry>> entries_;
+    std::vector<DeviceEndpoints> endpoints_;
+};
+
+/// The endpoints document: {"devices":[{"name","protocol","model","tcp","pty"}]}.
+std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints);
+/// Write `text` to `path` atomically (temporary file + rename); throws std::system_error.
+void write_file_atomically(const std::string& path, const std::string& text);
+
+} // namespace rigsim

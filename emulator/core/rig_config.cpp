@@ -1,0 +1,463 @@
+#include "emulator/core/rig_config.hpp"
+
+#include "emulator/mcs/sensor_types.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+#include <utility>
+
+namespace rigsim {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::string_view kDefaultMcsModel = "MCS-3D";
+constexpr std::size_t kMaxNameLength = 64;
+constexpr std::size_t kMaxChannels = 255;
+constexpr std::int64_t kTravelLimitNm = 2'000'000'000;
+
+// The keys each object may hold; anything else is an error.
+constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
+constexpr std::array<std::string_view, 6> kDeviceKeys{
+    "name", "protocol", "model", "tcp_port", "pty", "mcs"};
+constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
+constexpr std::array<std::string_view, 6> kChannelKeys{
+    "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
+    "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2"};
+
+/// A channel integer whose range does not depend on other keys.
+struct ChannelIntKey {
+    std::string_view key;
+    std::int64_t min;
+    std::int64_t max;
+    std::int64_t McsChannelConfig::*member;
+};
+
+constexpr std::array<ChannelIntKey, 3> kChannelIntKeys{{
+    {"max_speed_nm_per_s", 1, 100'000'000, &McsChannelConfig::max_speed_nm_per_s},
+    {"closed_loop_speed_nm_per_s", 0, 100'000'000, &McsChannelConfig::closed_loop_speed_nm_per_s},
+    {"closed_loop_acceleration_um_per_s2", 0, 10'000'000,
+     &McsChannelConfig::closed_loop_acceleration_um_per_s2},
+}};
+
+/// `value` as compact JSON; never throws on odd UTF-8.
+std::string dump(const json& value)
+{
+    return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+/// `s` as a JSON string literal (quoted, escaped).
+std::string quote(std::string_view s)
+{
+    return dump(json(std::string(s)));
+}
+
+/// A value for "got ..." in a message: scalars as JSON, containers by kind and size.
+std::string describe(const json& value)
+{
+    if (value.is_array()) {
+        if (value.empty())
+            return "[]";
+        return "an array of " + std::to_string(value.size()) +
+               (value.size() == 1 ? " element" : " elements");
+    }
+    if (value.is_object())
+        return value.empty() ? "{}" : "an object";
+    return dump(value);
+}
+
+/// `parent` extended by an object key, escaped as RFC 6901 says (`~` -> `~0`, `/` -> `~1`).
+std::string pointer_to(const std::string& parent, std::string_view key)
+{
+    std::string p = parent + '/';
+    for (char c : key) {
+        if (c == '~')
+            p += "~0";
+        else if (c == '/')
+            p += "~1";
+        else
+            p += c;
+    }
+    return p;
+}
+
+/// `parent` extended by an array index.
+std::string pointer_to(const std::string& parent, std::size_t index)
+{
+    return parent + '/' + std::to_string(index);
+}
+
+/// Throw the one error format: `<source>: <pointer>: <what>`; the root shows as "/".
+[[noreturn]] void fail(std::string_view source, const std::string& pointer, const std::string& what)
+{
+    throw ConfigError(std::string(source) + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
+}
+
+/// 1-based line and column of nlohmann's 1-based byte position in `text`.
+std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size_t byte)
+{
+    const std::size_t offset = byte == 0 ? 0 : std::min(byte - 1, text.size());
+    std::size_t line = 1;
+    std::size_t column = 1;
+    for (std::size_t i = 0; i < offset; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return {line, column};
+}
+
+/// nlohmann's explanation without its "[json.exception...] parse error at ...: " prefix.
+std::string explanation(const json::parse_error& e)
+{
+    const std::string_view what = e.what();
+    const auto colon = what.find(": ");
+    return std::string(colon == std::string_view::npos ? what : what.substr(colon + 2));
+}
+
+/// Follows the parser through the document to reject duplicate keys (nlohmann would keep
+/// the last value silently), naming the object that holds the duplicate.
+class DuplicateKeyCheck {
+public:
+    explicit DuplicateKeyCheck(std::string_view source) : source_(source) {}
+
+    /// A nlohmann parser callback event; always keeps the value.
+    bool on_event(json::parse_event_t event, const json& parsed)
+    {
+        switch (event) {
+        case json::parse_event_t::object_start:
+            stack_.push_back(Frame{true, {}, {}, 0});
+            break;
+        case json::parse_event_t::array_start:
+            stack_.push_back(Frame{false, {}, {}, 0});
+            break;
+        case json::parse_event_t::key: {
+            auto& top = stack_.back();
+            top.key = parsed.get<std::string>();
+            if (!top.keys.insert(top.key).second)
+                fail(source_, pointer(), "duplicate key " + quote(top.key));
+            break;
+        }
+        case json::parse_event_t::object_end:
+        case json::parse_event_t::array_end:
+            stack_.pop_back();
+            next_element();
+            break;
+        case json::parse_event_t::value:
+            next_element();
+            break;
+        }
+        return true;
+    }
+
+private:
+    struct Frame {
+        bool is_object;
+        std::set<std::string> keys;
+        std::string key;          ///< current key (objects)
+        std::size_t index;        ///< current index (arrays)
+    };
+
+    /// A value ended: inside an array, the next one has the next index.
+    void next_element()
+    {
+        if (!stack_.empty() && !stack_.back().is_object)
+            ++stack_.back().index;
+    }
+
+    /// The pointer of the innermost open container.
+    std::string pointer() const
+    {
+        std::string p;
+        for (std::size_t i = 0; i + 1 < stack_.size(); ++i)
+            p = stack_[i].is_object ? pointer_to(p, stack_[i].key) : pointer_to(p, stack_[i].index);
+        return p;
+    }
+
+    std::string_view source_;
+    std::vector<Frame> stack_;
+};
+
+/// Validates a parsed document into a RigConfig, one object kind per function.
+class RigLoader {
+public:
+    explicit RigLoader(std::string_view source) : source_(source) {}
+
+    RigConfig load(const json& root)
+    {
+        RigConfig rig;
+        check_keys(root, "", kRigKeys);
+        if (const auto* v = find(root, "tick_hz"))
+            rig.tick_hz = static_cast<std::uint32_t>(get_int(*v, "/tick_hz", 1, 100'000));
+        const auto& devices = require(root, "", "devices");
+        if (!devices.is_array())
+            fail("/devices", "expected a non-empty array, got " + describe(devices));
+        if (devices.empty())
+            fail("/devices", "expected a non-empty array");
+        for (std::size_t i = 0; i < devices.size(); ++i)
+            rig.devices.push_back(load_device(devices[i], pointer_to("/devices", i)));
+        return rig;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& pointer, const std::string& what) const
+    {
+        rigsim::fail(source_, pointer, what);
+    }
+
+    /// `value` must be an object holding no key outside `allowed`.
+    template <std::size_t N>
+    void check_keys(const json& value, const std::string& pointer,
+                    const std::array<std::string_view, N>& allowed) const
+    {
+        if (!value.is_object())
+            fail(pointer, "expected an object, got " + describe(value));
+        for (const auto& item : value.items()) {
+            bool known = false;
+            for (auto key : allowed)
+                known = known || item.key() == key;
+            if (known)
+                continue;
+            std::string list;
+            for (auto key : allowed)
+                list += (list.empty() ? "" : ", ") + std::string(key);
+            fail(pointer, "unknown key " + quote(item.key()) + " (allowed: " + list + ")");
+        }
+    }
+
+    /// The value of an optional key, or nullptr.
+    static const json* find(const json& object, std::string_view key)
+    {
+        const auto it = object.find(std::string(key));
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    /// The value of a required key; the error names the missing key's pointer.
+    const json& require(const json& object, const std::string& pointer, std::string_view key) const
+    {
+        const auto* v = find(object, key);
+        if (!v)
+            fail(pointer_to(pointer, key), "required key missing");
+        return *v;
+    }
+
+    /// An integer in min..max; floats and booleans are type errors.
+    std::int64_t get_int(const json& v, const std::string& pointer, std::int64_t min,
+                         std::int64_t max, std::string_view note = {}) const
+    {
+        bool ok = false;
+        std::int64_t n = 0;
+        if (v.is_number_unsigned()) {
+            // nlohmann reads every non-negative integer as unsigned; only then compare signed.
+            const auto u = v.get<std::uint64_t>();
+            n = static_cast<std::int64_t>(u);
+            ok = u <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()) && n >= min &&
+                 n <= max;
+        } else if (v.is_number_integer()) {
+            n = v.get<std::int64_t>();
+            ok = n >= min && n <= max;
+        }
+        if (!ok)
+            fail(pointer, "expected an integer " + std::to_string(min) + ".." + std::to_string(max) +
+                              std::string(note) + ", got " + describe(v));
+        return n;
+    }
+
+    /// A non-empty string; `expected` completes "expected ..." in the error.
+    const std::string& get_string(const json& v, const std::string& pointer,
+                                  std::string_view expected = "a non-empty string") const
+    {
+        if (!v.is_string() || v.get_ref<const std::string&>().empty())
+            fail(pointer, "expected " + std::string(expected) + ", got " + describe(v));
+        return v.get_ref<const std::string&>();
+    }
+
+    DeviceConfig load_device(const json& v, const std::string& pointer)
+    {
+        DeviceConfig d;
+        check_keys(v, pointer, kDeviceKeys);
+
+        const auto name_pointer = pointer_to(pointer, "name");
+        d.name = load_name(require(v, pointer, "name"), name_pointer);
+        claim(names_, d.name, name_pointer, pointer, "name " + quote(d.name));
+
+        d.protocol = load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
+        d.model = kDefaultMcsModel;
+        if (const auto* m = find(v, "model"))
+            d.model = get_string(*m, pointer_to(pointer, "model"));
+        if (const auto* p = find(v, "tcp_port")) {
+            const auto port_pointer = pointer_to(pointer, "tcp_port");
+            d.tcp_port = static_cast<std::uint16_t>(get_int(*p, port_pointer, 0, 65535));
+            if (d.tcp_port != 0)
+                claim(ports_, std::to_string(d.tcp_port), port_pointer, pointer,
+                      "port " + std::to_string(d.tcp_port));
+        }
+        if (const auto* p = find(v, "pty")) {
+            const auto pty_pointer = pointer_to(pointer, "pty");
+            d.pty = get_string(*p, pty_pointer, "an absolute path (starting with '/')");
+            if (d.pty.front() != '/')
+                fail(pty_pointer, "expected an absolute path (starting with '/'), got " + quote(d.pty));
+            claim(ptys_, d.pty, pty_pointer, pointer, "path " + quote(d.pty));
+        }
+        d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
+        return d;
+    }
+
+    /// Record that device `owner` uses `value`; a second user is an error at `pointer`.
+    void claim(std::map<std::string, std::string>& used, const std::string& value,
+               const std::string& pointer, const std::string& owner, const std::string& what) const
+    {
+        const auto [it, inserted] = used.emplace(value, owner);
+        if (!inserted)
+            fail(pointer, what + " is already used by " + it->second);
+    }
+
+    std::string load_name(const json& v, const std::string& pointer) const
+    {
+        bool ok = v.is_string();
+        if (ok) {
+            const auto& s = v.get_ref<const std::string&>();
+            ok = !s.empty() && s.size() <= kMaxNameLength;
+            for (char c : s)
+                ok = ok && ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                            c == '_' || c == '.' || c == '-');
+        }
+        if (!ok)
+            fail(pointer, "expected a name of 1.." + std::to_string(kMaxNameLength) +
+                              " characters [A-Za-z0-9_.-], got " + describe(v));
+        return v.get<std::string>();
+    }
+
+    Protocol load_protocol(const json& v, const std::string& pointer) const
+    {
+        if (!v.is_string())
+            fail(pointer, "expected a string, got " + describe(v));
+        const auto& s = v.get_ref<const std::string&>();
+        if (s == "mcs")
+            return Protocol::Mcs;
+        // APT devices are parsed by a later release; the name is reserved now.
+        if (s == "apt")
+            fail(pointer, "protocol \"apt\" is not supported yet (expected \"mcs\")");
+        fail(pointer, "unknown protocol " + quote(s) + " (expected \"mcs\")");
+    }
+
+    McsConfig load_mcs(const json& v, const std::string& pointer) const
+    {
+        McsConfig mcs;
+        check_keys(v, pointer, kMcsKeys);
+        if (const auto* id = find(v, "system_id"))
+            mcs.system_id = static_cast<std::uint32_t>(get_int(
+                *id, pointer_to(pointer, "system_id"), 0, std::numeric_limits<std::uint32_t>::max()));
+        const auto channels_pointer = pointer_to(pointer, "channels");
+        const auto& channels = require(v, pointer, "channels");
+        const std::string expected = "expected an array of 1.." + std::to_string(kMaxChannels) + " channels, got ";
+        if (!channels.is_array())
+            fail(channels_pointer, expected + describe(channels));
+        if (channels.empty() || channels.size() > kMaxChannels)
+            fail(channels_pointer, expected + std::to_string(channels.size()) + " channels");
+        for (std::size_t i = 0; i < channels.size(); ++i)
+            mcs.channels.push_back(load_channel(channels[i], pointer_to(channels_pointer, i)));
+        return mcs;
+    }
+
+    McsChannelConfig load_channel(const json& v, const std::string& pointer) const
+    {
+        McsChannelConfig c;
+        check_keys(v, pointer, kChannelKeys);
+        if (const auto* t = find(v, "sensor_type")) {
+            const auto type_pointer = pointer_to(pointer, "sensor_type");
+            if (!t->is_string())
+                fail(type_pointer, "expected a string, got " + describe(*t));
+            c.sensor_type = t->get<std::string>();
+            if (c.sensor_type != "none" && !mcs::sensor_type_by_symbol(c.sensor_type))
+                fail(type_pointer, "unknown sensor type " + quote(c.sensor_type) + " (expected one of " +
+                                       std::string(mcs::sensor_type_symbols()) + ", or \"none\")");
+        }
+        if (const auto* t = find(v, "travel_nm")) {
+            const auto travel_pointer = pointer_to(pointer, "travel_nm");
+            if (!t->is_array() || t->size() != 2)
+                fail(travel_pointer, "expected [min, max], two integers, got " + describe(*t));
+            c.travel_min_nm = get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
+            c.travel_max_nm = get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
+            if (c.travel_min_nm >= c.travel_max_nm)
+                fail(travel_pointer, "expected min < max, got " + dump(*t));
+        }
+        if (const auto* p = find(v, "start_position_nm"))
+            c.start_position_nm = get_int(*p, pointer_to(pointer, "start_position_nm"), c.travel_min_nm,
+                                          c.travel_max_nm, " (within travel_nm)");
+        for (const auto& k : kChannelIntKeys)
+            if (const auto* n = find(v, k.key))
+                c.*k.member = get_int(*n, pointer_to(pointer, k.key), k.min, k.max);
+        return c;
+    }
+
+    std::string_view source_;
+    std::map<std::string, std::string> names_;  ///< name -> pointer of the device using it
+    std::map<std::string, std::string> ports_;  ///< non-zero tcp_port -> device pointer
+    std::map<std::string, std::string> ptys_;   ///< explicit pty path -> device pointer
+};
+
+} // namespace
+
+RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
+{
+    try {
+        DuplicateKeyCheck duplicates{source};
+        const auto root = json::parse(
+            json_text.begin(), json_text.end(),
+            [&duplicates](int, json::parse_event_t event, json& parsed) {
+                return duplicates.on_event(event, parsed);
+            });
+        return RigLoader{source}.load(root);
+    } catch (const json::parse_error& e) {
+        const auto [line, column] = line_column(json_text, e.byte);
+        throw ConfigError(std::string(source) + ": line " + std::to_string(line) + ", column " +
+                          std::to_string(column) + ": " + explanation(e));
+    } catch (const json::exception& e) {
+        throw ConfigError(std::string(source) + ": " + e.what());
+    }
+}
+
+RigConfig load_rig_config(const std::string& path)
+{
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"), &std::fclose};
+    if (!file)
+        throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+    std::string text;
+    std::array<char, 4096> buffer;
+    std::size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0)
+        text.append(buffer.data(), n);
+    if (std::ferror(file.get()))
+        throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+    return parse_rig_config(text, path);
+}
+
+RigConfig default_rig_config()
+{
+    return parse_rig_config(default_rig_json(), "built-in default rig");
+}
+
+std::string_view to_string(Protocol p)
+{
+    switch (p) {
+    case Protocol::Mcs:
+        return "mcs";
+    case Protocol::Apt:
+        return "apt";
+    }
+    return "unknown";
+}
+
+} // namespace rigsim

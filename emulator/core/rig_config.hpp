@@ -1,0 +1,66 @@
+#pragma once
+// The rig: every device, its endpoints and its channels, as read from JSON.
+// All defaults live here in the structs; the loader rejects unknown keys, wrong types,
+// out-of-range values and collisions, naming the JSON pointer (docs/config.md).
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rigsim {
+
+enum class Protocol { Mcs, Apt };
+
+/// One MCS positioner channel.
+struct McsChannelConfig {
+    std::string sensor_type = "S";               ///< appendix 4.3 symbol, or "none"
+    std::int64_t travel_min_nm = -10'500'000;     ///< mechanical end stop (physical position)
+    std::int64_t travel_max_nm = 10'500'000;      ///< mechanical end stop (physical position)
+    std::int64_t start_position_nm = 0;           ///< physical position at power-up (reads as 0)
+    std::int64_t max_speed_nm_per_s = 10'000'000; ///< fastest the stage moves (speed control off)
+    std::int64_t closed_loop_speed_nm_per_s = 0;  ///< SCLS power-up value, 0 = speed control off
+    std::int64_t closed_loop_acceleration_um_per_s2 = 0;  ///< SCLA power-up value, 0 = off
+};
+
+/// An MCS controller (SmarAct, ASCII protocol).
+struct McsConfig {
+    std::uint32_t system_id = 1000;                ///< GSI answer
+    std::vector<McsChannelConfig> channels;        ///< 1..255 channels
+};
+
+struct DeviceConfig {
+    std::string name;                 ///< unique; names the pty symlink and the logger
+    Protocol protocol = Protocol::Mcs;
+    std::string model;                ///< controller model, e.g. "MCS-3D"
+    std::uint16_t tcp_port = 0;       ///< 0 = ephemeral
+    std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
+    McsConfig mcs;
+};
+
+struct RigConfig {
+    std::uint32_t tick_hz = 1000;     ///< physics tick (1..100000 Hz)
+    std::vector<DeviceConfig> devices;
+};
+
+/// A config error: `what()` is the whole message, naming the JSON pointer.
+class ConfigError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Parse and validate a rig from JSON text. `source` names the text in messages
+/// (a file name); throws ConfigError.
+RigConfig parse_rig_config(std::string_view json_text, std::string_view source);
+/// Read and parse a rig file; throws ConfigError (also for unreadable files).
+RigConfig load_rig_config(const std::string& path);
+
+/// The built-in default rig (config/default.json, compiled in).
+std::string_view default_rig_json();
+RigConfig default_rig_config();
+
+std::string_view to_string(Protocol p);
+
+} // namespace rigsim

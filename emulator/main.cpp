@@ -1,0 +1,220 @@
+// rigsimd: emulated laboratory motion controllers on pseudo-terminals and TCP sockets.
+// Flags, config, the rig, the loop; exceptions stop here.
+
+#include "emulator/core/logging.hpp"
+#include "emulator/core/rig.hpp"
+#include "emulator/core/rig_config.hpp"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace {
+
+constexpr int kExitRuntimeError = 1;
+constexpr int kExitUsage = 2;   // bad flag or bad config
+
+constexpr std::string_view kUsage = R"(Usage: rigsimd [OPTION]...
+Emulate SmarAct MCS (and, later, Thorlabs APT) motion controllers on pseudo-terminals and
+TCP sockets. Without --config, runs the built-in default rig (config/default.json).
+
+  --config FILE          run the rig described in FILE (JSON, see docs/config.md)
+  --check-config FILE    validate FILE and exit: 0 if valid, 2 with a message naming the
+                         JSON pointer if not
+  --endpoints-json FILE  once every endpoint listens, write FILE (atomically) with
+                         {"devices":[{"name","protocol","model","tcp","pty"}]}
+  --pty-dir DIR          put each device's pty symlink at DIR/<name> unless the config
+                         names a path (default /tmp/rigsim; created if missing)
+  --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port)
+  --bind ADDR            listen for TCP on ADDR (default 127.0.0.1)
+  --time-scale X         run the physics X times faster than wall time (default 1;
+                         0.001..1000)
+  --tick-hz N            physics tick rate in Hz, overriding the config's tick_hz
+                         (1..100000; default 1000)
+  --log-level LEVEL      trace, debug, info, warn, error, critical or off (default info);
+  --log-level NAME=LEVEL   the level of one logger: a device name, or rigsimd
+                         (may be repeated)
+  --help                 show this help and exit
+  --version              show the version and exit
+
+Logs go to standard error; the endpoint list goes to standard output.
+SIGINT and SIGTERM shut down cleanly and remove the pty symlinks.
+Exit status: 0 on success or after a signal, 1 on a run-time failure (e.g. a port in
+use), 2 on a bad flag or config.
+)";
+
+struct Options {
+    std::optional<std::string> config;
+    std::optional<std::string> check_config;
+    std::optional<std::string> endpoints_json;
+    std::optional<std::uint32_t> tick_hz;
+    rigsim::RigOptions rig;
+};
+
+struct UsageError {
+    std::string message;
+};
+
+double parse_double(std::string_view flag, const std::string& value, double lo, double hi)
+{
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
+        throw UsageError{std::string(flag) + ": expected a number " + std::to_string(lo) + ".."
+                         + std::to_string(hi) + ", got \"" + value + "\""};
+    return v;
+}
+
+std::uint32_t parse_uint(std::string_view flag, const std::string& value, std::uint32_t lo, std::uint32_t hi)
+{
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(value.c_str(), &end, 10);
+    if (value.empty() || value[0] == '-' || *end != '\0' || v < lo || v > hi)
+        throw UsageError{std::string(flag) + ": expected an integer " + std::to_string(lo) + ".."
+                         + std::to_string(hi) + ", got \"" + value + "\""};
+    return static_cast<std::uint32_t>(v);
+}
+
+/// Parses argv; returns nullopt when --help or --version has been answered.
+std::optional<Options> parse_args(int argc, char** argv)
+{
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        std::optional<std::string> inline_value;
+        if (arg.rfind("--", 0) == 0) {
+            if (const auto eq = arg.find('='); eq != std::string::npos) {
+                inline_value = arg.substr(eq + 1);
+                arg.resize(eq);
+            }
+        }
+        auto value = [&]() -> std::string {
+            if (inline_value)
+                return *inline_value;
+            if (i + 1 >= argc)
+                throw UsageError{arg + ": missing value"};
+            return argv[++i];
+        };
+        auto no_value = [&] {
+            if (inline_value)
+                throw UsageError{arg + ": takes no value"};
+        };
+        if (arg == "--help" || arg == "-h") {
+            no_value();
+            std::cout << kUsage;
+            return std::nullopt;
+        }
+        if (arg == "--version") {
+            no_value();
+            std::cout << "rigsimd " RIGSIM_VERSION "\n";
+            return std::nullopt;
+        }
+        if (arg == "--config")
+            o.config = value();
+        else if (arg == "--check-config")
+            o.check_config = value();
+        else if (arg == "--endpoints-json")
+            o.endpoints_json = value();
+        else if (arg == "--pty-dir") {
+            o.rig.pty_dir = value();
+            if (o.rig.pty_dir.empty())
+                throw UsageError{"--pty-dir: expected a directory, got \"\""};
+            while (o.rig.pty_dir.size() > 1 && o.rig.pty_dir.back() == '/')
+                o.rig.pty_dir.pop_back();
+        } else if (arg == "--ephemeral-ports") {
+            no_value();
+            o.rig.ephemeral_ports = true;
+        } else if (arg == "--bind") {
+            const auto v = value();
+            boost::system::error_code ec;
+            o.rig.bind = boost::asio::ip::make_address(v, ec);
+            if (ec)
+                throw UsageError{"--bind: expected an IP address, got \"" + v + "\""};
+        } else if (arg == "--time-scale")
+            o.rig.time_scale = parse_double(arg, value(), 0.001, 1000);
+        else if (arg == "--tick-hz")
+            o.tick_hz = parse_uint(arg, value(), 1, 100000);
+        else if (arg == "--log-level") {
+            if (auto err = rigsim::apply_log_level(value(), o.rig.log_levels))
+                throw UsageError{*err};
+        } else
+            throw UsageError{"unknown option \"" + arg + "\" (see --help)"};
+    }
+    if (o.config && o.check_config)
+        throw UsageError{"--config and --check-config exclude each other"};
+    return o;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    std::optional<Options> parsed;
+    try {
+        parsed = parse_args(argc, argv);
+    } catch (const UsageError& e) {
+        std::cerr << "rigsimd: " << e.message << "\n";
+        return kExitUsage;
+    }
+    if (!parsed)
+        return 0;
+    auto& opts = *parsed;
+
+    rigsim::RigConfig config;
+    try {
+        if (opts.check_config) {
+            rigsim::load_rig_config(*opts.check_config);
+            std::cout << *opts.check_config << ": valid\n";
+            return 0;
+        }
+        config = opts.config ? rigsim::load_rig_config(*opts.config) : rigsim::default_rig_config();
+    } catch (const rigsim::ConfigError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitUsage;
+    }
+    if (opts.tick_hz)
+        config.tick_hz = *opts.tick_hz;
+
+    auto log = rigsim::make_logger("rigsimd", opts.rig.log_levels);
+    try {
+        boost::asio::io_context io;
+        rigsim::Rig rig(io, config, opts.rig);
+
+        boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+        signals.async_wait([&](const boost::system::error_code& ec, int signo) {
+            if (ec)
+                return;
+            log->info("signal {}: shutting down", signo);
+            rig.stop();
+            io.stop();
+        });
+        std::signal(SIGPIPE, SIG_IGN);
+
+        rig.start();
+        for (const auto& e : rig.endpoints())
+            std::cout << e.name << " (" << rigsim::to_string(e.protocol) << " " << e.model << "): tcp "
+                      << e.tcp << " pty " << e.pty << "\n";
+        std::cout.flush();
+        if (opts.endpoints_json)
+            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig.endpoints()));
+        log->info("rig running: {} device(s), tick {} Hz, time scale {}", rig.endpoints().size(),
+                  config.tick_hz, opts.rig.time_scale);
+        io.run();
+        rig.stop();
+    } catch (const std::exception& e) {
+        log->critical("{}", e.what());
+        std::cerr << "rigsimd: " << e.what() << "\n";
+        return kExitRuntimeError;
+    }
+    log->info("stopped");
+    return 0;
+}

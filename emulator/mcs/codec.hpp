@@ -1,0 +1,98 @@
+#pragma once
+// MCS command strings <-> typed commands and answers (manual chapter 3, appendix 4.2).
+// The codec knows no device: it checks syntax, numbers and parameter counts; ranges
+// and channel indexes are the handler's business.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace rigsim::mcs {
+
+/// Error codes of appendix 4.2.
+enum class ErrorCode : int {
+    None = 0,
+    Syntax = 1,
+    InvalidCommand = 2,
+    Overflow = 3,
+    Parse = 4,
+    TooFewParameters = 5,
+    TooManyParameters = 6,
+    InvalidParameter = 7,
+    WrongMode = 8,
+    NoSensorPresent = 129,
+    SensorDisabled = 140,
+    CommandOverridden = 141,
+    EndStopReached = 142,
+    WrongSensorType = 143,
+    CouldNotFindReferenceMark = 144,
+    WrongEndEffectorType = 145,
+    MovementLocked = 146,
+    RangeLimitReached = 147,
+    PhysicalPositionUnknown = 148,
+    CommandNotProcessable = 150,
+    WaitingForTrigger = 151,
+    CommandNotTriggerable = 152,
+    CommandQueueFull = 153,
+    InvalidComponent = 154,
+    InvalidSubComponent = 155,
+    InvalidProperty = 156,
+    PermissionDenied = 157,
+};
+
+/// Source channel of system errors (manual 1.1).
+inline constexpr int kSystem = -1;
+
+// ---- Commands (one struct per command of chapter 3 that rigsim implements) ----
+
+struct GetNumberOfChannels {};                                    ///< GNC
+struct GetSystemId {};                                            ///< GSI
+struct GetInterfaceVersion {};                                    ///< GIV
+struct GetChannelType { std::int32_t channel; };                  ///< GCT
+struct GetSensorType { std::int32_t channel; };                   ///< GST
+struct SetSensorType { std::int32_t channel; std::int32_t type_code; };  ///< SST
+struct GetPosition { std::int32_t channel; };                     ///< GP
+struct GetStatus { std::int32_t channel; };                       ///< GS
+struct MovePositionAbsolute { std::int32_t channel; std::int32_t position_nm; std::int32_t hold_ms; };  ///< MPA
+struct MovePositionRelative { std::int32_t channel; std::int32_t distance_nm; std::int32_t hold_ms; };  ///< MPR
+struct Stop { std::optional<std::int32_t> channel; };             ///< S (no channel: all)
+struct SetClosedLoopSpeed { std::int32_t channel; std::int32_t speed; };            ///< SCLS
+struct GetClosedLoopSpeed { std::int32_t channel; };              ///< GCLS
+struct SetClosedLoopAcceleration { std::int32_t channel; std::int32_t acceleration; };  ///< SCLA
+struct GetClosedLoopAcceleration { std::int32_t channel; };       ///< GCLA
+
+using Command = std::variant<GetNumberOfChannels, GetSystemId, GetInterfaceVersion, GetChannelType,
+                             GetSensorType, SetSensorType, GetPosition, GetStatus,
+                             MovePositionAbsolute, MovePositionRelative, Stop, SetClosedLoopSpeed,
+                             GetClosedLoopSpeed, SetClosedLoopAcceleration,
+                             GetClosedLoopAcceleration>;
+
+// ---- Answers ----
+
+/// `E<channel>,0`
+struct Ack { int channel; };
+/// `E<channel>,<code>`
+struct Error { int channel; ErrorCode code; };
+/// Any other answer string, without ':' and '\n' (e.g. `P0,2000000`).
+struct Answer { std::string text; };
+
+using Reply = std::variant<Ack, Error, Answer>;
+
+/// `:<answer>\n`
+std::string encode(const Reply& reply);
+void encode(const Reply& reply, std::string& out);
+
+/// Result of decoding one command string.
+struct Decoded {
+    std::optional<Command> command;   ///< set when the string is a valid command
+    Error error{kSystem, ErrorCode::None};   ///< otherwise, the answer the manual gives
+    std::string_view name;            ///< the command name as sent (for logs)
+    bool known_unimplemented = false; ///< a chapter 3 command rigsim does not implement yet
+};
+
+/// Decode one command string (without ':' and '\n').
+Decoded decode(std::string_view line);
+
+} // namespace rigsim::mcs

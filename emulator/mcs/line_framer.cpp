@@ -1,0 +1,86 @@
+#include "emulator/mcs/line_framer.hpp"
+
+namespace rigsim::mcs {
+
+LineFramer::Result LineFramer::parse(std::string_view in)
+{
+    if (line_returned_) {   // the last result's line lived in buffer_: it is used now
+        buffer_.clear();
+        line_returned_ = false;
+    }
+    Result r;
+    std::size_t i = 0;
+    while (i < in.size()) {
+        switch (state_) {
+        case State::Idle: {
+            const auto colon = in.find(':', i);
+            if (colon == std::string_view::npos) {
+                r.ignored += in.size() - i;
+                i = in.size();
+                break;
+            }
+            r.ignored += colon - i;
+            i = colon + 1;
+            state_ = State::Command;
+            buffer_.clear();
+            break;
+        }
+        case State::Command: {
+            const auto end = in.find_first_of(":\n", i);
+            const auto stop = end == std::string_view::npos ? in.size() : end;
+            const auto piece = in.substr(i, stop - i);
+            if (buffer_.size() + piece.size() > max_line_) {
+                buffer_.clear();
+                state_ = State::Discarding;
+                i += piece.size();
+                break;
+            }
+            if (end == std::string_view::npos) {
+                buffer_.append(piece);
+                i = in.size();
+                break;
+            }
+            // Zero-copy when the whole command arrived in this input.
+            const std::string_view line = buffer_.empty() ? piece : std::string_view(buffer_.append(piece));
+            i = end + 1;
+            if (in[end] == ':') {
+                // A new command starts inside this one: report the dropped part.
+                state_ = State::Command;
+                if (line.empty())
+                    break;   // "::" is just a colon among ignored characters
+                if (line.data() != buffer_.data())
+                    buffer_.assign(line);
+                r.status = Status::Interrupted;
+                r.line = buffer_;
+                r.consumed = i;
+                line_returned_ = true;   // the next parse() starts a fresh command
+                return r;
+            }
+            state_ = State::Idle;
+            if (line.empty())
+                break;   // ":\n" is ignored
+            r.status = Status::Command;
+            r.line = line;
+            r.consumed = i;
+            line_returned_ = true;
+            return r;
+        }
+        case State::Discarding: {
+            const auto end = in.find_first_of(":\n", i);
+            if (end == std::string_view::npos) {
+                i = in.size();
+                break;
+            }
+            state_ = in[end] == ':' ? State::Command : State::Idle;
+            buffer_.clear();
+            r.status = Status::Oversize;
+            r.consumed = end + 1;
+            return r;
+        }
+        }
+    }
+    r.consumed = in.size();
+    return r;
+}
+
+} // namespace rigsim::mcs

@@ -1,0 +1,98 @@
+#include "emulator/mcs/mcs_device.hpp"
+
+#include "emulator/mcs/line_framer.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace rigsim::mcs {
+namespace {
+
+class McsSession : public Session {
+public:
+    McsSession(McsDevice& device, SendFn send, std::string peer, spdlog::logger& log)
+        : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log)
+    {
+    }
+
+    void receive(std::string_view bytes) override
+    {
+        out_.clear();
+        std::size_t ignored = 0;
+        while (!bytes.empty()) {
+            const auto r = framer_.parse(bytes);
+            bytes.remove_prefix(r.consumed);
+            ignored += r.ignored;
+            switch (r.status) {
+            case LineFramer::Status::NeedMore:
+                break;
+            case LineFramer::Status::Command:
+                device_.execute(r.line, peer_, out_);
+                break;
+            case LineFramer::Status::Oversize:
+                // Not in the manual: a line too long for the controller's buffer is a
+                // syntax error, answered when its '\n' arrives (docs/protocol/mcs.md).
+                log_.warn("{}: command longer than {} bytes discarded: error 1", peer_,
+                          LineFramer::kDefaultMaxLine);
+                encode(Error{kSystem, ErrorCode::Syntax}, out_);
+                break;
+            case LineFramer::Status::Interrupted:
+                log_.warn("{}: ':' inside a command, dropped \"{}\"", peer_, printable(r.line));
+                break;
+            }
+        }
+        if (ignored > 0)
+            log_.warn("{}: ignored {} byte(s) outside ':'...'\\n'", peer_, ignored);
+        if (!out_.empty())
+            send_(out_);
+    }
+
+private:
+    McsDevice& device_;
+    SendFn send_;
+    std::string peer_;
+    spdlog::logger& log_;
+    LineFramer framer_;
+    std::string out_;
+};
+
+} // namespace
+
+McsDevice::McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
+    : config_(config), clock_(clock), log_(std::move(log)), controller_(config.mcs, clock),
+      handler_(controller_)
+{
+    clock_.add(&controller_);
+}
+
+McsDevice::~McsDevice()
+{
+    clock_.remove(&controller_);
+}
+
+std::unique_ptr<Session> McsDevice::open_session(SendFn send, std::string peer)
+{
+    return std::make_unique<McsSession>(*this, std::move(send), std::move(peer), *log_);
+}
+
+void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out)
+{
+    const auto decoded = decode(line);
+    if (!decoded.command) {
+        if (decoded.known_unimplemented)
+            log_->warn("{}: \"{}\": command {} is not implemented by rigsim: error {}", peer,
+                       printable(line), decoded.name, static_cast<int>(decoded.error.code));
+        else
+            log_->warn("{}: \"{}\": error {}", peer, printable(line), static_cast<int>(decoded.error.code));
+        encode(decoded.error, out);
+        return;
+    }
+    const auto reply = handler_.handle(*decoded.command);
+    if (const auto* err = std::get_if<Error>(&reply))
+        log_->warn("{}: \"{}\": error {} (source channel {})", peer, printable(line),
+                   static_cast<int>(err->code), err->channel);
+    else
+        log_->debug("{}: \"{}\"", peer, printable(line));
+    encode(reply, out);
+}
+
+} // namespace rigsim::mcs

@@ -1,0 +1,39 @@
+#pragma once
+// An MCS controller as a rig device: framer + codec + handler per connection, one
+// Controller shared by all connections.
+
+#include "emulator/core/clock.hpp"
+#include "emulator/core/device.hpp"
+#include "emulator/mcs/controller.hpp"
+#include "emulator/mcs/handler.hpp"
+
+#include <spdlog/logger.h>
+
+#include <memory>
+
+namespace rigsim::mcs {
+
+class McsDevice : public Device {
+public:
+    McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log);
+    ~McsDevice() override;
+    McsDevice(const McsDevice&) = delete;
+    McsDevice& operator=(const McsDevice&) = delete;
+
+    const DeviceConfig& config() const override { return config_; }
+    std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
+
+    Controller& controller() { return controller_; }
+
+    /// Handle one framed command string; appends the encoded answer (if any) to `out`.
+    void execute(std::string_view line, std::string_view peer, std::string& out);
+
+private:
+    DeviceConfig config_;
+    Clock& clock_;
+    std::shared_ptr<spdlog::logger> log_;
+    Controller controller_;
+    Handler handler_;
+};
+
+} // namespace rigsim::mcs

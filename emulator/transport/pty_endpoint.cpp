@@ -1,0 +1,177 @@
+#include "emulator/transport/pty_endpoint.hpp"
+
+#include <boost/asio/write.hpp>
+
+#include <cerrno>
+#include <climits>
+#include <fcntl.h>
+#include <pty.h>
+#include <sys/stat.h>
+#include <system_error>
+#include <termios.h>
+#include <unistd.h>
+
+namespace rigsim {
+
+namespace asio = boost::asio;
+
+namespace {
+
+[[noreturn]] void throw_errno(const std::string& what)
+{
+    throw std::system_error(errno, std::generic_category(), what);
+}
+
+/// mkdir -p for the symlink's directory.
+void make_parent_dirs(const std::string& path)
+{
+    for (auto pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1)) {
+        const auto dir = path.substr(0, pos);
+        if (::mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST)
+            throw_errno("cannot create directory " + dir);
+    }
+}
+
+/// Point `link` at `target` atomically, replacing a stale symlink but never a real file.
+void replace_symlink(const std::string& target, const std::string& link)
+{
+    struct stat st {};
+    if (::lstat(link.c_str(), &st) == 0 && !S_ISLNK(st.st_mode)) {
+        errno = EEXIST;
+        throw_errno("pty path " + link + " exists and is not a symlink");
+    }
+    const auto tmp = link + ".tmp" + std::to_string(::getpid());
+    ::unlink(tmp.c_str());
+    if (::symlink(target.c_str(), tmp.c_str()) != 0)
+        throw_errno("cannot create symlink " + tmp);
+    if (::rename(tmp.c_str(), link.c_str()) != 0) {
+        const int e = errno;
+        ::unlink(tmp.c_str());
+        errno = e;
+        throw_errno("cannot create symlink " + link);
+    }
+}
+
+} // namespace
+
+PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
+                         std::shared_ptr<spdlog::logger> log)
+    : master_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
+{
+    int master = -1;
+    char name[PATH_MAX] = {};
+    if (::openpty(&master, &slave_fd_, name, nullptr, nullptr) != 0)
+        throw_errno("openpty failed");
+    slave_name_ = name;
+    // Raw: no echo, no line editing, no CR/LF mapping. A client's own termios settings
+    // (it opens the slave) replace these; the daemon never resets them behind its back.
+    struct termios tio {};
+    ::tcgetattr(slave_fd_, &tio);
+    ::cfmakeraw(&tio);
+    ::cfsetispeed(&tio, B115200);
+    ::cfsetospeed(&tio, B115200);
+    ::tcsetattr(slave_fd_, TCSANOW, &tio);
+    ::fcntl(master, F_SETFD, FD_CLOEXEC);
+    ::fcntl(slave_fd_, F_SETFD, FD_CLOEXEC);
+    master_.assign(master);
+    master_.non_blocking(true);
+    try {
+        make_parent_dirs(symlink_path_);
+        replace_symlink(slave_name_, symlink_path_);
+    } catch (...) {
+        ::close(slave_fd_);
+        throw;
+    }
+    std::weak_ptr<bool> alive = alive_;
+    session_ = device.open_session(
+        [this, alive](std::string_view bytes) {
+            if (alive.lock())
+                send(bytes);
+        },
+        "pty " + symlink_path_);
+}
+
+PtyEndpoint::~PtyEndpoint()
+{
+    stop();
+    alive_.reset();
+    if (slave_fd_ >= 0)
+        ::close(slave_fd_);
+}
+
+void PtyEndpoint::start()
+{
+    read();
+}
+
+void PtyEndpoint::stop()
+{
+    if (stopped_)
+        return;
+    stopped_ = true;
+    boost::system::error_code ec;
+    master_.cancel(ec);
+    master_.close(ec);
+    // Remove the symlink only if it is still ours.
+    char target[PATH_MAX] = {};
+    const auto n = ::readlink(symlink_path_.c_str(), target, sizeof target - 1);
+    if (n > 0 && std::string(target, static_cast<std::size_t>(n)) == slave_name_)
+        ::unlink(symlink_path_.c_str());
+}
+
+void PtyEndpoint::read()
+{
+    std::weak_ptr<bool> alive = alive_;
+    master_.async_read_some(asio::buffer(buffer_),
+        [this, alive](const boost::system::error_code& ec, std::size_t n) {
+            if (!alive.lock() || stopped_)
+                return;
+            if (ec) {
+                if (ec == asio::error::operation_aborted)
+                    return;
+                // EIO cannot happen while slave_fd_ is open; anything else ends the pty.
+                log_->error("pty {}: read failed: {}", symlink_path_, ec.message());
+                return;
+            }
+            session_->receive(std::string_view(buffer_.data(), n));
+            read();
+        });
+}
+
+void PtyEndpoint::send(std::string_view bytes)
+{
+    if (stopped_)
+        return;
+    if (queued_bytes_ + bytes.size() > kMaxQueuedBytes) {
+        if (!dropping_)
+            log_->warn("pty {}: nobody reads the port, dropping output", symlink_path_);
+        dropping_ = true;
+        return;
+    }
+    dropping_ = false;
+    queued_bytes_ += bytes.size();
+    queue_.emplace_back(bytes);
+    if (queue_.size() == 1)
+        write();
+}
+
+void PtyEndpoint::write()
+{
+    std::weak_ptr<bool> alive = alive_;
+    asio::async_write(master_, asio::buffer(queue_.front()),
+        [this, alive](const boost::system::error_code& ec, std::size_t) {
+            if (!alive.lock() || stopped_)
+                return;
+            if (ec) {
+                if (ec != asio::error::operation_aborted)
+                    log_->error("pty {}: write failed: {}", symlink_path_, ec.message());
+                return;
+            }
+            queued_bytes_ -= queue_.front().size();
+            queue_.pop_front();
+            if (!queue_.empty())
+                write();
+        });
+}
+
+} // namespace rigsim

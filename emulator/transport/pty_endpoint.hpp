@@ -1,0 +1,60 @@
+#pragma once
+// Pseudo-terminal endpoint of one device: what a legacy application opens as its serial port.
+//
+// openpty + cfmakeraw + a stable symlink (simavr's uart_pty). The daemon keeps its own
+// descriptor of the slave side open for its whole life, so the master never sees a hang-up:
+// a client may open, close and reopen the port and change its termios settings (baud rate,
+// flow control) while the device and its session keep their state, as a controller on a real
+// serial line would. The serial line is one connection: one Session for all openers.
+
+#include "emulator/core/device.hpp"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/posix/stream_descriptor.hpp>
+#include <spdlog/logger.h>
+
+#include <array>
+#include <deque>
+#include <memory>
+#include <string>
+
+namespace rigsim {
+
+class PtyEndpoint {
+public:
+    /// Output that no client reads is dropped beyond this, as on an unread serial line.
+    static constexpr std::size_t kMaxQueuedBytes = 1 << 20;
+
+    /// Creates the pty and the symlink at once (throws std::system_error if it cannot).
+    PtyEndpoint(boost::asio::io_context& io, Device& device, std::string symlink_path,
+                std::shared_ptr<spdlog::logger> log);
+    ~PtyEndpoint();
+    PtyEndpoint(const PtyEndpoint&) = delete;
+    PtyEndpoint& operator=(const PtyEndpoint&) = delete;
+
+    const std::string& symlink_path() const { return symlink_path_; }
+    const std::string& device_path() const { return slave_name_; }
+    void start();
+    /// Stop I/O and remove the symlink.
+    void stop();
+
+private:
+    void read();
+    void send(std::string_view bytes);
+    void write();
+
+    boost::asio::posix::stream_descriptor master_;
+    int slave_fd_ = -1;
+    std::string slave_name_;
+    std::string symlink_path_;
+    std::shared_ptr<spdlog::logger> log_;
+    std::unique_ptr<Session> session_;
+    std::array<char, 4096> buffer_{};
+    std::deque<std::string> queue_;
+    std::size_t queued_bytes_ = 0;
+    bool dropping_ = false;
+    bool stopped_ = false;
+    std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+};
+
+} // namespace rigsim

@@ -1,0 +1,50 @@
+#pragma once
+// Trapezoidal (bang-coast-bang) point-to-point motion in one axis.
+//
+// A profile is planned once, from the axis state (position, velocity) at the moment a
+// move is commanded, as a list of constant-acceleration segments; it is then sampled at
+// any time since planning. Sampling is exact, so arrival time does not depend on the
+// physics tick. Units are whatever the caller uses consistently (rigsim: nm, nm/s, nm/s^2).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rigsim::models {
+
+/// (position, velocity)
+using AxisState = Eigen::Vector2d;
+
+/// One constant-acceleration stretch of a profile.
+struct Segment {
+    double t0 = 0;         ///< start, seconds since the profile was planned
+    double duration = 0;   ///< seconds
+    AxisState start;       ///< state at t0
+    double acceleration = 0;
+};
+
+class TrapezoidProfile {
+public:
+    /// Plan a move from `from` to `target`. `v_max` > 0; `a_max` == 0 means unlimited
+    /// acceleration (the axis jumps to v_max). A start velocity pointing away from the
+    /// target, or too fast to stop in time, is first braked to rest.
+    static TrapezoidProfile plan(const AxisState& from, double target, double v_max, double a_max);
+
+    /// State at `t` seconds after planning; the target at rest from duration() on.
+    AxisState sample(double t) const;
+    double duration() const;
+    double target() const { return target_; }
+    const std::vector<Segment>& segments() const { return segments_; }
+
+private:
+    void append(double duration, const AxisState& start, double acceleration);
+    void plan_from(AxisState from, double v_max, double a_max);
+
+    std::vector<Segment> segments_;
+    double target_ = 0;
+};
+
+/// State after `t` seconds of constant acceleration `a` from `s`.
+AxisState integrate(const AxisState& s, double a, double t);
+
+} // namespace rigsim::models

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Builds the Release tree and runs the benchmark; arguments go to rigsim_bench
+# (--iterations N, --idle-seconds S, --daemon PATH). See bench/README.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
+cmake --build build/release -j2 --target rigsim_bench
+exec build/release/bench/rigsim_bench "$@"

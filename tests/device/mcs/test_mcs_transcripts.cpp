@@ -1,0 +1,74 @@
+// Golden transcripts: long sessions replayed byte for byte on a stepped clock.
+//
+// Format (tests/device/transcripts/*.txt), one item per line:
+//   # comment             ignored, as are blank lines
+//   > :GNC                bytes sent (a '\n' is appended)
+//   < :N3                 one expected answer line, in order ("< " alone: nothing more)
+//   ~ 250ms | ~ 3 ticks   advance the clock
+// After each '>' line, the answers the device gave must equal the '<' lines that follow.
+#include "mcs_harness.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+using rigsim::test::McsHarness;
+
+namespace {
+
+void replay(const std::string& path)
+{
+    std::ifstream in(path);
+    REQUIRE(in);
+    McsHarness h;
+    std::string line, pending_answer, expected;
+    int number = 0, commands = 0;
+    auto settle = [&](int at) {
+        INFO(path << ":" << at);
+        CHECK(pending_answer == expected);
+        pending_answer.clear();
+        expected.clear();
+    };
+    int last_command_line = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (line.empty() || line[0] == '#')
+            continue;
+        REQUIRE(line.size() >= 1);
+        const char kind = line[0];
+        const std::string rest = line.size() > 2 ? line.substr(2) : "";
+        if (kind == '>') {
+            settle(last_command_line);
+            pending_answer = h.send(rest + "\n");
+            last_command_line = number;
+            ++commands;
+        } else if (kind == '<') {
+            if (!rest.empty())
+                expected += rest + "\n";
+        } else if (kind == '~') {
+            settle(last_command_line);
+            std::istringstream s(rest);
+            long long n = 0;
+            std::string unit;
+            s >> n >> unit;
+            if (unit == "ms" || unit.empty())
+                h.advance_ms(n);
+            else if (unit == "ticks")
+                h.advance_ticks(n);
+            else
+                FAIL(path << ":" << number << ": unknown unit " << unit);
+        } else {
+            FAIL(path << ":" << number << ": unknown line kind '" << kind << "'");
+        }
+    }
+    settle(last_command_line);
+    CHECK(commands > 0);
+}
+
+} // namespace
+
+TEST_CASE("transcript: positioner slice session", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_positioner_slice.txt");
+}

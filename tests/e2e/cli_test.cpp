@@ -1,0 +1,103 @@
+// rigsimd's command line: --help, --check-config, unknown flags.
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <string>
+
+#include "e2e_support.hpp"
+
+using namespace rigsim::e2e;
+
+namespace {
+
+long count_lines(const std::string& text)
+{
+    return static_cast<long>(std::count(text.begin(), text.end(), '\n'));
+}
+
+} // namespace
+
+TEST_CASE("cli: --check-config accepts valid rigs", "[e2e][cli]")
+{
+    const std::string file = GENERATE(std::string(RIGSIM_SOURCE_DIR "/config/default.json"),
+                                      fixture("two_channel_rig.json"),
+                                      fixture("long_travel_rig.json"));
+    const auto r = run_rigsimd({"--check-config", file});
+    INFO(file << "\nstdout: " << r.out << "\nstderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("cli: --check-config rejects a bad rig naming the JSON pointer", "[e2e][cli]")
+{
+    SECTION("unknown sensor type")
+    {
+        const std::string file = fixture("bad_sensor_type.json");
+        const auto r = run_rigsimd({"--check-config", file});
+        INFO("stderr: " << r.err);
+        REQUIRE(r.exited);
+        CHECK(r.exit_code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("bad_sensor_type.json") != std::string::npos);
+        CHECK(r.err.find("/devices/0/mcs/channels/0/sensor_type") != std::string::npos);
+        CHECK(r.err.find("S9") != std::string::npos);
+    }
+
+    SECTION("unknown key")
+    {
+        const auto r = run_rigsimd({"--check-config", fixture("unknown_key.json")});
+        INFO("stderr: " << r.err);
+        REQUIRE(r.exited);
+        CHECK(r.exit_code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("/devices/0/mcs/channels/1") != std::string::npos);
+        CHECK(r.err.find("colour") != std::string::npos);
+    }
+
+    SECTION("malformed JSON")
+    {
+        TempDir dir;
+        const std::string file = dir.file("broken.json");
+        write_file(file, "{\"tick_hz\": 1000, \"devices\": [\n");
+        const auto r = run_rigsimd({"--check-config", file});
+        INFO("stderr: " << r.err);
+        REQUIRE(r.exited);
+        CHECK(r.exit_code == 2);
+        CHECK(count_lines(r.err) == 1);
+        CHECK(r.err.find("broken.json") != std::string::npos);
+    }
+
+    SECTION("missing file")
+    {
+        TempDir dir;
+        const auto r = run_rigsimd({"--check-config", dir.file("absent.json")});
+        INFO("stderr: " << r.err);
+        REQUIRE(r.exited);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find("absent.json") != std::string::npos);
+    }
+}
+
+TEST_CASE("cli: an unknown flag exits 2 naming the flag", "[e2e][cli]")
+{
+    const auto r = run_rigsimd({"--no-such-flag"});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--no-such-flag") != std::string::npos);
+}
+
+TEST_CASE("cli: --help lists every flag and exits 0", "[e2e][cli]")
+{
+    const auto r = run_rigsimd({"--help"});
+    INFO("stdout: " << r.out << "\nstderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 0);
+    for (const char* flag : {"--config", "--check-config", "--endpoints-json", "--pty-dir",
+                             "--ephemeral-ports", "--bind", "--time-scale", "--tick-hz",
+                             "--log-level", "--help"}) {
+        INFO("flag " << flag);
+        CHECK(r.out.find(flag) != std::string::npos);
+    }
+}

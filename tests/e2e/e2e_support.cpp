@@ -1,0 +1,641 @@
+#include "e2e_support.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#if !defined(RIGSIMD_PATH) || !defined(RIGSIM_E2E_DIR)
+#error "RIGSIMD_PATH and RIGSIM_E2E_DIR are set by tests/e2e/CMakeLists.txt"
+#endif
+
+namespace rigsim::e2e {
+
+namespace {
+
+constexpr Millis kPollPeriod{2};
+
+std::string errno_text(const std::string& what)
+{
+    return what + ": " + std::strerror(errno);
+}
+
+int remaining_ms(SteadyClock::time_point deadline)
+{
+    auto left = std::chrono::duration_cast<Millis>(deadline - SteadyClock::now()).count();
+    return left < 0 ? 0 : static_cast<int>(std::min<long long>(left, 1000 * 1000));
+}
+
+void set_nonblocking(int fd)
+{
+    int flags = ::fcntl(fd, F_GETFL);
+    if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0)
+        throw std::runtime_error(errno_text("fcntl(O_NONBLOCK)"));
+}
+
+/// argv for execv, built before fork so the child only calls async-signal-safe functions.
+class Argv {
+public:
+    explicit Argv(const std::vector<std::string>& args) : storage_(args)
+    {
+        for (auto& s : storage_)
+            pointers_.push_back(s.data());
+        pointers_.push_back(nullptr);
+    }
+    char* const* get() { return pointers_.data(); }
+
+private:
+    std::vector<std::string> storage_;
+    std::vector<char*> pointers_;
+};
+
+/// In the child after fork: die with the test process, default signal handling, stdio
+/// redirected, then exec. Only async-signal-safe calls.
+[[noreturn]] void exec_child(char* const* argv, int in_fd, int out_fd, int err_fd,
+                             pid_t parent)
+{
+#ifdef __linux__
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent)
+        ::_exit(127);
+#else
+    (void)parent;
+#endif
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    ::signal(SIGPIPE, SIG_DFL);
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    if (::dup2(in_fd, STDIN_FILENO) < 0 || ::dup2(out_fd, STDOUT_FILENO) < 0 ||
+        ::dup2(err_fd, STDERR_FILENO) < 0)
+        ::_exit(127);
+    ::execv(argv[0], argv);
+    ::_exit(127);
+}
+
+std::vector<std::string> with_binary(const std::vector<std::string>& args)
+{
+    std::vector<std::string> all{RIGSIMD_PATH};
+    all.insert(all.end(), args.begin(), args.end());
+    return all;
+}
+
+} // namespace
+
+bool wait_until(const std::function<bool()>& pred, Millis timeout)
+{
+    const auto deadline = SteadyClock::now() + timeout;
+    for (;;) {
+        if (pred())
+            return true;
+        if (SteadyClock::now() >= deadline)
+            return false;
+        // Not a fixed delay: a short poll period between checks of the predicate.
+        std::this_thread::sleep_for(kPollPeriod);
+    }
+}
+
+double elapsed_ms(SteadyClock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
+}
+
+// --- files ---------------------------------------------------------------------------
+
+TempDir::TempDir()
+{
+    const char* base = std::getenv("TMPDIR");
+    std::string templ = std::string(base && *base ? base : "/tmp") + "/rigsim-e2e-XXXXXX";
+    if (!::mkdtemp(templ.data()))
+        throw std::runtime_error(errno_text("mkdtemp " + templ));
+    path_ = templ;
+}
+
+TempDir::~TempDir()
+{
+    if (std::getenv("RIGSIM_E2E_KEEP_TMP"))
+        return;
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+}
+
+void write_file(const std::string& path, const std::string& text)
+{
+    std::ofstream f(path, std::ios::binary | std::ios::trunc);
+    f << text;
+    if (!f)
+        throw std::runtime_error("cannot write " + path);
+}
+
+std::optional<std::string> read_file(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    if (!f)
+        return std::nullopt;
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+bool path_exists(const std::string& path)
+{
+    struct stat st {};
+    return ::lstat(path.c_str(), &st) == 0;
+}
+
+// --- endpoints file ------------------------------------------------------------------
+
+std::optional<std::string> json_string_value(const std::string& text, const std::string& key)
+{
+    const std::string quoted = "\"" + key + "\"";
+    auto skip_ws = [&](std::size_t i) {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
+            ++i;
+        return i;
+    };
+    for (std::size_t at = text.find(quoted); at != std::string::npos;
+         at = text.find(quoted, at + 1)) {
+        std::size_t i = skip_ws(at + quoted.size());
+        if (i >= text.size() || text[i] != ':')
+            continue; // the key text appeared as a value
+        i = skip_ws(i + 1);
+        if (i >= text.size() || text[i] != '"')
+            return std::nullopt; // not a string value
+        std::string value;
+        for (++i; i < text.size(); ++i) {
+            char c = text[i];
+            if (c == '"')
+                return value;
+            if (c == '\\' && i + 1 < text.size()) {
+                char e = text[++i];
+                switch (e) {
+                case 'n': value += '\n'; break;
+                case 't': value += '\t'; break;
+                default: value += e; break; // \" \\ \/
+                }
+                continue;
+            }
+            value += c;
+        }
+        return std::nullopt; // unterminated
+    }
+    return std::nullopt;
+}
+
+std::optional<Endpoint> find_endpoint(const std::string& json, const std::string& name)
+{
+    // Device entries are the innermost objects: a '{' whose matching '}' comes before any
+    // other '{'.
+    for (std::size_t open = json.find('{'); open != std::string::npos;
+         open = json.find('{', open + 1)) {
+        std::size_t close = json.find('}', open);
+        if (close == std::string::npos)
+            break;
+        std::size_t nested = json.find('{', open + 1);
+        if (nested != std::string::npos && nested < close)
+            continue;
+        std::string object = json.substr(open, close - open + 1);
+        if (json_string_value(object, "name") != name)
+            continue;
+        Endpoint ep;
+        ep.name = name;
+        ep.tcp = json_string_value(object, "tcp").value_or("");
+        ep.pty = json_string_value(object, "pty").value_or("");
+        auto colon = ep.tcp.rfind(':');
+        if (colon != std::string::npos) {
+            ep.host = ep.tcp.substr(0, colon);
+            if (ep.host.size() >= 2 && ep.host.front() == '[' && ep.host.back() == ']')
+                ep.host = ep.host.substr(1, ep.host.size() - 2);
+            try {
+                long port = std::stol(ep.tcp.substr(colon + 1));
+                if (port > 0 && port < 65536)
+                    ep.port = static_cast<std::uint16_t>(port);
+            } catch (const std::exception&) {
+            }
+        }
+        return ep;
+    }
+    return std::nullopt;
+}
+
+// --- processes -----------------------------------------------------------------------
+
+std::string describe_wait_status(int status)
+{
+    if (WIFEXITED(status))
+        return "exited " + std::to_string(WEXITSTATUS(status));
+    if (WIFSIGNALED(status))
+        return "killed by signal " + std::to_string(WTERMSIG(status));
+    return "wait status " + std::to_string(status);
+}
+
+ProcessResult run_rigsimd(const std::vector<std::string>& args, Millis timeout)
+{
+    Argv argv(with_binary(args));
+    int out_pipe[2], err_pipe[2];
+    if (::pipe2(out_pipe, O_CLOEXEC) < 0)
+        throw std::runtime_error(errno_text("pipe2"));
+    if (::pipe2(err_pipe, O_CLOEXEC) < 0) {
+        ::close(out_pipe[0]);
+        ::close(out_pipe[1]);
+        throw std::runtime_error(errno_text("pipe2"));
+    }
+    int null_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const pid_t parent = ::getpid();
+    pid_t pid = ::fork();
+    if (pid == 0)
+        exec_child(argv.get(), null_fd, out_pipe[1], err_pipe[1], parent);
+    ::close(null_fd);
+    ::close(out_pipe[1]);
+    ::close(err_pipe[1]);
+    if (pid < 0) {
+        ::close(out_pipe[0]);
+        ::close(err_pipe[0]);
+        throw std::runtime_error(errno_text("fork"));
+    }
+
+    ProcessResult result;
+    const auto deadline = SteadyClock::now() + timeout;
+    pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+    std::string* sinks[2] = {&result.out, &result.err};
+    int open_pipes = 2;
+    while (open_pipes > 0) {
+        int left = remaining_ms(deadline);
+        if (left == 0) {
+            result.timed_out = true;
+            break;
+        }
+        int n = ::poll(fds, 2, left);
+        if (n < 0 && errno != EINTR)
+            break;
+        for (int i = 0; i < 2; ++i) {
+            if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR)))
+                continue;
+            char buf[4096];
+            ssize_t got = ::read(fds[i].fd, buf, sizeof buf);
+            if (got > 0) {
+                sinks[i]->append(buf, static_cast<std::size_t>(got));
+            } else if (got == 0 || errno != EINTR) {
+                ::close(fds[i].fd);
+                fds[i].fd = -1;
+                --open_pipes;
+            }
+        }
+    }
+    for (auto& p : fds)
+        if (p.fd >= 0)
+            ::close(p.fd);
+
+    int status = 0;
+    bool reaped = wait_until(
+        [&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+        result.timed_out ? Millis{0} : Millis{std::max(remaining_ms(deadline), 1)});
+    if (!reaped) {
+        result.timed_out = true;
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        return result;
+    }
+    if (WIFEXITED(status)) {
+        result.exited = true;
+        result.exit_code = WEXITSTATUS(status);
+    }
+    return result;
+}
+
+// --- Daemon --------------------------------------------------------------------------
+
+Daemon::Daemon() : Daemon(Options{}) {}
+
+Daemon::Daemon(Options options)
+{
+    try {
+        start(options);
+        wait_for_endpoints();
+    } catch (...) {
+        if (pid_ > 0 && !wait_status_) {
+            ::kill(pid_, SIGKILL);
+            int status = 0;
+            ::waitpid(pid_, &status, 0);
+        }
+        throw;
+    }
+}
+
+Daemon::~Daemon()
+{
+    if (pid_ <= 0 || wait_status_)
+        return;
+    ::kill(pid_, SIGTERM);
+    if (wait_until([this] { return reap_nohang(); }, kShutdownTimeout))
+        return;
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+}
+
+void Daemon::start(const Options& options)
+{
+    std::vector<std::string> args{
+        "--ephemeral-ports",
+        "--pty-dir", dir_.path(),
+        "--endpoints-json", dir_.file("endpoints.json"),
+    };
+    if (!options.config_json.empty()) {
+        write_file(dir_.file("rig.json"), options.config_json);
+        args.insert(args.end(), {"--config", dir_.file("rig.json")});
+    } else if (!options.config_path.empty()) {
+        args.insert(args.end(), {"--config", options.config_path});
+    }
+    args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+
+    Argv argv(with_binary(args));
+    int in_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    int out_fd = ::open(dir_.file("stdout.log").c_str(),
+                        O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    int err_fd = ::open(dir_.file("rigsimd.log").c_str(),
+                        O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (in_fd < 0 || out_fd < 0 || err_fd < 0)
+        throw std::runtime_error(errno_text("open daemon stdio in " + dir_.path()));
+    const pid_t parent = ::getpid();
+    pid_t pid = ::fork();
+    if (pid == 0)
+        exec_child(argv.get(), in_fd, out_fd, err_fd, parent);
+    ::close(in_fd);
+    ::close(out_fd);
+    ::close(err_fd);
+    if (pid < 0)
+        throw std::runtime_error(errno_text("fork"));
+    pid_ = pid;
+}
+
+void Daemon::wait_for_endpoints()
+{
+    const std::string path = dir_.file("endpoints.json");
+    bool appeared = wait_until([&] { return path_exists(path) || !running(); }, kStartTimeout);
+    if (!running())
+        throw std::runtime_error("rigsimd " + describe_wait_status(*wait_status_) +
+                                 " before writing " + path + "; its log:\n" + log());
+    if (!appeared)
+        throw std::runtime_error("rigsimd did not write " + path + " within " +
+                                 std::to_string(kStartTimeout.count()) + " ms; its log:\n" +
+                                 log());
+    endpoints_json_ = read_file(path).value_or("");
+}
+
+Endpoint Daemon::endpoint(const std::string& name) const
+{
+    auto ep = find_endpoint(endpoints_json_, name);
+    if (!ep)
+        throw std::runtime_error("no device \"" + name + "\" in endpoints file: " +
+                                 endpoints_json_);
+    return *ep;
+}
+
+std::string Daemon::log() const
+{
+    return read_file(dir_.file("rigsimd.log")).value_or("<no log>");
+}
+
+bool Daemon::reap_nohang()
+{
+    if (wait_status_)
+        return true;
+    int status = 0;
+    pid_t r = ::waitpid(pid_, &status, WNOHANG);
+    if (r == pid_) {
+        wait_status_ = status;
+        return true;
+    }
+    if (r < 0 && errno == ECHILD) {
+        wait_status_ = -1;
+        return true;
+    }
+    return false;
+}
+
+bool Daemon::running()
+{
+    return pid_ > 0 && !reap_nohang();
+}
+
+std::optional<int> Daemon::stop(int signal, Millis timeout)
+{
+    if (running())
+        ::kill(pid_, signal);
+    if (!wait_until([this] { return reap_nohang(); }, timeout))
+        return std::nullopt;
+    return wait_status_;
+}
+
+// --- clients -------------------------------------------------------------------------
+
+LineClient::~LineClient()
+{
+    close();
+}
+
+void LineClient::close()
+{
+    if (fd_ >= 0)
+        ::close(fd_);
+    fd_ = -1;
+    buffer_.clear();
+}
+
+void LineClient::send(const std::string& bytes, Millis timeout)
+{
+    if (fd_ < 0)
+        throw std::runtime_error("send on a closed client");
+    const auto deadline = SteadyClock::now() + timeout;
+    std::size_t sent = 0;
+    while (sent < bytes.size()) {
+        ssize_t n = is_socket_
+            ? ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL)
+            : ::write(fd_, bytes.data() + sent, bytes.size() - sent);
+        if (n > 0) {
+            sent += static_cast<std::size_t>(n);
+            continue;
+        }
+        if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
+            throw std::runtime_error(errno_text("send after " + std::to_string(sent) + " of " +
+                                                std::to_string(bytes.size()) + " bytes"));
+        int left = remaining_ms(deadline);
+        pollfd p{fd_, POLLOUT, 0};
+        if (left == 0 || (::poll(&p, 1, left) == 0 && remaining_ms(deadline) == 0))
+            throw std::runtime_error("send timed out after " + std::to_string(sent) + " of " +
+                                     std::to_string(bytes.size()) + " bytes");
+    }
+}
+
+int LineClient::fill(Millis timeout)
+{
+    if (fd_ < 0)
+        return -1;
+    pollfd p{fd_, POLLIN, 0};
+    int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
+    if (ready <= 0)
+        return 0;
+    char buf[65536];
+    ssize_t n = ::read(fd_, buf, sizeof buf);
+    if (n > 0) {
+        buffer_.append(buf, static_cast<std::size_t>(n));
+        return static_cast<int>(n);
+    }
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
+        return 0;
+    return -1; // end of stream, reset, or EIO on a pty whose master is gone
+}
+
+std::optional<std::string> LineClient::read_line(Millis timeout)
+{
+    const auto deadline = SteadyClock::now() + timeout;
+    for (;;) {
+        auto nl = buffer_.find('\n');
+        if (nl != std::string::npos) {
+            std::string line = buffer_.substr(0, nl + 1);
+            buffer_.erase(0, nl + 1);
+            return line;
+        }
+        int left = remaining_ms(deadline);
+        if (left == 0)
+            return std::nullopt;
+        if (fill(Millis{left}) < 0)
+            return std::nullopt;
+    }
+}
+
+std::string LineClient::request(const std::string& cmd, Millis timeout)
+{
+    send(cmd);
+    auto answer = read_line(timeout);
+    if (!answer)
+        return "<no answer to " + cmd.substr(0, 40) + " within " +
+               std::to_string(timeout.count()) + " ms; pending: " + buffer_.substr(0, 80) + ">";
+    return *answer;
+}
+
+bool LineClient::wait_for_eof(Millis timeout)
+{
+    const auto deadline = SteadyClock::now() + timeout;
+    for (;;) {
+        int left = remaining_ms(deadline);
+        if (left == 0)
+            return false;
+        if (fill(Millis{left}) < 0)
+            return true;
+        buffer_.clear();
+    }
+}
+
+TcpClient::TcpClient(const Endpoint& endpoint)
+{
+    is_socket_ = true;
+    addrinfo hints{};
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_STREAM;
+    hints.ai_flags = AI_NUMERICSERV;
+    addrinfo* found = nullptr;
+    const std::string port = std::to_string(endpoint.port);
+    if (int rc = ::getaddrinfo(endpoint.host.c_str(), port.c_str(), &hints, &found); rc != 0)
+        throw std::runtime_error("getaddrinfo " + endpoint.tcp + ": " + ::gai_strerror(rc));
+    std::string last_error = "no address";
+    for (addrinfo* a = found; a; a = a->ai_next) {
+        int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+        if (fd < 0)
+            continue;
+        if (::connect(fd, a->ai_addr, a->ai_addrlen) == 0) {
+            fd_ = fd;
+            break;
+        }
+        last_error = std::strerror(errno);
+        ::close(fd);
+    }
+    ::freeaddrinfo(found);
+    if (fd_ < 0)
+        throw std::runtime_error("connect " + endpoint.tcp + ": " + last_error);
+    int one = 1;
+    ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    set_nonblocking(fd_);
+}
+
+void TcpClient::abort()
+{
+    if (fd_ < 0)
+        return;
+    linger l{1, 0};
+    ::setsockopt(fd_, SOL_SOCKET, SO_LINGER, &l, sizeof l);
+    close();
+}
+
+PtyClient::PtyClient(const std::string& path, speed_t baud)
+{
+    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (fd_ < 0)
+        throw std::runtime_error(errno_text("open " + path));
+    set_baud(baud);
+}
+
+void PtyClient::set_baud(speed_t baud)
+{
+    termios t{};
+    if (::tcgetattr(fd_, &t) < 0)
+        throw std::runtime_error(errno_text("tcgetattr"));
+    ::cfmakeraw(&t);
+    if (::cfsetispeed(&t, baud) < 0 || ::cfsetospeed(&t, baud) < 0)
+        throw std::runtime_error(errno_text("cfsetspeed"));
+    if (::tcsetattr(fd_, TCSANOW, &t) < 0)
+        throw std::runtime_error(errno_text("tcsetattr"));
+}
+
+speed_t PtyClient::baud() const
+{
+    termios t{};
+    if (::tcgetattr(fd_, &t) < 0)
+        return 0;
+    return ::cfgetospeed(&t);
+}
+
+bool poll_status_until(LineClient& client, int channel, int state, Millis timeout,
+                       std::vector<std::string>* seen)
+{
+    const std::string command = ":GS" + std::to_string(channel) + "\n";
+    const std::string wanted = ":S" + std::to_string(channel) + "," + std::to_string(state) + "\n";
+    return wait_until(
+        [&] {
+            std::string answer = client.request(command);
+            if (seen)
+                seen->push_back(answer);
+            return answer == wanted;
+        },
+        timeout);
+}
+
+std::string fixture(const std::string& name)
+{
+    return std::string(RIGSIM_E2E_DIR) + "/" + name;
+}
+
+} // namespace rigsim::e2e

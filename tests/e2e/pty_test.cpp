@@ -1,0 +1,60 @@
+// The MCS protocol over the daemon's pseudo-terminal, as a serial-port client sees it:
+// open the symlink, raw mode, close, reopen, change the baud rate.
+
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "e2e_support.hpp"
+
+using namespace rigsim::e2e;
+using namespace std::chrono_literals;
+
+TEST_CASE("pty: a session survives close, reopen and baud changes", "[e2e][pty]")
+{
+    Daemon daemon;
+    const Endpoint ep = daemon.endpoint();
+    INFO("endpoints: " << daemon.endpoints_json());
+    // --pty-dir DIR puts the symlink at DIR/<device name>.
+    CHECK(ep.pty == daemon.dir().file("mcs0"));
+    REQUIRE(path_exists(ep.pty));
+
+    {
+        PtyClient p(ep.pty);
+        CHECK(p.request(":GNC\n") == ":N3\n");
+        CHECK(p.request(":GSI\n") == ":ID3118100\n");
+        // A command split across writes is reassembled.
+        p.send(":G");
+        p.send("S");
+        CHECK(p.request("T0\n") == ":ST0,1\n");
+
+        REQUIRE(p.request(":SCLS0,4000000\n") == ":E-1,0\n");
+        REQUIRE(p.request(":MPA0,2000000,0\n") == ":E0,0\n");
+        std::vector<std::string> seen;
+        REQUIRE(poll_status_until(p, 0, 0, 5000ms, &seen));
+        INFO("first status answer: " << seen.front());
+        CHECK(seen.front() == ":S0,4\n");
+        CHECK(p.request(":GP0\n") == ":P0,2000000\n");
+    }
+
+    {
+        PtyClient p(ep.pty, B9600);
+        CHECK(p.baud() == B9600);
+        CHECK(p.request(":GP0\n") == ":P0,2000000\n");
+        p.set_baud(B115200);
+        CHECK(p.baud() == B115200);
+        CHECK(p.request(":GP0\n") == ":P0,2000000\n");
+        CHECK(p.request(":GCLS0\n") == ":CLS0,4000000\n");
+        REQUIRE(p.request(":MPR0,-500000,0\n") == ":E0,0\n");
+        REQUIRE(poll_status_until(p, 0, 0, 5000ms));
+        CHECK(p.request(":GP0\n") == ":P0,1500000\n");
+    }
+
+    // A third open, and the TCP endpoint of the same device, see the same state.
+    PtyClient p(ep.pty);
+    CHECK(p.request(":GP0\n") == ":P0,1500000\n");
+    TcpClient t(ep);
+    CHECK(t.request(":GP0\n") == ":P0,1500000\n");
+    CHECK(p.request(":GNC\n") == ":N3\n");
+}

@@ -1,0 +1,220 @@
+// The MCS protocol over the daemon's TCP endpoint: sessions, several clients, disconnects,
+// and client mistakes (MCS manual 1.1 framing, 2.x commands, appendix error codes).
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "e2e_support.hpp"
+
+using namespace rigsim::e2e;
+using namespace std::chrono_literals;
+
+namespace {
+
+bool all_match(const std::vector<std::string>& answers, const std::string& pattern)
+{
+    const std::regex re(pattern);
+    return std::all_of(answers.begin(), answers.end(),
+                       [&](const std::string& a) { return std::regex_match(a, re); });
+}
+
+bool contains(const std::vector<std::string>& answers, const std::string& answer)
+{
+    return std::find(answers.begin(), answers.end(), answer) != answers.end();
+}
+
+} // namespace
+
+TEST_CASE("TCP: a basic session identifies the controller and moves a channel", "[e2e][tcp]")
+{
+    Daemon daemon;
+    TcpClient c(daemon.endpoint());
+    INFO("endpoints: " << daemon.endpoints_json());
+
+    CHECK(c.request(":GNC\n") == ":N3\n");
+    CHECK(c.request(":GSI\n") == ":ID3118100\n");
+    CHECK(c.request(":GCT0\n") == ":CT0,0\n");
+    CHECK(c.request(":GST0\n") == ":ST0,1\n");
+
+    // 4 mm/s: the 2 mm move takes about 0.5 s, long enough to see the channel targeting.
+    REQUIRE(c.request(":SCLS0,4000000\n") == ":E-1,0\n");
+    CHECK(c.request(":GCLS0\n") == ":CLS0,4000000\n");
+
+    const auto start = SteadyClock::now();
+    REQUIRE(c.request(":MPA0,2000000,0\n") == ":E0,0\n");
+    std::vector<std::string> seen;
+    bool stopped = poll_status_until(c, 0, 0, 5000ms, &seen);
+    const double wall_ms = elapsed_ms(start);
+    INFO("status answers: " << seen.size() << ", first: " << seen.front()
+                            << ", last: " << seen.back() << ", wall " << wall_ms << " ms");
+    REQUIRE(stopped);
+    CHECK(contains(seen, ":S0,4\n"));
+    // Hold time 0: the channel is either targeting or stopped, never anything else.
+    CHECK(all_match(seen, ":S0,[04]\n"));
+    // 2 mm at 4 mm/s cannot finish in much less than 0.5 s: the speed was obeyed.
+    CHECK(wall_ms > 400.0);
+    CHECK(c.request(":GP0\n") == ":P0,2000000\n");
+}
+
+TEST_CASE("TCP: two clients at once each get only their own answers, in order", "[e2e][tcp]")
+{
+    Daemon daemon;
+    TcpClient a(daemon.endpoint());
+    TcpClient b(daemon.endpoint());
+
+    SECTION("one request each, alternating")
+    {
+        a.send(":GNC\n");
+        b.send(":GSI\n");
+        CHECK(b.read_line() == ":ID3118100\n");
+        CHECK(a.read_line() == ":N3\n");
+        b.send(":GCT0\n");
+        a.send(":GP7\n");
+        CHECK(a.read_line() == ":E-1,7\n");
+        CHECK(b.read_line() == ":CT0,0\n");
+    }
+
+    SECTION("pipelined requests whose bytes interleave on the wire")
+    {
+        REQUIRE(a.request(":SCLS1,2000000\n") == ":E-1,0\n");
+        REQUIRE(b.request(":SCLS2,3000000\n") == ":E-1,0\n");
+        const std::string to_a = ":GNC\n:GCLS1\n:GP7\n:GST0\n";
+        const std::string to_b = ":GSI\n:GCLS2\n:FOO\n:GCT2\n";
+        // One byte at a time from each client in turn: each session reassembles its own
+        // commands however they are split.
+        for (std::size_t i = 0; i < std::max(to_a.size(), to_b.size()); ++i) {
+            if (i < to_a.size())
+                a.send(to_a.substr(i, 1));
+            if (i < to_b.size())
+                b.send(to_b.substr(i, 1));
+        }
+        CHECK(a.read_line() == ":N3\n");
+        CHECK(a.read_line() == ":CLS1,2000000\n");
+        CHECK(a.read_line() == ":E-1,7\n");
+        CHECK(a.read_line() == ":ST0,1\n");
+        CHECK(b.read_line() == ":ID3118100\n");
+        CHECK(b.read_line() == ":CLS2,3000000\n");
+        CHECK(b.read_line() == ":E-1,2\n");
+        CHECK(b.read_line() == ":CT2,0\n");
+    }
+
+    SECTION("a move by one client is seen by the other")
+    {
+        REQUIRE(a.request(":MPA1,1000000,0\n") == ":E1,0\n");
+        CHECK(poll_status_until(b, 1, 0, 3000ms));
+        CHECK(b.request(":GP1\n") == ":P1,1000000\n");
+        CHECK(a.request(":GP1\n") == ":P1,1000000\n");
+    }
+
+    // Nothing stray is left queued for either client: the next answer is its own.
+    CHECK(a.request(":GNC\n") == ":N3\n");
+    CHECK(b.request(":GNC\n") == ":N3\n");
+}
+
+TEST_CASE("TCP: a client that disconnects mid-move does not lose the move", "[e2e][tcp]")
+{
+    Daemon daemon;
+    {
+        TcpClient a(daemon.endpoint());
+        // 1 mm/s: the 0.8 mm move takes about 0.8 s.
+        REQUIRE(a.request(":SCLS0,1000000\n") == ":E-1,0\n");
+        REQUIRE(a.request(":MPA0,800000,0\n") == ":E0,0\n");
+        REQUIRE(a.request(":GS0\n") == ":S0,4\n");
+
+        SECTION("closed with a FIN")
+        {
+            a.close();
+        }
+        SECTION("reset with an RST while answers are pending")
+        {
+            // Unread answers plus an abortive close: the daemon's writes to this session
+            // fail (ECONNRESET/EPIPE); that must end the session only.
+            for (int i = 0; i < 50; ++i)
+                a.send(":GP0\n");
+            a.abort();
+        }
+    }
+
+    TcpClient b(daemon.endpoint());
+    const std::string first = b.request(":GS0\n");
+    INFO("first status after the disconnect: " << first);
+    CHECK((first == ":S0,4\n" || first == ":S0,0\n"));
+    std::vector<std::string> seen;
+    CHECK(poll_status_until(b, 0, 0, 5000ms, &seen));
+    CHECK(all_match(seen, ":S0,[04]\n"));
+    CHECK(b.request(":GP0\n") == ":P0,800000\n");
+    CHECK(b.request(":GCLS0\n") == ":CLS0,1000000\n");
+    CHECK(b.request(":GNC\n") == ":N3\n");
+    CHECK(daemon.running());
+}
+
+TEST_CASE("TCP: client mistakes get the manual's error answers", "[e2e][tcp]")
+{
+    Daemon daemon;
+    TcpClient a(daemon.endpoint());
+    TcpClient b(daemon.endpoint()); // a bystander that must keep working throughout
+
+    SECTION("bad commands")
+    {
+        CHECK(a.request(":FOO\n") == ":E-1,2\n");
+        CHECK(a.request(":GP\n") == ":E-1,5\n");
+        CHECK(a.request(":GP0,1\n") == ":E-1,6\n");
+        CHECK(a.request(":GP7\n") == ":E-1,7\n");
+        CHECK(a.request(":MPA0,0,70000\n") == ":E0,7\n");
+        // The rejected move did not start.
+        CHECK(a.request(":GS0\n") == ":S0,0\n");
+    }
+
+    SECTION("garbage between a newline and a colon is ignored")
+    {
+        CHECK(a.request(":GNC\n") == ":N3\n");
+        // No answer to the garbage: the next answer is the one to GNC.
+        CHECK(a.request(std::string("junk \x01\x7f\xfe\t\r ") + ":GNC\n") == ":N3\n");
+        CHECK(a.request(std::string("\xff\xff\xff") + ":GSI\n") == ":ID3118100\n");
+    }
+
+    SECTION("garbage that itself holds newlines is ignored")
+    {
+        CHECK(a.request(":GNC\n") == ":N3\n");
+        CHECK(a.request("hello\nworld\r\n\n" ":GSI\n") == ":ID3118100\n");
+    }
+
+    SECTION("an oversize line is discarded and answered E-1,1 at its newline")
+    {
+        const std::string body(300, 'A');
+        a.send(":" + body.substr(0, 150));
+        CHECK(b.request(":GNC\n") == ":N3\n");
+        a.send(body.substr(150) + "\n");
+        CHECK(a.read_line() == ":E-1,1\n");
+        CHECK(a.request(":GNC\n") == ":N3\n");
+    }
+
+    SECTION("a 10 MB line without a newline does not hurt the daemon")
+    {
+        constexpr std::size_t kTotal = 10u * 1024u * 1024u;
+        constexpr std::size_t kChunk = 256u * 1024u;
+        const std::string chunk(kChunk, 'A');
+        a.send(":");
+        const auto start = SteadyClock::now();
+        for (std::size_t sent = 0; sent < kTotal; sent += kChunk) {
+            // A send that cannot complete means the daemon stopped reading this client.
+            a.send(chunk, 10000ms);
+            if ((sent / kChunk) % 8 == 0)
+                REQUIRE(b.request(":GNC\n") == ":N3\n");
+        }
+        INFO("10 MB sent in " << elapsed_ms(start) << " ms");
+        CHECK(b.request(":GSI\n") == ":ID3118100\n");
+        a.send("\n:GNC\n");
+        CHECK(a.read_line() == ":E-1,1\n");
+        CHECK(a.read_line() == ":N3\n");
+        CHECK(a.request(":GSI\n") == ":ID3118100\n");
+    }
+
+    CHECK(b.request(":GNC\n") == ":N3\n");
+    CHECK(a.request(":GNC\n") == ":N3\n");
+    CHECK(daemon.running());
+}

@@ -1,0 +1,83 @@
+// MCS codec: command strings to typed commands, and the errors of appendix 4.2.
+#include "emulator/mcs/codec.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace rigsim::mcs;
+
+namespace {
+
+int error_of(std::string_view line)
+{
+    const auto d = decode(line);
+    REQUIRE_FALSE(d.command);
+    CHECK(d.error.channel == kSystem);
+    return static_cast<int>(d.error.code);
+}
+
+} // namespace
+
+TEST_CASE("codec decodes the commands with their parameters", "[unit][mcs][codec]")
+{
+    auto d = decode("MPA0,-2000000,60000");
+    REQUIRE(d.command);
+    const auto& mpa = std::get<MovePositionAbsolute>(*d.command);
+    CHECK(mpa.channel == 0);
+    CHECK(mpa.position_nm == -2000000);
+    CHECK(mpa.hold_ms == 60000);
+
+    d = decode("S");
+    REQUIRE(d.command);
+    CHECK_FALSE(std::get<Stop>(*d.command).channel);
+    d = decode("S2");
+    REQUIRE(d.command);
+    CHECK(std::get<Stop>(*d.command).channel == 2);
+
+    d = decode("SCLA1,+1000");
+    REQUIRE(d.command);
+    CHECK(std::get<SetClosedLoopAcceleration>(*d.command).acceleration == 1000);
+
+    CHECK(std::holds_alternative<GetNumberOfChannels>(*decode("GNC").command));
+    CHECK(std::holds_alternative<GetPosition>(*decode("GP1").command));
+}
+
+TEST_CASE("codec answers unknown and unimplemented commands with error 2", "[unit][mcs][codec]")
+{
+    CHECK(error_of("FOO") == 2);
+    CHECK(error_of("FOO1,2") == 2);
+    const auto d = decode("FRM0,0,0,0");
+    CHECK(static_cast<int>(d.error.code) == 2);
+    CHECK(d.known_unimplemented);
+    CHECK_FALSE(decode("XYZ").known_unimplemented);
+}
+
+TEST_CASE("codec answers syntax, parse, count and overflow errors", "[unit][mcs][codec]")
+{
+    CHECK(error_of("") == 1);
+    CHECK(error_of("123") == 1);
+    CHECK(error_of("gnc") == 1);
+    CHECK(error_of("GP 0") == 1);     // white space is not allowed (1.1)
+    CHECK(error_of("GP0\r") == 1);
+    CHECK(error_of("GP0.5") == 1);
+    CHECK(error_of("GP,") == 4);
+    CHECK(error_of("MPA0,,0") == 4);
+    CHECK(error_of("GP1-2") == 4);
+    CHECK(error_of("GP-") == 4);
+    CHECK(error_of("GP") == 5);
+    CHECK(error_of("MPA0,1") == 5);
+    CHECK(error_of("GP0,1") == 6);
+    CHECK(error_of("GNC0") == 6);
+    CHECK(error_of("S0,1") == 6);
+    CHECK(error_of("GP2147483648") == 3);
+    CHECK(error_of("MPA0,-2147483649,0") == 3);
+    CHECK(error_of("GP99999999999999999999999") == 3);
+    CHECK(decode("MPA0,-2147483648,0").command);
+}
+
+TEST_CASE("codec encodes answers without spaces", "[unit][mcs][codec]")
+{
+    CHECK(encode(Ack{0}) == ":E0,0\n");
+    CHECK(encode(Ack{kSystem}) == ":E-1,0\n");
+    CHECK(encode(Error{2, ErrorCode::WrongSensorType}) == ":E2,143\n");
+    CHECK(encode(Answer{"P0,2000000"}) == ":P0,2000000\n");
+}

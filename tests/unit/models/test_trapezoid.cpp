@@ -1,0 +1,72 @@
+// Trapezoidal motion: a move takes the time its speed and acceleration imply.
+#include "models/trapezoid.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using rigsim::models::AxisState;
+using rigsim::models::TrapezoidProfile;
+
+TEST_CASE("unlimited acceleration moves at constant speed", "[unit][models]")
+{
+    const auto p = TrapezoidProfile::plan(AxisState(0, 0), 2e6, 1e7, 0);
+    CHECK(p.duration() == Approx(0.2));
+    CHECK(p.sample(0.1)[0] == Approx(1e6));
+    CHECK(p.sample(0.1)[1] == Approx(1e7));
+    CHECK(p.sample(0.3)[0] == 2e6);
+    CHECK(p.sample(0.3)[1] == 0);
+}
+
+TEST_CASE("a long move reaches top speed: T = d/v + v/a", "[unit][models]")
+{
+    const double d = 5e6, v = 1e6, a = 1e7;   // nm, nm/s, nm/s^2
+    const auto p = TrapezoidProfile::plan(AxisState(0, 0), -d, v, a);
+    CHECK(p.duration() == Approx(d / v + v / a));
+    CHECK(p.sample(v / a)[1] == Approx(-v));                   // end of the ramp
+    CHECK(p.sample(v / a)[0] == Approx(-0.5 * v * v / a));
+    CHECK(p.sample(p.duration() / 2)[1] == Approx(-v));         // cruising
+    CHECK(p.sample(p.duration())[0] == -d);
+}
+
+TEST_CASE("a short move is triangular: T = 2 sqrt(d/a)", "[unit][models]")
+{
+    const double d = 1e4, v = 1e6, a = 1e7;
+    const auto p = TrapezoidProfile::plan(AxisState(100, 0), 100 + d, v, a);
+    CHECK(p.duration() == Approx(2 * std::sqrt(d / a)));
+    CHECK(p.sample(p.duration() / 2)[0] == Approx(100 + d / 2));
+    CHECK(p.sample(p.duration() / 2)[1] == Approx(std::sqrt(d * a)));
+}
+
+TEST_CASE("retargeting while moving brakes and comes back", "[unit][models]")
+{
+    const double v = 1e6, a = 1e7;
+    // Moving at +v, new target behind: brake (v/a), then a triangle/trapezoid back.
+    const auto p = TrapezoidProfile::plan(AxisState(0, v), -1e6, v, a);
+    const double brake = v / a;
+    const double stop_pos = v * v / (2 * a);
+    CHECK(p.sample(brake)[1] == Approx(0).margin(1e-6));
+    CHECK(p.sample(brake)[0] == Approx(stop_pos));
+    CHECK(p.duration() == Approx(brake + (1e6 + stop_pos) / v + v / a));
+    CHECK(p.sample(p.duration())[0] == -1e6);
+
+    // Moving toward a target too close to stop in time: overshoot, then return.
+    const auto q = TrapezoidProfile::plan(AxisState(0, v), 1000, v, a);
+    double peak = 0;
+    for (double t = 0; t < q.duration(); t += q.duration() / 1000)
+        peak = std::max(peak, q.sample(t)[0]);
+    CHECK(peak == Approx(v * v / (2 * a)).epsilon(1e-3));
+    CHECK(q.sample(q.duration())[0] == 1000);
+}
+
+TEST_CASE("position is continuous along a profile", "[unit][models]")
+{
+    const auto p = TrapezoidProfile::plan(AxisState(0, -3e5), 4e6, 1e6, 2e6);
+    AxisState prev = p.sample(0);
+    const double dt = p.duration() / 10000;
+    for (double t = dt; t <= p.duration(); t += dt) {
+        const auto s = p.sample(t);
+        CHECK(std::abs(s[0] - prev[0]) <= 1e6 * dt * 1.01 + 1e-6);
+        prev = s;
+    }
+}
