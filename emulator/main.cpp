@@ -172,11 +172,13 @@ int main(int argc, char** argv)
     rigsim::RigConfig config;
     try {
         if (opts.check_config) {
-            rigsim::load_rig_config(*opts.check_config);
+            config = rigsim::load_rig_config(*opts.check_config);
+            rigsim::resolve_pty_paths(config, opts.rig.pty_dir, *opts.check_config);
             std::cout << *opts.check_config << ": valid\n";
             return 0;
         }
         config = opts.config ? rigsim::load_rig_config(*opts.config) : rigsim::default_rig_config();
+        rigsim::resolve_pty_paths(config, opts.rig.pty_dir, opts.config ? *opts.config : "built-in default rig");
     } catch (const rigsim::ConfigError& e) {
         std::cerr << e.what() << "\n";
         return kExitUsage;

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdio>
@@ -12,17 +13,19 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace rigsim {
 namespace {
 
 using nlohmann::json;
 
-constexpr std::string_view kDefaultMcsModel = "MCS-3D";
 constexpr std::size_t kMaxNameLength = 64;
 constexpr std::size_t kMaxChannels = 255;
 constexpr std::int64_t kTravelLimitNm = 2'000'000'000;
+constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 
 // The keys each object may hold; anything else is an error.
 constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
@@ -47,6 +50,13 @@ constexpr std::array<ChannelIntKey, 3> kChannelIntKeys{{
     {"closed_loop_acceleration_um_per_s2", 0, 10'000'000,
      &McsChannelConfig::closed_loop_acceleration_um_per_s2},
 }};
+
+/// [A-Za-z0-9_.-]: safe in a file name and a logger name.
+bool is_name_char(char c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '.' || c == '-';
+}
 
 /// `value` as compact JSON; never throws on odd UTF-8.
 std::string dump(const json& value)
@@ -259,18 +269,17 @@ private:
         bool ok = false;
         std::int64_t n = 0;
         if (v.is_number_unsigned()) {
-            // nlohmann reads every non-negative integer as unsigned; only then compare signed.
+            // nlohmann reads every non-negative integer as unsigned.
             const auto u = v.get<std::uint64_t>();
             n = static_cast<std::int64_t>(u);
-            ok = u <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()) && n >= min &&
-                 n <= max;
+            ok = max >= 0 && u <= static_cast<std::uint64_t>(max) && n >= min;
         } else if (v.is_number_integer()) {
             n = v.get<std::int64_t>();
             ok = n >= min && n <= max;
         }
         if (!ok)
-            fail(pointer, "expected an integer " + std::to_string(min) + ".." + std::to_string(max) +
-                              std::string(note) + ", got " + describe(v));
+            fail(pointer, "expected an integer " + std::to_string(min) + ".." +
+                              std::to_string(max) + std::string(note) + ", got " + describe(v));
         return n;
     }
 
@@ -292,8 +301,9 @@ private:
         d.name = load_name(require(v, pointer, "name"), name_pointer);
         claim(names_, d.name, name_pointer, pointer, "name " + quote(d.name));
 
-        d.protocol = load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
-        d.model = kDefaultMcsModel;
+        d.protocol =
+            load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
+        d.model = DeviceConfig{}.model;
         if (const auto* m = find(v, "model"))
             d.model = get_string(*m, pointer_to(pointer, "model"));
         if (const auto* p = find(v, "tcp_port")) {
@@ -305,9 +315,10 @@ private:
         }
         if (const auto* p = find(v, "pty")) {
             const auto pty_pointer = pointer_to(pointer, "pty");
-            d.pty = get_string(*p, pty_pointer, "an absolute path (starting with '/')");
+            const std::string_view expected = "an absolute path (starting with '/')";
+            d.pty = get_string(*p, pty_pointer, expected);
             if (d.pty.front() != '/')
-                fail(pty_pointer, "expected an absolute path (starting with '/'), got " + quote(d.pty));
+                fail(pty_pointer, "expected " + std::string(expected) + ", got " + quote(d.pty));
             claim(ptys_, d.pty, pty_pointer, pointer, "path " + quote(d.pty));
         }
         d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
@@ -330,8 +341,7 @@ private:
             const auto& s = v.get_ref<const std::string&>();
             ok = !s.empty() && s.size() <= kMaxNameLength;
             for (char c : s)
-                ok = ok && ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                            c == '_' || c == '.' || c == '-');
+                ok = ok && is_name_char(c);
         }
         if (!ok)
             fail(pointer, "expected a name of 1.." + std::to_string(kMaxNameLength) +
@@ -357,11 +367,12 @@ private:
         McsConfig mcs;
         check_keys(v, pointer, kMcsKeys);
         if (const auto* id = find(v, "system_id"))
-            mcs.system_id = static_cast<std::uint32_t>(get_int(
-                *id, pointer_to(pointer, "system_id"), 0, std::numeric_limits<std::uint32_t>::max()));
+            mcs.system_id = static_cast<std::uint32_t>(
+                get_int(*id, pointer_to(pointer, "system_id"), 0, kMaxSystemId));
         const auto channels_pointer = pointer_to(pointer, "channels");
         const auto& channels = require(v, pointer, "channels");
-        const std::string expected = "expected an array of 1.." + std::to_string(kMaxChannels) + " channels, got ";
+        const std::string expected =
+            "expected an array of 1.." + std::to_string(kMaxChannels) + " channels, got ";
         if (!channels.is_array())
             fail(channels_pointer, expected + describe(channels));
         if (channels.empty() || channels.size() > kMaxChannels)
@@ -377,25 +388,28 @@ private:
         check_keys(v, pointer, kChannelKeys);
         if (const auto* t = find(v, "sensor_type")) {
             const auto type_pointer = pointer_to(pointer, "sensor_type");
+            const std::string symbols(mcs::sensor_type_symbols());
             if (!t->is_string())
                 fail(type_pointer, "expected a string, got " + describe(*t));
             c.sensor_type = t->get<std::string>();
             if (c.sensor_type != "none" && !mcs::sensor_type_by_symbol(c.sensor_type))
-                fail(type_pointer, "unknown sensor type " + quote(c.sensor_type) + " (expected one of " +
-                                       std::string(mcs::sensor_type_symbols()) + ", or \"none\")");
+                fail(type_pointer, "unknown sensor type " + quote(c.sensor_type) +
+                                       " (expected one of " + symbols + ", or \"none\")");
         }
         if (const auto* t = find(v, "travel_nm")) {
             const auto travel_pointer = pointer_to(pointer, "travel_nm");
             if (!t->is_array() || t->size() != 2)
                 fail(travel_pointer, "expected [min, max], two integers, got " + describe(*t));
-            c.travel_min_nm = get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
-            c.travel_max_nm = get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
+            c.travel_min_nm =
+                get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
+            c.travel_max_nm =
+                get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
             if (c.travel_min_nm >= c.travel_max_nm)
                 fail(travel_pointer, "expected min < max, got " + dump(*t));
         }
         if (const auto* p = find(v, "start_position_nm"))
-            c.start_position_nm = get_int(*p, pointer_to(pointer, "start_position_nm"), c.travel_min_nm,
-                                          c.travel_max_nm, " (within travel_nm)");
+            c.start_position_nm = get_int(*p, pointer_to(pointer, "start_position_nm"),
+                                          c.travel_min_nm, c.travel_max_nm, " (within travel_nm)");
         for (const auto& k : kChannelIntKeys)
             if (const auto* n = find(v, k.key))
                 c.*k.member = get_int(*n, pointer_to(pointer, k.key), k.min, k.max);
@@ -431,7 +445,8 @@ RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
 
 RigConfig load_rig_config(const std::string& path)
 {
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"), &std::fclose};
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"),
+                                                               &std::fclose};
     if (!file)
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));
     std::string text;
@@ -458,6 +473,27 @@ std::string_view to_string(Protocol p)
         return "apt";
     }
     return "unknown";
+}
+
+} // namespace rigsim
+
+namespace rigsim {
+
+void resolve_pty_paths(RigConfig& config, const std::string& pty_dir, std::string_view source)
+{
+    std::map<std::string, std::size_t> used;   // resolved path -> device index
+    for (std::size_t i = 0; i < config.devices.size(); ++i) {
+        auto& d = config.devices[i];
+        const bool defaulted = d.pty.empty();
+        if (defaulted)
+            d.pty = pty_dir + "/" + d.name;
+        const auto [it, fresh] = used.emplace(d.pty, i);
+        if (!fresh)
+            throw ConfigError(std::string(source) + ": /devices/" + std::to_string(i) + "/"
+                              + (defaulted ? "name" : "pty") + ": pty path \"" + d.pty
+                              + "\" is already used by /devices/" + std::to_string(it->second)
+                              + (defaulted ? " (this device's default is <pty-dir>/<name>)" : ""));
+    }
 }
 
 } // namespace rigsim

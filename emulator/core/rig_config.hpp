@@ -34,7 +34,7 @@ struct McsConfig {
 struct DeviceConfig {
     std::string name;                 ///< unique; names the pty symlink and the logger
     Protocol protocol = Protocol::Mcs;
-    std::string model;                ///< controller model, e.g. "MCS-3D"
+    std::string model = "MCS-3D";     ///< controller model
     std::uint16_t tcp_port = 0;       ///< 0 = ephemeral
     std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
     McsConfig mcs;
@@ -56,6 +56,10 @@ public:
 RigConfig parse_rig_config(std::string_view json_text, std::string_view source);
 /// Read and parse a rig file; throws ConfigError (also for unreadable files).
 RigConfig load_rig_config(const std::string& path);
+
+/// Give every device without a configured pty path the path `<pty_dir>/<name>`, and
+/// reject two devices whose resolved paths collide (ConfigError naming /devices/N/pty).
+void resolve_pty_paths(RigConfig& config, const std::string& pty_dir, std::string_view source);
 
 /// The built-in default rig (config/default.json, compiled in).
 std::string_view default_rig_json();

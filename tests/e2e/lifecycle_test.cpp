@@ -42,13 +42,14 @@ TEST_CASE("lifecycle: SIGTERM or SIGINT with clients connected exits 0 and remov
 TEST_CASE("lifecycle: --time-scale 10 runs physics ten times faster than wall time",
           "[e2e][lifecycle]")
 {
-    // Channel 0 starts at -5 mm with 10 mm/s: the 10 mm move takes 1 s of physics time.
+    // Channel 0 powers up at the physical position -5 mm (reading 0) and moves at 10 mm/s:
+    // the 10 mm move to physical +5 mm takes 1 s of physics time.
     Daemon daemon({"", fixture("long_travel_rig.json"), {"--time-scale", "10"}});
     TcpClient c(daemon.endpoint());
-    REQUIRE(c.request(":GP0\n") == ":P0,-5000000\n");
+    REQUIRE(c.request(":GP0\n") == ":P0,0\n");
 
     const auto start = SteadyClock::now();
-    REQUIRE(c.request(":MPA0,5000000,0\n") == ":E0,0\n");
+    REQUIRE(c.request(":MPA0,10000000,0\n") == ":E0,0\n");
     std::vector<std::string> seen;
     const bool stopped = poll_status_until(c, 0, 0, 5000ms, &seen);
     const double wall_ms = elapsed_ms(start);
@@ -58,7 +59,7 @@ TEST_CASE("lifecycle: --time-scale 10 runs physics ten times faster than wall ti
     // The lower bound shows the move was simulated, not jumped: 1 s / 10 = 100 ms.
     CHECK(wall_ms > 50.0);
     CHECK(seen.front() == ":S0,4\n");
-    CHECK(c.request(":GP0\n") == ":P0,5000000\n");
+    CHECK(c.request(":GP0\n") == ":P0,10000000\n");
 }
 
 TEST_CASE("lifecycle: two daemons with ephemeral ports and their own pty dirs coexist",
@@ -107,6 +108,33 @@ TEST_CASE("lifecycle: --config builds the rig the file describes", "[e2e][lifecy
     CHECK(c.request(":GSI\n") == ":ID1234567\n");
     CHECK(c.request(":GST0\n") == ":ST0,1\n");
     CHECK(c.request(":GST1\n") == ":ST1,2\n");
-    CHECK(c.request(":GP0\n") == ":P0,500000\n");
+    // start_position_nm is the physical position at power-up; like the real controller
+    // the position reads 0 until referenced.
+    CHECK(c.request(":GP0\n") == ":P0,0\n");
     CHECK(c.request(":GP2\n") == ":E-1,7\n");
+}
+
+TEST_CASE(
+    "lifecycle: --bind, --tick-hz and --log-level are honoured and the log goes to stderr",
+    "[e2e][lifecycle]")
+{
+    const std::string level = GENERATE(std::string("debug"), std::string("mcs0=debug"));
+    INFO("--log-level " << level);
+    Daemon daemon({"", "", {"--bind", "127.0.0.1", "--tick-hz", "200", "--log-level", level}});
+    const Endpoint ep = daemon.endpoint();
+    CHECK(ep.host == "127.0.0.1");
+
+    TcpClient c(ep);
+    CHECK(c.request(":GNC\n") == ":N3\n");
+    // A 200 Hz tick still lands exactly on the target.
+    REQUIRE(c.request(":MPA0,1000000,0\n") == ":E0,0\n");
+    REQUIRE(poll_status_until(c, 0, 0, 3000ms));
+    CHECK(c.request(":GP0\n") == ":P0,1000000\n");
+
+    // A client mistake is logged (warn) to stderr.
+    CHECK(c.request(":FOO\n") == ":E-1,2\n");
+    const bool logged = wait_until(
+        [&] { return daemon.log().find("FOO") != std::string::npos; }, 2000ms);
+    INFO("daemon log:\n" << daemon.log());
+    CHECK(logged);
 }

@@ -60,6 +60,44 @@ TEST_CASE("TCP: a basic session identifies the controller and moves a channel", 
     CHECK(c.request(":GP0\n") == ":P0,2000000\n");
 }
 
+TEST_CASE("TCP: S stops one channel, bare S stops all, a hold lasts until stopped",
+          "[e2e][tcp]")
+{
+    Daemon daemon;
+    TcpClient c(daemon.endpoint());
+
+    // 1 mm/s: each 0.8 mm move would take about 0.8 s; both are stopped well before.
+    REQUIRE(c.request(":SCLS0,1000000\n") == ":E-1,0\n");
+    REQUIRE(c.request(":SCLS1,1000000\n") == ":E-1,0\n");
+    REQUIRE(c.request(":MPA0,800000,0\n") == ":E0,0\n");
+    REQUIRE(c.request(":MPA1,800000,0\n") == ":E1,0\n");
+    REQUIRE(c.request(":GS0\n") == ":S0,4\n");
+    REQUIRE(c.request(":GS1\n") == ":S1,4\n");
+
+    CHECK(c.request(":S0\n") == ":E0,0\n");
+    CHECK(poll_status_until(c, 0, 0, 500ms));
+    CHECK(c.request(":GS1\n") == ":S1,4\n");
+    // Stopped short of the target, and staying put.
+    const std::string stopped_at = c.request(":GP0\n");
+    CHECK(stopped_at != ":P0,800000\n");
+    CHECK(std::regex_match(stopped_at, std::regex(":P0,[0-9]+\n")));
+    CHECK(c.request(":GP0\n") == stopped_at);
+
+    CHECK(c.request(":S\n") == ":E-1,0\n");
+    CHECK(poll_status_until(c, 1, 0, 500ms));
+    CHECK(c.request(":GP1\n") != ":P1,800000\n");
+
+    // Hold time 60000 = hold forever: the channel reaches its target and holds (state 3).
+    REQUIRE(c.request(":MPA2,100000,60000\n") == ":E2,0\n");
+    std::vector<std::string> seen;
+    CHECK(poll_status_until(c, 2, 3, 2000ms, &seen));
+    CHECK(all_match(seen, ":S2,[43]\n"));
+    CHECK(c.request(":GP2\n") == ":P2,100000\n");
+    CHECK(c.request(":GS2\n") == ":S2,3\n");
+    CHECK(c.request(":S2\n") == ":E2,0\n");
+    CHECK(poll_status_until(c, 2, 0, 500ms));
+}
+
 TEST_CASE("TCP: two clients at once each get only their own answers, in order", "[e2e][tcp]")
 {
     Daemon daemon;

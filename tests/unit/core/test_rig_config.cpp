@@ -15,7 +15,8 @@ namespace {
 /// The smallest valid rig: one MCS device with one all-default channel.
 json minimal_rig()
 {
-    return json::parse(R"({"devices": [{"name": "mcs0", "protocol": "mcs", "mcs": {"channels": [{}]}}]})");
+    return json::parse(
+        R"({"devices": [{"name": "mcs0", "protocol": "mcs", "mcs": {"channels": [{}]}}]})");
 }
 
 /// A valid device named `name`, to append to minimal_rig()["devices"].
@@ -27,7 +28,7 @@ json device(const std::string& name)
 }
 
 /// The ConfigError message for `text` named "rig.json", or "(no error)".
-std::string error_of(std::string_view text)
+std::string error_of_text(std::string_view text)
 {
     try {
         parse_rig_config(text, "rig.json");
@@ -38,9 +39,9 @@ std::string error_of(std::string_view text)
 }
 
 /// The ConfigError message for the document `rig`, or "(no error)".
-std::string error_of_rig(const json& rig)
+std::string error_of(const json& rig)
 {
-    return error_of(rig.dump());
+    return error_of_text(rig.dump());
 }
 
 const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, mcs)";
@@ -135,7 +136,8 @@ TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit
     CHECK_THROWS_WITH(rigsim::load_rig_config(missing),
                       missing + ": cannot read: No such file or directory");
     const std::string directory = RIGSIM_SOURCE_DIR "/config";
-    CHECK_THROWS_WITH(rigsim::load_rig_config(directory), directory + ": cannot read: Is a directory");
+    CHECK_THROWS_WITH(rigsim::load_rig_config(directory),
+                      directory + ": cannot read: Is a directory");
 }
 
 TEST_CASE("rig config: a load error names the file", "[unit][config]")
@@ -146,32 +148,35 @@ TEST_CASE("rig config: a load error names the file", "[unit][config]")
 
 TEST_CASE("rig config: syntax errors give line and column", "[unit][config]")
 {
-    CHECK(error_of("{\"devices\": [\n  {\"name\": x}]}") ==
+    CHECK(error_of_text("{\"devices\": [\n  {\"name\": x}]}") ==
           "rig.json: line 2, column 12: syntax error while parsing value - invalid literal; "
           "last read: '\"name\": x'");
-    CHECK(error_of("") ==
+    CHECK(error_of_text("") ==
           "rig.json: line 1, column 1: syntax error while parsing value - unexpected end of input; "
           "expected '[', '{', or a literal");
-    CHECK(error_of("{\n") ==
-          "rig.json: line 2, column 1: syntax error while parsing object key - unexpected end of input; "
-          "expected string literal");
+    CHECK(error_of_text("{\n") ==
+          "rig.json: line 2, column 1: syntax error while parsing object key - "
+          "unexpected end of input; expected string literal");
     // A raw newline inside a string is reported where it is, not at column 0 of the next line.
-    CHECK(error_of("{\"a\": \"x\ny\"}") ==
+    CHECK(error_of_text("{\"a\": \"x\ny\"}") ==
           "rig.json: line 1, column 9: syntax error while parsing value - invalid string: control "
           "character U+000A (LF) must be escaped to \\u000A or \\n; last read: '\"x<U+000A>'");
     // Comments are not JSON.
-    CHECK(error_of("// rig\n{}").rfind("rig.json: line 1, column 1: syntax error", 0) == 0);
+    CHECK(error_of_text("// rig\n{}").rfind("rig.json: line 1, column 1: syntax error", 0) == 0);
 }
 
 TEST_CASE("rig config: duplicate keys are errors at the object holding them", "[unit][config]")
 {
-    CHECK(error_of(R"({"tick_hz": 1, "tick_hz": 2})") == "rig.json: /: duplicate key \"tick_hz\"");
-    CHECK(error_of(R"({"devices": [{"name": "a"}, {"name": "b", "name": "c"}]})") ==
+    CHECK(error_of_text(R"({"tick_hz": 1, "tick_hz": 2})") ==
+          "rig.json: /: duplicate key \"tick_hz\"");
+    CHECK(error_of_text(R"({"devices": [{"name": "a"}, {"name": "b", "name": "c"}]})") ==
           "rig.json: /devices/1: duplicate key \"name\"");
-    CHECK(error_of(R"({"devices": [[], {"mcs": {"channels": [1, {"travel_nm": [], "travel_nm": []}]}}]})") ==
+    CHECK(error_of_text(
+              R"({"devices": [[], {"mcs": {"channels": [1, {"travel_nm": [], "travel_nm": []}]}}]})") ==
           "rig.json: /devices/1/mcs/channels/1: duplicate key \"travel_nm\"");
     // RFC 6901: "~" is written "~0" and "/" is written "~1".
-    CHECK(error_of(R"({"a/b~c": {"x": 1, "x": 2}})") == "rig.json: /a~1b~0c: duplicate key \"x\"");
+    CHECK(error_of_text(R"({"a/b~c": {"x": 1, "x": 2}})") ==
+          "rig.json: /a~1b~0c: duplicate key \"x\"");
 }
 
 TEST_CASE("rig config: unknown keys are errors at the object holding them", "[unit][config]")
@@ -180,23 +185,23 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     SECTION("top level")
     {
         rig["tickhz"] = 1000;
-        CHECK(error_of_rig(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices)");
+        CHECK(error_of(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices)");
     }
     SECTION("device")
     {
         rig["devices"][0]["colour"] = "red";
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0: unknown key \"colour\" " + kDeviceKeys);
+        CHECK(error_of(rig) == "rig.json: /devices/0: unknown key \"colour\" " + kDeviceKeys);
     }
     SECTION("mcs")
     {
         rig["devices"][0]["mcs"]["channel"] = json::array();
-        CHECK(error_of_rig(rig) ==
+        CHECK(error_of(rig) ==
               "rig.json: /devices/0/mcs: unknown key \"channel\" (allowed: system_id, channels)");
     }
     SECTION("channel")
     {
         rig["devices"][0]["mcs"]["channels"].push_back({{"travel", 1}});
-        CHECK(error_of_rig(rig) ==
+        CHECK(error_of(rig) ==
               "rig.json: /devices/0/mcs/channels/1: unknown key \"travel\" (allowed: sensor_type, "
               "travel_nm, start_position_nm, max_speed_nm_per_s, closed_loop_speed_nm_per_s, "
               "closed_loop_acceleration_um_per_s2)");
@@ -204,7 +209,7 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     SECTION("a key needing escapes is quoted as JSON")
     {
         rig["devices"][0]["a\"b"] = 1;
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0: unknown key \"a\\\"b\" " + kDeviceKeys);
+        CHECK(error_of(rig) == "rig.json: /devices/0: unknown key \"a\\\"b\" " + kDeviceKeys);
     }
 }
 
@@ -214,67 +219,72 @@ TEST_CASE("rig config: required keys missing name the key's pointer", "[unit][co
     SECTION("devices")
     {
         rig.erase("devices");
-        CHECK(error_of_rig(rig) == "rig.json: /devices: required key missing");
+        CHECK(error_of(rig) == "rig.json: /devices: required key missing");
     }
     SECTION("name")
     {
         rig["devices"][0].erase("name");
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/name: required key missing");
+        CHECK(error_of(rig) == "rig.json: /devices/0/name: required key missing");
     }
     SECTION("protocol")
     {
         rig["devices"][0].erase("protocol");
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/protocol: required key missing");
+        CHECK(error_of(rig) == "rig.json: /devices/0/protocol: required key missing");
     }
     SECTION("mcs")
     {
         rig["devices"][0].erase("mcs");
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/mcs: required key missing");
+        CHECK(error_of(rig) == "rig.json: /devices/0/mcs: required key missing");
     }
     SECTION("channels")
     {
         rig["devices"][0]["mcs"].erase("channels");
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/mcs/channels: required key missing");
+        CHECK(error_of(rig) == "rig.json: /devices/0/mcs/channels: required key missing");
     }
 }
 
 TEST_CASE("rig config: objects must be objects", "[unit][config]")
 {
-    CHECK(error_of("[]") == "rig.json: /: expected an object, got []");
-    CHECK(error_of(R"({"devices": [42]})") == "rig.json: /devices/0: expected an object, got 42");
+    CHECK(error_of_text("[]") == "rig.json: /: expected an object, got []");
+    CHECK(error_of_text(R"({"devices": [42]})") ==
+          "rig.json: /devices/0: expected an object, got 42");
     auto rig = minimal_rig();
     rig["devices"][0]["mcs"] = "MCS-3D";
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/mcs: expected an object, got \"MCS-3D\"");
+    CHECK(error_of(rig) == "rig.json: /devices/0/mcs: expected an object, got \"MCS-3D\"");
     rig = minimal_rig();
     rig["devices"][0]["mcs"]["channels"][0] = json::array({1, 2});
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/mcs/channels/0: expected an object, got an array of 2 elements");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/0/mcs/channels/0: expected an object, got an array of 2 elements");
 }
 
 TEST_CASE("rig config: devices must be a non-empty array", "[unit][config]")
 {
-    CHECK(error_of(R"({"devices": []})") == "rig.json: /devices: expected a non-empty array");
-    CHECK(error_of(R"({"devices": {}})") == "rig.json: /devices: expected a non-empty array, got {}");
-    CHECK(error_of(R"({"devices": null})") == "rig.json: /devices: expected a non-empty array, got null");
+    CHECK(error_of_text(R"({"devices": []})") == "rig.json: /devices: expected a non-empty array");
+    CHECK(error_of_text(R"({"devices": {}})") ==
+          "rig.json: /devices: expected a non-empty array, got {}");
+    CHECK(error_of_text(R"({"devices": null})") ==
+          "rig.json: /devices: expected a non-empty array, got null");
 }
 
 TEST_CASE("rig config: integers reject wrong types", "[unit][config]")
 {
     auto rig = minimal_rig();
-    const std::string expected = "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got ";
+    const std::string expected =
+        "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got ";
     rig["devices"][0]["tcp_port"] = "abc";
-    CHECK(error_of_rig(rig) == expected + "\"abc\"");
+    CHECK(error_of(rig) == expected + "\"abc\"");
     rig["devices"][0]["tcp_port"] = 1.5;
-    CHECK(error_of_rig(rig) == expected + "1.5");
+    CHECK(error_of(rig) == expected + "1.5");
     rig["devices"][0]["tcp_port"] = true;
-    CHECK(error_of_rig(rig) == expected + "true");
+    CHECK(error_of(rig) == expected + "true");
     rig["devices"][0]["tcp_port"] = nullptr;
-    CHECK(error_of_rig(rig) == expected + "null");
+    CHECK(error_of(rig) == expected + "null");
     rig["devices"][0]["tcp_port"] = json::object();
-    CHECK(error_of_rig(rig) == expected + "{}");
+    CHECK(error_of(rig) == expected + "{}");
     // 1.0 is a float in JSON's grammar, and so is 1e3.
-    CHECK(error_of(R"({"tick_hz": 1.0, "devices": []})") ==
+    CHECK(error_of_text(R"({"tick_hz": 1.0, "devices": []})") ==
           "rig.json: /tick_hz: expected an integer 1..100000, got 1.0");
-    CHECK(error_of(R"({"tick_hz": 1e3, "devices": []})") ==
+    CHECK(error_of_text(R"({"tick_hz": 1e3, "devices": []})") ==
           "rig.json: /tick_hz: expected an integer 1..100000, got 1000.0");
 }
 
@@ -286,84 +296,93 @@ TEST_CASE("rig config: integers reject values out of range", "[unit][config]")
     SECTION("tick_hz")
     {
         rig["tick_hz"] = 0;
-        CHECK(error_of_rig(rig) == "rig.json: /tick_hz: expected an integer 1..100000, got 0");
+        CHECK(error_of(rig) == "rig.json: /tick_hz: expected an integer 1..100000, got 0");
         rig["tick_hz"] = 100001;
-        CHECK(error_of_rig(rig) == "rig.json: /tick_hz: expected an integer 1..100000, got 100001");
+        CHECK(error_of(rig) == "rig.json: /tick_hz: expected an integer 1..100000, got 100001");
     }
     SECTION("tcp_port")
     {
         dev["tcp_port"] = 70000;
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got 70000");
+        CHECK(error_of(rig) ==
+              "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got 70000");
         dev["tcp_port"] = -1;
-        CHECK(error_of_rig(rig) == "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got -1");
+        CHECK(error_of(rig) ==
+              "rig.json: /devices/0/tcp_port: expected an integer 0..65535, got -1");
     }
     SECTION("system_id")
     {
         dev["mcs"]["system_id"] = 4294967296;
-        CHECK(error_of_rig(rig) ==
-              "rig.json: /devices/0/mcs/system_id: expected an integer 0..4294967295, got 4294967296");
+        CHECK(error_of(rig) ==
+              "rig.json: /devices/0/mcs/system_id: "
+              "expected an integer 0..4294967295, got 4294967296");
     }
     SECTION("integers beyond 64 bits")
     {
-        CHECK(error_of(R"({"tick_hz": 18446744073709551615})") ==
+        CHECK(error_of_text(R"({"tick_hz": 18446744073709551615})") ==
               "rig.json: /tick_hz: expected an integer 1..100000, got 18446744073709551615");
-        CHECK(error_of(R"({"tick_hz": -9223372036854775808})") ==
+        CHECK(error_of_text(R"({"tick_hz": -9223372036854775808})") ==
               "rig.json: /tick_hz: expected an integer 1..100000, got -9223372036854775808");
     }
     SECTION("channel speeds")
     {
         const std::string p = "rig.json: /devices/0/mcs/channels/0/";
         ch["max_speed_nm_per_s"] = 0;
-        CHECK(error_of_rig(rig) == p + "max_speed_nm_per_s: expected an integer 1..100000000, got 0");
+        CHECK(error_of(rig) == p + "max_speed_nm_per_s: expected an integer 1..100000000, got 0");
         ch["max_speed_nm_per_s"] = 100000001;
-        CHECK(error_of_rig(rig) == p + "max_speed_nm_per_s: expected an integer 1..100000000, got 100000001");
+        CHECK(error_of(rig) ==
+              p + "max_speed_nm_per_s: expected an integer 1..100000000, got 100000001");
         ch.erase("max_speed_nm_per_s");
         ch["closed_loop_speed_nm_per_s"] = -1;
-        CHECK(error_of_rig(rig) == p + "closed_loop_speed_nm_per_s: expected an integer 0..100000000, got -1");
+        CHECK(error_of(rig) ==
+              p + "closed_loop_speed_nm_per_s: expected an integer 0..100000000, got -1");
         ch.erase("closed_loop_speed_nm_per_s");
         ch["closed_loop_acceleration_um_per_s2"] = 10000001;
-        CHECK(error_of_rig(rig) ==
-              p + "closed_loop_acceleration_um_per_s2: expected an integer 0..10000000, got 10000001");
+        CHECK(error_of(rig) ==
+              p + "closed_loop_acceleration_um_per_s2: "
+                  "expected an integer 0..10000000, got 10000001");
     }
 }
 
-TEST_CASE("rig config: names are 1..64 characters of [A-Za-z0-9_.-]", "[unit][config]")
+TEST_CASE("rig config: names are 1..64 characters from A-Z a-z 0-9 _ . -", "[unit][config]")
 {
     auto rig = minimal_rig();
     const std::string expected =
         "rig.json: /devices/0/name: expected a name of 1..64 characters [A-Za-z0-9_.-], got ";
     rig["devices"][0]["name"] = "a b";
-    CHECK(error_of_rig(rig) == expected + "\"a b\"");
+    CHECK(error_of(rig) == expected + "\"a b\"");
     rig["devices"][0]["name"] = "";
-    CHECK(error_of_rig(rig) == expected + "\"\"");
+    CHECK(error_of(rig) == expected + "\"\"");
     rig["devices"][0]["name"] = "../x/y";
-    CHECK(error_of_rig(rig) == expected + "\"../x/y\"");
+    CHECK(error_of(rig) == expected + "\"../x/y\"");
     rig["devices"][0]["name"] = 7;
-    CHECK(error_of_rig(rig) == expected + "7");
+    CHECK(error_of(rig) == expected + "7");
     rig["devices"][0]["name"] = std::string(65, 'x');
-    CHECK(error_of_rig(rig) == expected + "\"" + std::string(65, 'x') + "\"");
+    CHECK(error_of(rig) == expected + "\"" + std::string(65, 'x') + "\"");
     rig["devices"][0]["name"] = std::string(64, 'x');
-    CHECK(error_of_rig(rig) == "(no error)");
+    CHECK(error_of(rig) == "(no error)");
 }
 
 TEST_CASE("rig config: protocol apt is reserved, others unknown", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["protocol"] = "apt";
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/protocol: protocol \"apt\" is not supported yet (expected \"mcs\")");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/0/protocol: "
+          "protocol \"apt\" is not supported yet (expected \"mcs\")");
     rig["devices"][0]["protocol"] = "MCS";
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\")");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\")");
     rig["devices"][0]["protocol"] = 1;
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/protocol: expected a string, got 1");
+    CHECK(error_of(rig) == "rig.json: /devices/0/protocol: expected a string, got 1");
 }
 
 TEST_CASE("rig config: model must be a non-empty string", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["model"] = "";
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/model: expected a non-empty string, got \"\"");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a non-empty string, got \"\"");
     rig["devices"][0]["model"] = json::array();
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/model: expected a non-empty string, got []");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a non-empty string, got []");
 }
 
 TEST_CASE("rig config: pty must be an absolute path", "[unit][config]")
@@ -372,46 +391,50 @@ TEST_CASE("rig config: pty must be an absolute path", "[unit][config]")
     const std::string expected =
         "rig.json: /devices/0/pty: expected an absolute path (starting with '/'), got ";
     rig["devices"][0]["pty"] = "tmp/x";
-    CHECK(error_of_rig(rig) == expected + "\"tmp/x\"");
+    CHECK(error_of(rig) == expected + "\"tmp/x\"");
     rig["devices"][0]["pty"] = "";
-    CHECK(error_of_rig(rig) == expected + "\"\"");
+    CHECK(error_of(rig) == expected + "\"\"");
     rig["devices"][0]["pty"] = false;
-    CHECK(error_of_rig(rig) == expected + "false");
+    CHECK(error_of(rig) == expected + "false");
 }
 
 TEST_CASE("rig config: channels must be 1..255", "[unit][config]")
 {
     auto rig = minimal_rig();
     auto& channels = rig["devices"][0]["mcs"]["channels"];
-    const std::string expected = "rig.json: /devices/0/mcs/channels: expected an array of 1..255 channels, got ";
+    const std::string expected =
+        "rig.json: /devices/0/mcs/channels: expected an array of 1..255 channels, got ";
     channels = json::array();
-    CHECK(error_of_rig(rig) == expected + "0 channels");
+    CHECK(error_of(rig) == expected + "0 channels");
     channels = json::array();
     for (int i = 0; i < 255; ++i)
         channels.push_back(json::object());
-    CHECK(error_of_rig(rig) == "(no error)");
+    CHECK(error_of(rig) == "(no error)");
     channels.push_back(json::object());
-    CHECK(error_of_rig(rig) == expected + "256 channels");
+    CHECK(error_of(rig) == expected + "256 channels");
     channels = json::object();
-    CHECK(error_of_rig(rig) == expected + "{}");
+    CHECK(error_of(rig) == expected + "{}");
 }
 
 TEST_CASE("rig config: sensor types come from appendix 4.3 or are none", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["mcs"]["channels"] = json::array({json::object(), {{"sensor_type", "S9"}}});
-    CHECK(error_of_rig(rig) ==
-          "rig.json: /devices/0/mcs/channels/1/sensor_type: unknown sensor type \"S9\" (expected one of "
-          "S, SR, SP, SC, SR20, M, GD, GE, GF, G605S, G775S, SC500, G955S, SR77, SD, R20ME, SR2, SCD, "
-          "SRC, SR36M, SR36ME, SR50M, SR50ME, G1045S, G1395S, MD, G935M, SHL20, SCT, or \"none\")");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/0/mcs/channels/1/sensor_type: unknown sensor type \"S9\" "
+          "(expected one of S, SR, SP, SC, SR20, M, GD, GE, GF, G605S, G775S, SC500, G955S, "
+          "SR77, SD, R20ME, SR2, SCD, SRC, SR36M, SR36ME, SR50M, SR50ME, G1045S, G1395S, MD, "
+          "G935M, SHL20, SCT, or \"none\")");
     rig["devices"][0]["mcs"]["channels"][1]["sensor_type"] = "s";
-    CHECK_THAT(error_of_rig(rig), Catch::StartsWith("rig.json: /devices/0/mcs/channels/1/sensor_type: "
-                                                "unknown sensor type \"s\" (expected one of S, SR,"));
+    CHECK_THAT(error_of(rig),
+               Catch::StartsWith("rig.json: /devices/0/mcs/channels/1/sensor_type: "
+                                 "unknown sensor type \"s\" (expected one of S, SR,"));
     rig["devices"][0]["mcs"]["channels"][1]["sensor_type"] = 1;
-    CHECK(error_of_rig(rig) == "rig.json: /devices/0/mcs/channels/1/sensor_type: expected a string, got 1");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/0/mcs/channels/1/sensor_type: expected a string, got 1");
     for (const auto* symbol : {"none", "S", "SR", "G605S", "SCT"}) {
         rig["devices"][0]["mcs"]["channels"][1]["sensor_type"] = symbol;
-        CHECK(error_of_rig(rig) == "(no error)");
+        CHECK(error_of(rig) == "(no error)");
     }
 }
 
@@ -421,17 +444,17 @@ TEST_CASE("rig config: travel_nm is [min, max] with min < max", "[unit][config]"
     auto& travel = rig["devices"][0]["mcs"]["channels"][0]["travel_nm"];
     const std::string p = "rig.json: /devices/0/mcs/channels/0/travel_nm";
     travel = 5;
-    CHECK(error_of_rig(rig) == p + ": expected [min, max], two integers, got 5");
+    CHECK(error_of(rig) == p + ": expected [min, max], two integers, got 5");
     travel = json::array({1, 2, 3});
-    CHECK(error_of_rig(rig) == p + ": expected [min, max], two integers, got an array of 3 elements");
+    CHECK(error_of(rig) == p + ": expected [min, max], two integers, got an array of 3 elements");
     travel = json::array({5, 5});
-    CHECK(error_of_rig(rig) == p + ": expected min < max, got [5,5]");
+    CHECK(error_of(rig) == p + ": expected min < max, got [5,5]");
     travel = json::array({6, 5});
-    CHECK(error_of_rig(rig) == p + ": expected min < max, got [6,5]");
+    CHECK(error_of(rig) == p + ": expected min < max, got [6,5]");
     travel = json::array({-2000000001, 0});
-    CHECK(error_of_rig(rig) == p + "/0: expected an integer -2000000000..2000000000, got -2000000001");
+    CHECK(error_of(rig) == p + "/0: expected an integer -2000000000..2000000000, got -2000000001");
     travel = json::array({0, "1"});
-    CHECK(error_of_rig(rig) == p + "/1: expected an integer -2000000000..2000000000, got \"1\"");
+    CHECK(error_of(rig) == p + "/1: expected an integer -2000000000..2000000000, got \"1\"");
 }
 
 TEST_CASE("rig config: start_position_nm lies within travel_nm", "[unit][config]")
@@ -440,12 +463,13 @@ TEST_CASE("rig config: start_position_nm lies within travel_nm", "[unit][config]
     auto& ch = rig["devices"][0]["mcs"]["channels"][0];
     const std::string p = "rig.json: /devices/0/mcs/channels/0/start_position_nm: ";
     ch["start_position_nm"] = 10500001;
-    CHECK(error_of_rig(rig) == p + "expected an integer -10500000..10500000 (within travel_nm), got 10500001");
+    CHECK(error_of(rig) ==
+          p + "expected an integer -10500000..10500000 (within travel_nm), got 10500001");
     ch["travel_nm"] = json::array({100, 200});
     ch["start_position_nm"] = 0;
-    CHECK(error_of_rig(rig) == p + "expected an integer 100..200 (within travel_nm), got 0");
+    CHECK(error_of(rig) == p + "expected an integer 100..200 (within travel_nm), got 0");
     ch["start_position_nm"] = 100;
-    CHECK(error_of_rig(rig) == "(no error)");
+    CHECK(error_of(rig) == "(no error)");
 }
 
 TEST_CASE("rig config: device names are unique", "[unit][config]")
@@ -453,7 +477,8 @@ TEST_CASE("rig config: device names are unique", "[unit][config]")
     auto rig = minimal_rig();
     rig["devices"].push_back(device("mcs1"));
     rig["devices"].push_back(device("mcs0"));
-    CHECK(error_of_rig(rig) == "rig.json: /devices/2/name: name \"mcs0\" is already used by /devices/0");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/2/name: name \"mcs0\" is already used by /devices/0");
 }
 
 TEST_CASE("rig config: a non-zero tcp_port is used once", "[unit][config]")
@@ -464,9 +489,10 @@ TEST_CASE("rig config: a non-zero tcp_port is used once", "[unit][config]")
     rig["devices"].push_back(device("mcs2"));
     rig["devices"][1]["tcp_port"] = 0;
     rig["devices"][2]["tcp_port"] = 0;
-    CHECK(error_of_rig(rig) == "(no error)");
+    CHECK(error_of(rig) == "(no error)");
     rig["devices"][2]["tcp_port"] = 40100;
-    CHECK(error_of_rig(rig) == "rig.json: /devices/2/tcp_port: port 40100 is already used by /devices/0");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/2/tcp_port: port 40100 is already used by /devices/0");
 }
 
 TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
@@ -475,11 +501,34 @@ TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
     rig["devices"][0]["pty"] = "/tmp/x";
     rig["devices"].push_back(device("mcs1"));
     rig["devices"][1]["pty"] = "/tmp/x";
-    CHECK(error_of_rig(rig) == "rig.json: /devices/1/pty: path \"/tmp/x\" is already used by /devices/0");
+    CHECK(error_of(rig) ==
+          "rig.json: /devices/1/pty: path \"/tmp/x\" is already used by /devices/0");
 }
 
 TEST_CASE("rig config: protocol names", "[unit][config]")
 {
     CHECK(rigsim::to_string(rigsim::Protocol::Mcs) == "mcs");
     CHECK(rigsim::to_string(rigsim::Protocol::Apt) == "apt");
+}
+
+TEST_CASE("rig config: resolved pty paths default to <pty-dir>/<name> and never collide", "[unit][config]")
+{
+    auto config = rigsim::parse_rig_config(R"({"devices":[
+        {"name":"a","protocol":"mcs","mcs":{"channels":[{}]}},
+        {"name":"b","protocol":"mcs","pty":"/tmp/x/b-port","mcs":{"channels":[{}]}}]})", "rig.json");
+    rigsim::resolve_pty_paths(config, "/tmp/x", "rig.json");
+    CHECK(config.devices[0].pty == "/tmp/x/a");
+    CHECK(config.devices[1].pty == "/tmp/x/b-port");
+
+    auto clash = rigsim::parse_rig_config(R"({"devices":[
+        {"name":"a","protocol":"mcs","pty":"/tmp/x/b","mcs":{"channels":[{}]}},
+        {"name":"b","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json");
+    try {
+        rigsim::resolve_pty_paths(clash, "/tmp/x", "rig.json");
+        FAIL("no error");
+    } catch (const rigsim::ConfigError& e) {
+        CHECK(std::string(e.what())
+              == "rig.json: /devices/1/name: pty path \"/tmp/x/b\" is already used by /devices/0 "
+                 "(this device's default is <pty-dir>/<name>)");
+    }
 }

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Install the Debian packages rigsim builds with, if any is missing (apt-get, as root or
+# with sudo). Sourced by scripts/run.sh and scripts/test.sh; safe to run again.
+set -euo pipefail
+
+packages=(g++ make cmake libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "rigsim: installing Debian packages: ${missing[*]}" >&2
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "rigsim: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
