@@ -2,10 +2,13 @@
 
 #include <boost/asio/write.hpp>
 
+#include <algorithm>
+
 #include <cerrno>
 #include <climits>
 #include <fcntl.h>
 #include <pty.h>
+#include <sys/inotify.h>
 #include <sys/stat.h>
 #include <system_error>
 #include <termios.h>
@@ -56,7 +59,7 @@ void replace_symlink(const std::string& target, const std::string& link)
 
 PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
                          std::shared_ptr<spdlog::logger> log)
-    : master_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
+    : master_(io), inotify_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
 {
     int master = -1;
     char name[PATH_MAX] = {};
@@ -75,6 +78,16 @@ PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symli
     ::fcntl(slave_fd_, F_SETFD, FD_CLOEXEC);
     master_.assign(master);
     master_.non_blocking(true);
+    const int in = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    if (in < 0 || ::inotify_add_watch(in, slave_name_.c_str(), IN_OPEN | IN_CLOSE) < 0) {
+        const int e = errno;
+        if (in >= 0)
+            ::close(in);
+        ::close(slave_fd_);
+        errno = e;
+        throw_errno("cannot watch " + slave_name_);
+    }
+    inotify_.assign(in);
     try {
         make_parent_dirs(symlink_path_);
         replace_symlink(slave_name_, symlink_path_);
@@ -102,6 +115,47 @@ PtyEndpoint::~PtyEndpoint()
 void PtyEndpoint::start()
 {
     read();
+    watch_openers();
+}
+
+void PtyEndpoint::watch_openers()
+{
+    std::weak_ptr<bool> alive = alive_;
+    inotify_.async_wait(asio::posix::stream_descriptor::wait_read,
+        [this, alive](const boost::system::error_code& ec) {
+            if (!alive.lock() || stopped_ || ec)
+                return;
+            drain_open_events();
+            watch_openers();
+        });
+}
+
+void PtyEndpoint::drain_open_events()
+{
+    alignas(inotify_event) char buf[4096];
+    while (true) {
+        const auto n = ::read(inotify_.native_handle(), buf, sizeof buf);
+        if (n <= 0)
+            return;   // EAGAIN: nothing pending
+        for (std::size_t off = 0; off + sizeof(inotify_event) <= static_cast<std::size_t>(n);) {
+            const auto* e = reinterpret_cast<const inotify_event*>(buf + off);
+            off += sizeof(inotify_event) + e->len;
+            if (e->mask & IN_OPEN) {
+                if (openers_++ == 0)
+                    log_->info("pty {}: opened", symlink_path_);
+            } else if (e->mask & IN_CLOSE) {
+                openers_ = std::max(0, openers_ - 1);
+                if (openers_ > 0)
+                    continue;
+                // Nobody listens any more: answers not read by now are lost, as on a
+                // serial line whose host port is closed.
+                ::tcflush(slave_fd_, TCIFLUSH);
+                if (queue_.size() > 1)
+                    queue_.erase(queue_.begin() + 1, queue_.end());
+                log_->info("pty {}: closed", symlink_path_);
+            }
+        }
+    }
 }
 
 void PtyEndpoint::stop()
@@ -112,6 +166,7 @@ void PtyEndpoint::stop()
     boost::system::error_code ec;
     master_.cancel(ec);
     master_.close(ec);
+    inotify_.close(ec);
     // Remove the symlink only if it is still ours.
     char target[PATH_MAX] = {};
     const auto n = ::readlink(symlink_path_.c_str(), target, sizeof target - 1);
@@ -133,6 +188,7 @@ void PtyEndpoint::read()
                 log_->error("pty {}: read failed: {}", symlink_path_, ec.message());
                 return;
             }
+            drain_open_events();   // an open always precedes the opener's first bytes
             session_->receive(std::string_view(buffer_.data(), n));
             read();
         });
@@ -142,6 +198,9 @@ void PtyEndpoint::send(std::string_view bytes)
 {
     if (stopped_)
         return;
+    drain_open_events();
+    if (openers_ == 0)
+        return;   // nobody has the port open: lost, as on a real serial line
     if (queued_bytes_ + bytes.size() > kMaxQueuedBytes) {
         if (!dropping_)
             log_->warn("pty {}: nobody reads the port, dropping output", symlink_path_);

@@ -6,6 +6,12 @@
 // a client may open, close and reopen the port and change its termios settings (baud rate,
 // flow control) while the device and its session keep their state, as a controller on a real
 // serial line would. The serial line is one connection: one Session for all openers.
+//
+// Like a real serial port, what the device sends while no application has the port open
+// is lost: inotify reports opens and closes of the slave device, and when the last client
+// closes it, the answers it never read are flushed, so the next opener never reads stale
+// answers. Open events are drained before any input is handled, so a client that opens the
+// port and writes at once always gets its answer.
 
 #include "emulator/core/device.hpp"
 
@@ -42,8 +48,13 @@ private:
     void read();
     void send(std::string_view bytes);
     void write();
+    void watch_openers();
+    /// Apply pending open/close events of the slave device to openers_.
+    void drain_open_events();
 
     boost::asio::posix::stream_descriptor master_;
+    boost::asio::posix::stream_descriptor inotify_;
+    int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;
