@@ -96,19 +96,18 @@ double stat_tick_s()
     return 1.0 / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
-CpuSample read_cpu(pid_t pid)
-{
-    CpuSample sample;
-    sample.wall = SteadyClock::now();
-    const std::string dir = "/proc/" + std::to_string(pid);
+namespace {
 
-    const auto stat = read_file(dir + "/stat");
+/// utime + stime in seconds from a /proc/.../stat file (process or thread).
+double stat_cpu_s(const std::string& path)
+{
+    const auto stat = read_file(path);
     if (!stat)
-        throw std::runtime_error("cannot read " + dir + "/stat: is the daemon still running?");
+        throw std::runtime_error("cannot read " + path + ": is the daemon still running?");
     // comm (field 2) may hold spaces and parentheses: fields 3.. start after the last ')'.
     const auto paren = stat->rfind(')');
     if (paren == std::string::npos)
-        throw std::runtime_error("cannot parse " + dir + "/stat");
+        throw std::runtime_error("cannot parse " + path);
     std::istringstream fields{stat->substr(paren + 1)};
     std::string field;
     unsigned long long utime = 0;
@@ -120,26 +119,55 @@ CpuSample read_cpu(pid_t pid)
             stime = std::stoull(field);
     }
     if (!fields)
-        throw std::runtime_error("cannot parse " + dir + "/stat");
-    sample.stat_s = static_cast<double>(utime + stime) * stat_tick_s();
+        throw std::runtime_error("cannot parse " + path);
+    return static_cast<double>(utime + stime) * stat_tick_s();
+}
 
+/// Time on CPU in ns, the first field of a /proc/.../schedstat file.
+std::optional<std::int64_t> schedstat_ns(const std::string& path)
+{
+    const auto schedstat = read_file(path);
+    if (!schedstat)
+        return std::nullopt;
+    std::istringstream in{*schedstat};
+    long long on_cpu_ns = 0;
+    if (!(in >> on_cpu_ns))
+        return std::nullopt;
+    return on_cpu_ns;
+}
+
+}  // namespace
+
+CpuSample read_process_cpu(pid_t pid)
+{
+    CpuSample sample;
+    sample.wall = SteadyClock::now();
+    const std::string dir = "/proc/" + std::to_string(pid);
+    sample.stat_s = stat_cpu_s(dir + "/stat");
+
+    // /proc/<pid>/schedstat is the main thread alone: sum over the tasks.
     std::error_code ec;
     std::int64_t total_ns = 0;
     bool any = false;
     for (const auto& task : std::filesystem::directory_iterator{dir + "/task", ec}) {
         // A thread may exit while we iterate: skip what cannot be read.
-        const auto schedstat = read_file(task.path().string() + "/schedstat");
-        if (!schedstat)
-            continue;
-        std::istringstream in{*schedstat};
-        long long on_cpu_ns = 0;
-        if (in >> on_cpu_ns) {
-            total_ns += on_cpu_ns;
+        if (const auto ns = schedstat_ns(task.path().string() + "/schedstat")) {
+            total_ns += *ns;
             any = true;
         }
     }
     if (any)
         sample.schedstat_ns = total_ns;
+    return sample;
+}
+
+CpuSample read_thread_cpu(pid_t tid)
+{
+    CpuSample sample;
+    sample.wall = SteadyClock::now();
+    const std::string dir = "/proc/self/task/" + std::to_string(tid);
+    sample.stat_s = stat_cpu_s(dir + "/stat");
+    sample.schedstat_ns = schedstat_ns(dir + "/schedstat");
     return sample;
 }
 

@@ -29,7 +29,10 @@ struct CpuSample {
 };
 
 /// Reads the CPU time of every thread of process `pid` from /proc.
-CpuSample read_cpu(pid_t pid);
+CpuSample read_process_cpu(pid_t pid);
+
+/// Reads the CPU time of thread `tid` of this process from /proc.
+CpuSample read_thread_cpu(pid_t tid);
 
 /// Seconds per clock tick of /proc/<pid>/stat, i.e. its resolution.
 double stat_tick_s();

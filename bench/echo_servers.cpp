@@ -11,6 +11,8 @@
 
 #include <cerrno>
 #include <climits>
+#include <functional>
+#include <future>
 #include <stdexcept>
 
 namespace rigsim::bench {
@@ -51,6 +53,19 @@ void echo_loop(int fd, const std::atomic<bool>* stopping)
     }
 }
 
+/// Starts `body` on a new thread; returns once the thread's id is known.
+std::thread start_thread(pid_t& thread_id, std::function<void()> body)
+{
+    std::promise<pid_t> started;
+    auto id = started.get_future();
+    std::thread thread{[&started, body = std::move(body)] {
+        started.set_value(::gettid());
+        body();
+    }};
+    thread_id = id.get();
+    return thread;
+}
+
 }  // namespace
 
 TcpEchoServer::TcpEchoServer()
@@ -74,7 +89,7 @@ TcpEchoServer::TcpEchoServer()
         throw std::runtime_error(errno_message("getsockname"));
     port_ = ntohs(addr.sin_port);
 
-    thread_ = std::thread{[this] { run(); }};
+    thread_ = start_thread(thread_id_, [this] { run(); });
 }
 
 TcpEchoServer::~TcpEchoServer()
@@ -125,7 +140,7 @@ PtyEchoServer::PtyEchoServer()
     // Line discipline settings live on the slave side; clients set raw as well.
     make_raw(slave_.get());
 
-    thread_ = std::thread{[this] { run(); }};
+    thread_ = start_thread(thread_id_, [this] { run(); });
 }
 
 PtyEchoServer::~PtyEchoServer()

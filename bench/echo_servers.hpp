@@ -2,6 +2,8 @@
 
 #include "unique_fd.hpp"
 
+#include <sys/types.h>
+
 #include <atomic>
 #include <cstdint>
 #include <string>
@@ -25,6 +27,8 @@ public:
 
     /// The port it listens on.
     std::uint16_t port() const { return port_; }
+    /// The echo thread's id, for its CPU time in /proc/self/task.
+    pid_t thread_id() const { return thread_id_; }
 
 private:
     void run();
@@ -34,6 +38,7 @@ private:
     std::atomic<bool> stopping_{false};
     /// The accepted connection; closed by the destructor after the join.
     std::atomic<int> connection_fd_{-1};
+    pid_t thread_id_ = 0;
     std::thread thread_;
 };
 
@@ -47,6 +52,8 @@ public:
 
     /// The slave device, e.g. /dev/pts/7.
     const std::string& slave_path() const { return slave_path_; }
+    /// The echo thread's id, for its CPU time in /proc/self/task.
+    pid_t thread_id() const { return thread_id_; }
 
 private:
     void run();
@@ -59,6 +66,7 @@ private:
     UniqueFd slave_;
     std::string slave_path_;
     std::atomic<bool> stopping_{false};
+    pid_t thread_id_ = 0;
     std::thread thread_;
 };
 
