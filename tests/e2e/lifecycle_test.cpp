@@ -30,7 +30,7 @@ TEST_CASE("lifecycle: SIGTERM or SIGINT with clients connected exits 0 and remov
     REQUIRE(t.request(":MPA0,5000000,0\n") == ":E0,0\n");
 
     const auto start = SteadyClock::now();
-    const auto status = daemon.stop(sig, 3000ms);
+    const auto status = daemon.stop(sig, kShutdownTimeout);
     INFO("daemon log:\n" << daemon.log());
     REQUIRE(status.has_value());
     INFO("shutdown took " << elapsed_ms(start) << " ms");
