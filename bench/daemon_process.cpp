@@ -3,6 +3,7 @@
 #include "unique_fd.hpp"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>
@@ -91,98 +92,20 @@ std::optional<Endpoints> parse_endpoints(const std::string& json)
     return Endpoints{tcp->substr(0, colon), static_cast<std::uint16_t>(port), *pty};
 }
 
-double stat_tick_s()
-{
-    return 1.0 / static_cast<double>(::sysconf(_SC_CLK_TCK));
-}
-
-namespace {
-
-/// utime + stime in seconds from a /proc/.../stat file (process or thread).
-double stat_cpu_s(const std::string& path)
-{
-    const auto stat = read_file(path);
-    if (!stat)
-        throw std::runtime_error("cannot read " + path + ": is the daemon still running?");
-    // comm (field 2) may hold spaces and parentheses: fields 3.. start after the last ')'.
-    const auto paren = stat->rfind(')');
-    if (paren == std::string::npos)
-        throw std::runtime_error("cannot parse " + path);
-    std::istringstream fields{stat->substr(paren + 1)};
-    std::string field;
-    unsigned long long utime = 0;
-    unsigned long long stime = 0;
-    for (int number = 3; number <= 15 && fields >> field; ++number) {
-        if (number == 14)
-            utime = std::stoull(field);
-        else if (number == 15)
-            stime = std::stoull(field);
-    }
-    if (!fields)
-        throw std::runtime_error("cannot parse " + path);
-    return static_cast<double>(utime + stime) * stat_tick_s();
-}
-
-/// Time on CPU in ns, the first field of a /proc/.../schedstat file.
-std::optional<std::int64_t> schedstat_ns(const std::string& path)
-{
-    const auto schedstat = read_file(path);
-    if (!schedstat)
-        return std::nullopt;
-    std::istringstream in{*schedstat};
-    long long on_cpu_ns = 0;
-    if (!(in >> on_cpu_ns))
-        return std::nullopt;
-    return on_cpu_ns;
-}
-
-}  // namespace
-
-CpuSample read_process_cpu(pid_t pid)
-{
-    CpuSample sample;
-    sample.wall = SteadyClock::now();
-    const std::string dir = "/proc/" + std::to_string(pid);
-    sample.stat_s = stat_cpu_s(dir + "/stat");
-
-    // /proc/<pid>/schedstat is the main thread alone: sum over the tasks.
-    std::error_code ec;
-    std::int64_t total_ns = 0;
-    bool any = false;
-    for (const auto& task : std::filesystem::directory_iterator{dir + "/task", ec}) {
-        // A thread may exit while we iterate: skip what cannot be read.
-        if (const auto ns = schedstat_ns(task.path().string() + "/schedstat")) {
-            total_ns += *ns;
-            any = true;
-        }
-    }
-    if (any)
-        sample.schedstat_ns = total_ns;
-    return sample;
-}
-
-CpuSample read_thread_cpu(pid_t tid)
-{
-    CpuSample sample;
-    sample.wall = SteadyClock::now();
-    const std::string dir = "/proc/self/task/" + std::to_string(tid);
-    sample.stat_s = stat_cpu_s(dir + "/stat");
-    sample.schedstat_ns = schedstat_ns(dir + "/schedstat");
-    return sample;
-}
-
-DaemonProcess::DaemonProcess(const std::string& path, std::chrono::milliseconds timeout)
+DaemonProcess::DaemonProcess(const std::string& path, std::optional<int> cpu,
+                             std::chrono::milliseconds timeout)
 {
     // A constructor that throws gets no destructor call: clean up here.
     try {
-        start(path, timeout);
+        start(path, cpu, timeout);
     } catch (...) {
         clean_up();
         throw;
     }
 }
 
-void DaemonProcess::start(const std::string& path, std::chrono::milliseconds timeout)
+void DaemonProcess::start(const std::string& path, std::optional<int> cpu,
+                          std::chrono::milliseconds timeout)
 {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string{tmp && *tmp ? tmp : "/tmp"} + "/rigsim_bench.XXXXXX";
@@ -203,6 +126,11 @@ void DaemonProcess::start(const std::string& path, std::chrono::milliseconds tim
         argv.push_back(arg.data());
     argv.push_back(nullptr);
     const pid_t parent = ::getpid();
+    // Set in the child before exec, so that every thread of the daemon inherits it.
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    if (cpu)
+        CPU_SET(*cpu, &cpus);
 
     pid_ = ::fork();
     if (pid_ < 0)
@@ -212,6 +140,11 @@ void DaemonProcess::start(const std::string& path, std::chrono::milliseconds tim
         ::prctl(PR_SET_PDEATHSIG, SIGTERM);
         if (::getppid() != parent)
             ::_exit(127);
+        if (cpu && ::sched_setaffinity(0, sizeof cpus, &cpus) < 0) {
+            const char message[] = "rigsim_bench: cannot pin the daemon to its CPU\n";
+            [[maybe_unused]] auto ignored = ::write(STDERR_FILENO, message, sizeof message - 1);
+            ::_exit(126);
+        }
         struct sigaction dfl {};
         dfl.sa_handler = SIG_DFL;
         ::sigaction(SIGPIPE, &dfl, nullptr);

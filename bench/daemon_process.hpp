@@ -19,35 +19,21 @@ struct Endpoints {
 /// Extracts the first "tcp" ("HOST:PORT") and "pty" strings; nullopt if either is missing.
 std::optional<Endpoints> parse_endpoints(const std::string& json);
 
-/// CPU time a process has used so far, with the wall time it was read at.
-struct CpuSample {
-    std::chrono::steady_clock::time_point wall;
-    /// utime + stime from /proc/<pid>/stat, in seconds (resolution: one clock tick).
-    double stat_s = 0;
-    /// Sum over /proc/<pid>/task/*/schedstat, in ns; absent if the kernel lacks schedstat.
-    std::optional<std::int64_t> schedstat_ns;
-};
-
-/// Reads the CPU time of every thread of process `pid` from /proc.
-CpuSample read_process_cpu(pid_t pid);
-
-/// Reads the CPU time of thread `tid` of this process from /proc.
-CpuSample read_thread_cpu(pid_t tid);
-
-/// Seconds per clock tick of /proc/<pid>/stat, i.e. its resolution.
-double stat_tick_s();
-
 /// rigsimd started with fork/exec on ephemeral ports in a fresh temporary directory.
 class DaemonProcess {
 public:
-    /// Starts `path` and waits (polling, up to `timeout`) for its endpoints file.
-    DaemonProcess(const std::string& path, std::chrono::milliseconds timeout);
+    /// Starts `path`, pinned to `cpu` if given, and waits (polling, up to `timeout`)
+    /// for its endpoints file.
+    DaemonProcess(const std::string& path, std::optional<int> cpu,
+                  std::chrono::milliseconds timeout);
     /// Kills the daemon if still running and removes the temporary directory.
     ~DaemonProcess();
     DaemonProcess(const DaemonProcess&) = delete;
     DaemonProcess& operator=(const DaemonProcess&) = delete;
 
+    /// The daemon's process id (-1 once it has been reaped).
     pid_t pid() const { return pid_; }
+    /// Where the daemon's first device listens.
     const Endpoints& endpoints() const { return endpoints_; }
 
     /// Sends SIGTERM and waits up to `timeout` for the exit; throws if it does not
@@ -56,7 +42,8 @@ public:
 
 private:
     /// Creates the directory, forks, execs and waits for the endpoints file.
-    void start(const std::string& path, std::chrono::milliseconds timeout);
+    void start(const std::string& path, std::optional<int> cpu,
+               std::chrono::milliseconds timeout);
     /// Kills and reaps the daemon if running; removes the temporary directory.
     void clean_up();
     /// Polls waitpid(WNOHANG); true once the child is reaped, with its status.

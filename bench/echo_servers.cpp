@@ -1,5 +1,6 @@
 #include "echo_servers.hpp"
 
+#include "cpu_placement.hpp"
 #include "roundtrip.hpp"
 
 #include <arpa/inet.h>
@@ -53,22 +54,35 @@ void echo_loop(int fd, const std::atomic<bool>* stopping)
     }
 }
 
-/// Starts `body` on a new thread; returns once the thread's id is known.
-std::thread start_thread(pid_t& thread_id, std::function<void()> body)
+/// Starts `body` on a new thread pinned to `cpu` if given; returns once the
+/// thread runs and its id is known.
+std::thread start_thread(std::optional<int> cpu, pid_t& thread_id, std::function<void()> body)
 {
     std::promise<pid_t> started;
     auto id = started.get_future();
-    std::thread thread{[&started, body = std::move(body)] {
+    std::thread thread{[cpu, started = std::move(started), body = std::move(body)]() mutable {
+        try {
+            if (cpu)
+                pin_this_thread(*cpu);
+        } catch (...) {
+            started.set_exception(std::current_exception());
+            return;
+        }
         started.set_value(::gettid());
         body();
     }};
-    thread_id = id.get();
+    try {
+        thread_id = id.get();
+    } catch (...) {
+        thread.join();
+        throw;
+    }
     return thread;
 }
 
 }  // namespace
 
-TcpEchoServer::TcpEchoServer()
+TcpEchoServer::TcpEchoServer(std::optional<int> cpu)
 {
     listener_ = UniqueFd{::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)};
     if (listener_.get() < 0)
@@ -89,7 +103,7 @@ TcpEchoServer::TcpEchoServer()
         throw std::runtime_error(errno_message("getsockname"));
     port_ = ntohs(addr.sin_port);
 
-    thread_ = start_thread(thread_id_, [this] { run(); });
+    thread_ = start_thread(cpu, thread_id_, [this] { run(); });
 }
 
 TcpEchoServer::~TcpEchoServer()
@@ -127,7 +141,7 @@ void TcpEchoServer::run()
     echo_loop(fd, nullptr);
 }
 
-PtyEchoServer::PtyEchoServer()
+PtyEchoServer::PtyEchoServer(std::optional<int> cpu)
 {
     int master = -1;
     int slave = -1;
@@ -140,7 +154,7 @@ PtyEchoServer::PtyEchoServer()
     // Line discipline settings live on the slave side; clients set raw as well.
     make_raw(slave_.get());
 
-    thread_ = start_thread(thread_id_, [this] { run(); });
+    thread_ = start_thread(cpu, thread_id_, [this] { run(); });
 }
 
 PtyEchoServer::~PtyEchoServer()

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -20,7 +21,8 @@ namespace rigsim::bench {
 /// Echoes everything one TCP client sends; listens on 127.0.0.1, ephemeral port.
 class TcpEchoServer {
 public:
-    TcpEchoServer();
+    /// Starts listening and the echo thread, pinned to `cpu` if given.
+    explicit TcpEchoServer(std::optional<int> cpu);
     ~TcpEchoServer();
     TcpEchoServer(const TcpEchoServer&) = delete;
     TcpEchoServer& operator=(const TcpEchoServer&) = delete;
@@ -45,7 +47,8 @@ private:
 /// Echoes everything written to a raw pty; clients open slave_path().
 class PtyEchoServer {
 public:
-    PtyEchoServer();
+    /// Opens the pty and starts the echo thread, pinned to `cpu` if given.
+    explicit PtyEchoServer(std::optional<int> cpu);
     ~PtyEchoServer();
     PtyEchoServer(const PtyEchoServer&) = delete;
     PtyEchoServer& operator=(const PtyEchoServer&) = delete;

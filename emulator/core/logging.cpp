@@ -16,7 +16,7 @@ std::optional<spdlog::level::level_enum> parse_level(std::string_view s)
         if (s == std::string_view(name.data(), name.size()))
             return level;
     }
-    if (s == "warning")
+    if (s == "warn")   // spdlog spells it "warning"; the flag documents "warn"
         return spdlog::level::warn;
     return std::nullopt;
 }

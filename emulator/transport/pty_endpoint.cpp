@@ -198,9 +198,12 @@ void PtyEndpoint::send(std::string_view bytes)
 {
     if (stopped_)
         return;
-    drain_open_events();
     if (openers_ == 0)
-        return;   // nobody has the port open: lost, as on a real serial line
+        drain_open_events();
+    // Nobody has the port open: lost, as on a real serial line. (Bytes sent just before a
+    // close that is not yet seen stay in the pty until the close is seen and flushes them.)
+    if (openers_ == 0)
+        return;
     if (queued_bytes_ + bytes.size() > kMaxQueuedBytes) {
         if (!dropping_)
             log_->warn("pty {}: nobody reads the port, dropping output", symlink_path_);
