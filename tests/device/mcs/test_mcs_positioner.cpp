@@ -50,7 +50,7 @@ TEST_CASE("arrival time follows speed and acceleration within one tick", "[devic
     CHECK(h.send(":GP1\n") == ":P1,-3000000\n");
 }
 
-TEST_CASE("hold time keeps status 3 for its duration; 60000 holds until stopped", "[device][mcs]")
+TEST_CASE("hold time keeps status 3 for its duration and 60000 holds until stopped", "[device][mcs]")
 {
     McsHarness h;
     CHECK(h.send(":MPA0,100000,500\n") == ":E0,0\n");      // 10 ms at 10 mm/s
@@ -83,7 +83,7 @@ TEST_CASE("MPR is relative and accumulates while targeting", "[device][mcs]")
     CHECK(h.send(":GP2\n") == ":P2,750000\n");
 }
 
-TEST_CASE("S stops where the stage is; S without channel stops all", "[device][mcs]")
+TEST_CASE("S stops where the stage is and S without channel stops all", "[device][mcs]")
 {
     McsHarness h;
     CHECK(h.send(":SCLS0,1000000\n:SCLS1,1000000\n") == ":E-1,0\n:E-1,0\n");
@@ -106,7 +106,7 @@ TEST_CASE("a target beyond the end stop stops the stage at the stop, status 0", 
     CHECK(h.send(":GP0\n") == ":P0,10500000\n");
 }
 
-TEST_CASE("start position reads as zero at power-up; end stops are physical", "[device][mcs]")
+TEST_CASE("start position reads as zero at power-up and end stops are physical", "[device][mcs]")
 {
     auto config = mcs_device_config(1);
     config.mcs.channels[0].start_position_nm = 10'000'000;

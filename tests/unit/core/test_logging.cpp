@@ -6,7 +6,7 @@
 using rigsim::LogLevels;
 using rigsim::apply_log_level;
 
-TEST_CASE("--log-level accepts every documented level", "[unit][logging]")
+TEST_CASE("log levels: every documented level is accepted", "[unit][logging]")
 {
     const std::pair<const char*, spdlog::level::level_enum> levels[] = {
         {"trace", spdlog::level::trace}, {"debug", spdlog::level::debug},
@@ -22,7 +22,7 @@ TEST_CASE("--log-level accepts every documented level", "[unit][logging]")
     }
 }
 
-TEST_CASE("--log-level NAME=LEVEL sets one logger; bad values are named", "[unit][logging]")
+TEST_CASE("log levels: NAME=LEVEL sets one logger and bad values are named", "[unit][logging]")
 {
     LogLevels l;
     CHECK_FALSE(apply_log_level("mcs0=debug", l));
