@@ -1,6 +1,8 @@
 #pragma once
-// One MCS positioner channel: sensor, closed-loop settings and motion state.
-// No I/O: the handler calls it, the Clock advances it.
+// One MCS positioner channel: sensor, measuring scale, closed-loop settings and motion.
+// No I/O: the handler calls it, the Clock advances it. Messages the channel sends by
+// itself (asynchronous errors, completion reports) are queued in events() for the
+// controller to deliver.
 
 #include "emulator/core/clock.hpp"
 #include "emulator/core/rig_config.hpp"
@@ -9,7 +11,9 @@
 #include "models/trapezoid.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <vector>
 
 namespace rigsim::mcs {
 
@@ -30,55 +34,118 @@ enum class ChannelStatus : int {
 /// GCT channel types.
 enum class ChannelType : int { Positioner = 0, EndEffector = 1 };
 
+/// Sensor operation modes (2.3.2; SSE, channel property 134938625).
+enum class SensorMode : int { Disabled = 0, Enabled = 1, PowerSave = 2 };
+
 class Channel {
 public:
     /// The hold time that means "hold until stopped" (MPA/MPR, manual 3.3).
     static constexpr std::int32_t kHoldForever_ms = 60'000;
     static constexpr std::int32_t kMaxClosedLoopSpeed = 100'000'000;       ///< SCLS range
     static constexpr std::int32_t kMaxClosedLoopAcceleration = 10'000'000; ///< SCLA range
+    static constexpr std::int32_t kMinFrequency_hz = 50;                   ///< SCLF range
+    static constexpr std::int32_t kMaxFrequency_hz = 18'500;
+    /// Power save: "it takes a few milliseconds to power up the sensor" (2.3.2).
+    static constexpr std::int64_t kSensorPowerUp_ms = 5;
 
-    Channel(const McsChannelConfig& config, const Clock& clock);
+    Channel(int index, const McsChannelConfig& config, const Clock& clock);
 
     ChannelType type() const { return ChannelType::Positioner; }
     ChannelStatus status() const;
     /// Appendix 4.3 entry, or nullptr for a positioner without sensor.
     const SensorType* sensor() const { return sensor_; }
 
+    /// Back to the power-up state (R): motion stopped, position unknown and reading 0 where
+    /// the stage stands, volatile settings to their defaults. Non-volatile settings (sensor
+    /// type, scale, safe direction, sensor mode) are kept.
+    void reset();
+
     /// SST: implicitly stops the positioner.
     std::optional<ErrorCode> set_sensor_type(std::int32_t code);
-    /// GP: the position in nm (errors 129, 143).
+    SensorMode sensor_mode() const { return sensor_mode_; }
+    /// SSE / channel property: implicitly stops the positioner.
+    void set_sensor_mode(SensorMode mode);
+
+    /// Errors 129 (no sensor), 140 (sensor disabled), 143 (not a linear sensor).
     std::optional<ErrorCode> check_linear_sensor() const;
+    /// Position on the logical scale in nm (GP).
     std::int64_t position_nm() const;
+    bool physical_position_known() const { return known_; }
 
     std::optional<ErrorCode> move_absolute(std::int64_t position_nm, std::int32_t hold_ms);
     std::optional<ErrorCode> move_relative(std::int64_t distance_nm, std::int32_t hold_ms);
     void stop();
 
+    /// SP (and SZP with 0): the current position reads `position` from now on (2.3.3).
+    std::optional<ErrorCode> set_position(std::int64_t position);
+    /// SSC: shift and inversion of the logical scale (2.3.3, "Shifting the Measuring Scale").
+    std::optional<ErrorCode> set_scale(std::int32_t offset, std::int32_t inverted);
+    std::int32_t scale_offset() const { return scale_offset_; }
+    bool scale_inverted() const { return scale_inverted_; }
+    std::optional<ErrorCode> set_safe_direction(std::int32_t direction);
+    std::int32_t safe_direction() const { return safe_direction_; }
+    std::optional<ErrorCode> set_accumulate_relative(std::int32_t accumulate);
+    std::optional<ErrorCode> set_step_while_scan(std::int32_t step);
+    bool step_while_scan() const { return step_while_scan_; }
+
     std::optional<ErrorCode> set_closed_loop_speed(std::int32_t speed_nm_per_s);
     std::optional<ErrorCode> set_closed_loop_acceleration(std::int32_t acceleration_um_per_s2);
+    std::optional<ErrorCode> set_closed_loop_max_frequency(std::int32_t frequency_hz);
     std::int32_t closed_loop_speed() const { return speed_nm_per_s_; }
     std::int32_t closed_loop_acceleration() const { return acceleration_um_per_s2_; }
+
+    /// SRC: report completed movements (asynchronous mode only; checked by the handler).
+    void set_report_on_complete(bool report) { report_on_complete_ = report; }
+
+    /// Messages the channel sends by itself: asynchronous errors (142, 147, 144) and
+    /// completion reports. The controller delivers them only in asynchronous mode.
+    std::vector<Reply>& events() { return events_; }
 
     Ticks next_change(Ticks now) const;
     void tick(Ticks now);
 
 private:
-    enum class Motion { Idle, Targeting, Holding };
+    enum class Motion { Idle, MoveDelay, Targeting, Holding };
 
-    std::optional<ErrorCode> start_move(double target_physical_nm, std::int32_t hold_ms);
+    /// A physical position (nm on the travel axis) as read on the logical scale, and back.
+    double logical_from_physical(double physical) const;
+    double physical_from_logical(double logical) const;
+    double top_speed() const;
+
+    /// Runs `start` now, or after the sensor powered up (power save mode, status 5).
+    void begin_movement(std::function<void(Ticks)> start);
+    void start_closed_loop(double target_physical_nm, std::int32_t hold_ms, Ticks now);
     void sample(Ticks now);
     void arrive(Ticks now);
+    void finish_movement();
 
+    int index_;
     const Clock& clock_;
+    McsChannelConfig config_;
     const SensorType* sensor_;
+    SensorMode sensor_mode_;
     double travel_min_nm_;
     double travel_max_nm_;
-    double zero_offset_nm_;          ///< physical position that reads 0
-    double max_speed_nm_per_s_;
+    double reference_nm_;            ///< physical position of the reference point
+
+    // Measuring scale (2.3.3). Unknown physical position: logical = physical - unknown_base_.
+    // Known: logical = ±(physical - reference_nm_) + scale_offset_.
+    bool known_ = false;
+    double unknown_base_nm_;
+    std::int32_t scale_offset_ = 0;  ///< non-volatile
+    bool scale_inverted_ = false;    ///< non-volatile
+    std::int32_t safe_direction_ = 0;
+    bool accumulate_relative_ = true;
+    bool step_while_scan_ = true;
+    bool report_on_complete_ = false;
+
     std::int32_t speed_nm_per_s_;
     std::int32_t acceleration_um_per_s2_;
+    std::int32_t max_frequency_hz_ = kMaxFrequency_hz;
 
     Motion motion_ = Motion::Idle;
+    std::function<void(Ticks)> pending_start_;   ///< movement waiting for the sensor
+    Ticks delay_until_ = 0;
     models::AxisState state_;        ///< physical position (nm), velocity (nm/s)
     models::TrapezoidProfile profile_;
     Ticks move_start_ = 0;
@@ -87,6 +154,7 @@ private:
     std::int32_t hold_ms_ = 0;
     bool end_stop_hit_ = false;      ///< the target lay beyond a mechanical end stop
     double target_physical_nm_ = 0;  ///< MPR accumulates onto this while targeting
+    std::vector<Reply> events_;
 };
 
 } // namespace rigsim::mcs

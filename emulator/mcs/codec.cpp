@@ -8,44 +8,69 @@ namespace rigsim::mcs {
 namespace {
 
 constexpr std::size_t kMaxParams = 8;
-using Params = std::array<std::int32_t, kMaxParams>;
+using Params = std::array<std::int64_t, kMaxParams>;
+
+std::int32_t i32(std::int64_t v) { return static_cast<std::int32_t>(v); }
 
 struct CommandEntry {
     std::string_view name;
     std::size_t min_params;
     std::size_t max_params;
     Command (*build)(const Params& p, std::size_t n);
+    unsigned wide_params = 0;   ///< bit i: parameter i may be 0..4,294,967,295
 };
 
 // The commands rigsim implements: name, parameter count range, builder.
 const CommandEntry kCommands[] = {
+    {"GCM", 0, 0, [](const Params&, std::size_t) -> Command { return GetCommunicationMode{}; }},
+    {"SCM", 1, 1, [](const Params& p, std::size_t) -> Command { return SetCommunicationMode{i32(p[0])}; }},
     {"GNC", 0, 0, [](const Params&, std::size_t) -> Command { return GetNumberOfChannels{}; }},
     {"GSI", 0, 0, [](const Params&, std::size_t) -> Command { return GetSystemId{}; }},
     {"GIV", 0, 0, [](const Params&, std::size_t) -> Command { return GetInterfaceVersion{}; }},
-    {"GCT", 1, 1, [](const Params& p, std::size_t) -> Command { return GetChannelType{p[0]}; }},
-    {"GST", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSensorType{p[0]}; }},
-    {"SST", 2, 2, [](const Params& p, std::size_t) -> Command { return SetSensorType{p[0], p[1]}; }},
-    {"GP", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPosition{p[0]}; }},
-    {"GS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetStatus{p[0]}; }},
-    {"MPA", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionAbsolute{p[0], p[1], p[2]}; }},
-    {"MPR", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionRelative{p[0], p[1], p[2]}; }},
+    {"R", 0, 0, [](const Params&, std::size_t) -> Command { return Reset{}; }},
+    {"SHE", 1, 1, [](const Params& p, std::size_t) -> Command { return SetHcmEnabled{i32(p[0])}; }},
+    {"GCT", 1, 1, [](const Params& p, std::size_t) -> Command { return GetChannelType{i32(p[0])}; }},
+    {"GSE", 0, 0, [](const Params&, std::size_t) -> Command { return GetSensorEnabled{}; }},
+    {"SSE", 1, 1, [](const Params& p, std::size_t) -> Command { return SetSensorEnabled{i32(p[0])}; }},
+    {"GST", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSensorType{i32(p[0])}; }},
+    {"SST", 2, 2, [](const Params& p, std::size_t) -> Command { return SetSensorType{i32(p[0]), i32(p[1])}; }},
+    {"GP", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPosition{i32(p[0])}; }},
+    {"GS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetStatus{i32(p[0])}; }},
+    {"GPPK", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPhysicalPositionKnown{i32(p[0])}; }},
+    {"MPA", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"MPR", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
     {"S", 0, 1, [](const Params& p, std::size_t n) -> Command {
-         return n == 0 ? Stop{std::nullopt} : Stop{p[0]};
+         return n == 0 ? Stop{std::nullopt} : Stop{i32(p[0])};
      }},
-    {"SCLS", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopSpeed{p[0], p[1]}; }},
-    {"GCLS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopSpeed{p[0]}; }},
-    {"SCLA", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopAcceleration{p[0], p[1]}; }},
-    {"GCLA", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopAcceleration{p[0]}; }},
+    {"SCLS", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopSpeed{i32(p[0]), i32(p[1])}; }},
+    {"GCLS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopSpeed{i32(p[0])}; }},
+    {"SCLA", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopAcceleration{i32(p[0]), i32(p[1])}; }},
+    {"GCLA", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopAcceleration{i32(p[0])}; }},
+    {"SCLF", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopMaxFrequency{i32(p[0]), i32(p[1])}; }},
+    {"SARP", 2, 2, [](const Params& p, std::size_t) -> Command { return SetAccumulateRelativePositions{i32(p[0]), i32(p[1])}; }},
+    {"SP", 2, 2, [](const Params& p, std::size_t) -> Command { return SetPosition{i32(p[0]), i32(p[1])}; }},
+    {"SZP", 1, 1, [](const Params& p, std::size_t) -> Command { return SetZeroPosition{i32(p[0])}; }},
+    {"SSC", 3, 3, [](const Params& p, std::size_t) -> Command { return SetScale{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"GSC", 1, 1, [](const Params& p, std::size_t) -> Command { return GetScale{i32(p[0])}; }},
+    {"SSD", 2, 2, [](const Params& p, std::size_t) -> Command { return SetSafeDirection{i32(p[0]), i32(p[1])}; }},
+    {"GSD", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSafeDirection{i32(p[0])}; }},
+    {"SSWS", 2, 2, [](const Params& p, std::size_t) -> Command { return SetStepWhileScan{i32(p[0]), i32(p[1])}; }},
+    {"SRC", 2, 2, [](const Params& p, std::size_t) -> Command { return SetReportOnComplete{i32(p[0]), i32(p[1])}; }},
+    {"K", 0, 1, [](const Params& p, std::size_t n) -> Command {
+         return n == 0 ? KeepAlive{std::nullopt} : KeepAlive{i32(p[0])};
+     }},
+    {"CB", 1, 1, [](const Params& p, std::size_t) -> Command { return ConfigureBaudrate{i32(p[0])}; }},
+    {"GSN", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSerialNumber{i32(p[0])}; }},
+    {"GFV", 1, 1, [](const Params& p, std::size_t) -> Command { return GetFirmwareVersion{i32(p[0])}; }},
+    {"GFP", 2, 2, [](const Params& p, std::size_t) -> Command { return GetFeaturePermissions{i32(p[0]), i32(p[1])}; }},
 };
 
 // Chapter 3 commands that rigsim does not implement yet: answered like an unknown
 // command (E-1,2), but logged as unimplemented rather than as a client mistake.
 constexpr std::string_view kUnimplemented[] = {
-    "GCM", "SCM", "R", "SHE", "GAL", "GCP", "GEET", "GESM", "GPL", "GSC", "GSD", "GSE",
-    "SARP", "SAL", "SCLF", "SCP", "SEET", "SESM", "SP", "SPL", "SRC", "SRT", "SSC", "SSD",
-    "SSE", "SSWS", "SZF", "SZP", "ATC", "CS", "CTCQ", "FRM", "MAA", "MAR", "MGFA", "MGOA",
-    "MGOR", "MSCA", "MSCR", "MST", "TC", "GA", "GB", "GF", "GGO", "GPPK", "GVL", "CB",
-    "GSN", "GFV", "GFP", "K",
+    "GAL", "GCP", "GEET", "GESM", "GPL", "SAL", "SCP", "SEET", "SESM", "SPL", "SRT", "SZF",
+    "ATC", "CS", "CTCQ", "FRM", "MAA", "MAR", "MGFA", "MGOA", "MGOR", "MSCA", "MSCR", "MST",
+    "TC", "GA", "GB", "GF", "GGO", "GVL",
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }
@@ -78,7 +103,8 @@ Decoded decode(std::string_view line)
 
     Params params{};
     std::size_t count = 0;
-    bool overflow = false;
+    unsigned overflow_mask = 0;   // bit i: parameter i does not fit a signed 32-bit value
+    unsigned huge_mask = 0;       // bit i: parameter i does not fit 0..4,294,967,295 either
     if (!rest.empty()) {
         std::size_t pos = 0;
         while (true) {
@@ -90,16 +116,22 @@ Decoded decode(std::string_view line)
                 return fail(d, ErrorCode::Parse);
             long long value = 0;
             const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+            const unsigned bit = count < 32 ? 1u << count : 0u;
             if (ec == std::errc::result_out_of_range) {
-                overflow = true;
+                overflow_mask |= bit;
+                huge_mask |= bit;
             } else if (ec != std::errc() || end != field.data() + field.size()) {
                 return fail(d, ErrorCode::Parse);   // e.g. "1-2", "--3"
-            } else if (value < std::numeric_limits<std::int32_t>::min()
-                       || value > std::numeric_limits<std::int32_t>::max()) {
-                overflow = true;
+            } else {
+                if (value < std::numeric_limits<std::int32_t>::min()
+                    || value > std::numeric_limits<std::int32_t>::max())
+                    overflow_mask |= bit;
+                if (value < std::numeric_limits<std::int32_t>::min()
+                    || value > std::numeric_limits<std::uint32_t>::max())
+                    huge_mask |= bit;
             }
             if (count < kMaxParams)
-                params[count] = static_cast<std::int32_t>(value);
+                params[count] = value;
             ++count;
             if (comma == std::string_view::npos)
                 break;
@@ -114,7 +146,7 @@ Decoded decode(std::string_view line)
             return fail(d, ErrorCode::TooFewParameters);
         if (count > entry.max_params)
             return fail(d, ErrorCode::TooManyParameters);
-        if (overflow)
+        if ((overflow_mask & ~entry.wide_params) != 0 || (huge_mask & entry.wide_params) != 0)
             return fail(d, ErrorCode::Overflow);
         d.command = entry.build(params, count);
         return d;
@@ -137,8 +169,11 @@ void encode(const Reply& reply, std::string& out)
         out += std::to_string(err->channel);
         out += ',';
         out += std::to_string(static_cast<int>(err->code));
+    } else if (const auto* answer = std::get_if<Answer>(&reply)) {
+        out += answer->text;
     } else {
-        out += std::get<Answer>(reply).text;
+        out.pop_back();   // Silent: nothing at all
+        return;
     }
     out += '\n';
 }

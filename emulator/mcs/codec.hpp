@@ -46,15 +46,24 @@ enum class ErrorCode : int {
 inline constexpr int kSystem = -1;
 
 // ---- Commands (one struct per command of chapter 3 that rigsim implements) ----
+// Parameters keep the manual's names and units; every value arrives as a signed 32-bit
+// number except where a command documents a wider range (MSCA/MSCR speed).
 
+struct GetCommunicationMode {};                                   ///< GCM
+struct SetCommunicationMode { std::int32_t mode; };               ///< SCM
 struct GetNumberOfChannels {};                                    ///< GNC
 struct GetSystemId {};                                            ///< GSI
 struct GetInterfaceVersion {};                                    ///< GIV
+struct Reset {};                                                  ///< R
+struct SetHcmEnabled { std::int32_t mode; };                      ///< SHE
 struct GetChannelType { std::int32_t channel; };                  ///< GCT
+struct GetSensorEnabled {};                                       ///< GSE
+struct SetSensorEnabled { std::int32_t mode; };                   ///< SSE
 struct GetSensorType { std::int32_t channel; };                   ///< GST
 struct SetSensorType { std::int32_t channel; std::int32_t type_code; };  ///< SST
 struct GetPosition { std::int32_t channel; };                     ///< GP
 struct GetStatus { std::int32_t channel; };                       ///< GS
+struct GetPhysicalPositionKnown { std::int32_t channel; };        ///< GPPK
 struct MovePositionAbsolute { std::int32_t channel; std::int32_t position_nm; std::int32_t hold_ms; };  ///< MPA
 struct MovePositionRelative { std::int32_t channel; std::int32_t distance_nm; std::int32_t hold_ms; };  ///< MPR
 struct Stop { std::optional<std::int32_t> channel; };             ///< S (no channel: all)
@@ -62,12 +71,31 @@ struct SetClosedLoopSpeed { std::int32_t channel; std::int32_t speed; };        
 struct GetClosedLoopSpeed { std::int32_t channel; };              ///< GCLS
 struct SetClosedLoopAcceleration { std::int32_t channel; std::int32_t acceleration; };  ///< SCLA
 struct GetClosedLoopAcceleration { std::int32_t channel; };       ///< GCLA
+struct SetClosedLoopMaxFrequency { std::int32_t channel; std::int32_t frequency_hz; };  ///< SCLF
+struct SetAccumulateRelativePositions { std::int32_t channel; std::int32_t accumulate; };  ///< SARP
+struct SetPosition { std::int32_t channel; std::int32_t position; };  ///< SP
+struct SetZeroPosition { std::int32_t channel; };                 ///< SZP
+struct SetScale { std::int32_t channel; std::int32_t scale; std::int32_t inverted; };  ///< SSC
+struct GetScale { std::int32_t channel; };                        ///< GSC
+struct SetSafeDirection { std::int32_t channel; std::int32_t direction; };  ///< SSD
+struct GetSafeDirection { std::int32_t channel; };                ///< GSD
+struct SetStepWhileScan { std::int32_t channel; std::int32_t step; };  ///< SSWS
+struct SetReportOnComplete { std::int32_t channel; std::int32_t report; };  ///< SRC
+struct KeepAlive { std::optional<std::int32_t> delay_ms; };       ///< K (no delay: reset the timer)
+struct ConfigureBaudrate { std::int32_t baudrate; };              ///< CB
+struct GetSerialNumber { std::int32_t channel; };                 ///< GSN
+struct GetFirmwareVersion { std::int32_t channel; };              ///< GFV
+struct GetFeaturePermissions { std::int32_t channel; std::int32_t byte_index; };  ///< GFP
 
-using Command = std::variant<GetNumberOfChannels, GetSystemId, GetInterfaceVersion, GetChannelType,
-                             GetSensorType, SetSensorType, GetPosition, GetStatus,
-                             MovePositionAbsolute, MovePositionRelative, Stop, SetClosedLoopSpeed,
-                             GetClosedLoopSpeed, SetClosedLoopAcceleration,
-                             GetClosedLoopAcceleration>;
+using Command = std::variant<
+    GetCommunicationMode, SetCommunicationMode, GetNumberOfChannels, GetSystemId,
+    GetInterfaceVersion, Reset, SetHcmEnabled, GetChannelType, GetSensorEnabled,
+    SetSensorEnabled, GetSensorType, SetSensorType, GetPosition, GetStatus,
+    GetPhysicalPositionKnown, MovePositionAbsolute, MovePositionRelative, Stop,
+    SetClosedLoopSpeed, GetClosedLoopSpeed, SetClosedLoopAcceleration, GetClosedLoopAcceleration,
+    SetClosedLoopMaxFrequency, SetAccumulateRelativePositions, SetPosition, SetZeroPosition,
+    SetScale, GetScale, SetSafeDirection, GetSafeDirection, SetStepWhileScan, SetReportOnComplete,
+    KeepAlive, ConfigureBaudrate, GetSerialNumber, GetFirmwareVersion, GetFeaturePermissions>;
 
 // ---- Answers ----
 
@@ -77,8 +105,10 @@ struct Ack { int channel; };
 struct Error { int channel; ErrorCode code; };
 /// Any other answer string, without ':' and '\n' (e.g. `P0,2000000`).
 struct Answer { std::string text; };
+/// No answer at all (async-only commands such as SRC; acknowledges in async mode).
+struct Silent {};
 
-using Reply = std::variant<Ack, Error, Answer>;
+using Reply = std::variant<Ack, Error, Answer, Silent>;
 
 /// `:<answer>\n`
 std::string encode(const Reply& reply);

@@ -1,14 +1,23 @@
 #include "emulator/mcs/controller.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rigsim::mcs {
 
-Controller::Controller(const McsConfig& config, const Clock& clock) : system_id_(config.system_id)
+namespace {
+
+/// The controller's baud rate generator divides a 4 MHz clock: CB57600 -> BR57142 (3.5).
+constexpr std::int64_t kBaudClock_hz = 4'000'000;
+
+} // namespace
+
+Controller::Controller(const McsConfig& config, const Clock& clock)
+    : clock_(clock), system_id_(config.system_id)
 {
     channels_.reserve(config.channels.size());
-    for (const auto& c : config.channels)
-        channels_.emplace_back(c, clock);
+    for (std::size_t i = 0; i < config.channels.size(); ++i)
+        channels_.emplace_back(static_cast<int>(i), config.channels[i], clock);
 }
 
 Channel* Controller::channel(std::int32_t index)
@@ -23,15 +32,62 @@ const Channel* Controller::channel(std::int32_t index) const
     return const_cast<Controller*>(this)->channel(index);
 }
 
+void Controller::set_sensor_mode(SensorMode mode)
+{
+    sensor_mode_ = mode;
+    for (auto& c : channels_)
+        c.set_sensor_mode(mode);
+}
+
+void Controller::set_keep_alive(std::int32_t timeout_ms)
+{
+    keep_alive_ms_ = timeout_ms;
+    note_command();
+}
+
+void Controller::note_command()
+{
+    keep_alive_deadline_ = keep_alive_ms_ > 0 ? clock_.now() + clock_.ticks_from_ms(keep_alive_ms_) : kNever;
+}
+
+std::int32_t Controller::configure_baudrate(std::int32_t baudrate)
+{
+    configured_baudrate_ = baudrate;
+    const auto divider = (kBaudClock_hz + baudrate - 1) / baudrate;   // never faster than asked
+    return static_cast<std::int32_t>(kBaudClock_hz / divider);
+}
+
+void Controller::reset()
+{
+    mode_ = CommunicationMode::Sync;
+    hcm_mode_ = 1;
+    keep_alive_ms_ = 0;
+    keep_alive_deadline_ = kNever;
+    baudrate_ = configured_baudrate_;   // CB takes effect at the next reset
+    outbox_.clear();
+    for (auto& c : channels_)
+        c.reset();
+}
+
 void Controller::stop_all()
 {
     for (auto& c : channels_)
         c.stop();
 }
 
+void Controller::collect_events()
+{
+    for (auto& c : channels_) {
+        auto& events = c.events();
+        if (mode_ == CommunicationMode::Async)
+            outbox_.insert(outbox_.end(), events.begin(), events.end());
+        events.clear();
+    }
+}
+
 Ticks Controller::next_change(Ticks now) const
 {
-    Ticks next = kNever;
+    Ticks next = keep_alive_deadline_ > now ? keep_alive_deadline_ : (keep_alive_deadline_ == kNever ? kNever : now + 1);
     for (const auto& c : channels_)
         next = std::min(next, c.next_change(now));
     return next;
@@ -39,9 +95,15 @@ Ticks Controller::next_change(Ticks now) const
 
 void Controller::tick(Ticks now)
 {
+    if (now >= keep_alive_deadline_) {
+        // K: "If a timeout occurs, all positioners are immediately stopped."
+        stop_all();
+        keep_alive_deadline_ = kNever;
+    }
     for (auto& c : channels_)
         if (c.next_change(now - 1) <= now)
             c.tick(now);
+    collect_events();
 }
 
 } // namespace rigsim::mcs

@@ -17,8 +17,12 @@ struct InterfaceVersion {
     int update = 0;
 };
 
+enum class CommunicationMode : int { Sync = 0, Async = 1 };
+
 class Controller : public Tickable {
 public:
+    static constexpr std::int32_t kDefaultBaudrate = 9600;   ///< factory default (1.2)
+
     Controller(const McsConfig& config, const Clock& clock);
 
     std::size_t channel_count() const { return channels_.size(); }
@@ -29,14 +33,54 @@ public:
     std::uint32_t system_id() const { return system_id_; }
     InterfaceVersion interface_version() const { return {}; }
 
+    CommunicationMode communication_mode() const { return mode_; }
+    void set_communication_mode(CommunicationMode m) { mode_ = m; }
+
+    /// SSE: system-wide sensor mode; stops every positioner.
+    void set_sensor_mode(SensorMode mode);
+    SensorMode sensor_mode() const { return sensor_mode_; }
+
+    /// SHE: hand control module mode 0..2 (no HCM is attached to an emulated controller).
+    void set_hcm_mode(std::int32_t mode) { hcm_mode_ = mode; }
+
+    /// K: timeout in ms (0 = off); resets the timeout counter.
+    void set_keep_alive(std::int32_t timeout_ms);
+    /// Any command that could be parsed resets the keep-alive counter (K).
+    void note_command();
+
+    /// CB: stores the baud rate for the next reset; returns the rate the controller's baud
+    /// rate generator really produces (CB57600 -> BR57142).
+    std::int32_t configure_baudrate(std::int32_t baudrate);
+    /// Baud rate of the serial interface since the last reset.
+    std::int32_t baudrate() const { return baudrate_; }
+
+    /// R: power-down/power-up: channels back to their power-up state, synchronous mode,
+    /// keep-alive off; non-volatile settings (sensor types and mode, scales, baud rate) kept.
+    void reset();
+
     void stop_all();
+
+    /// Messages sent by the controller by itself, to every connection: filled during
+    /// tick() (asynchronous mode only), emptied by the device.
+    std::vector<Reply>& outbox() { return outbox_; }
+    /// Move channel events to the outbox (asynchronous mode) or drop them (sync mode).
+    void collect_events();
 
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
 
 private:
+    const Clock& clock_;
     std::uint32_t system_id_;
     std::vector<Channel> channels_;
+    CommunicationMode mode_ = CommunicationMode::Sync;
+    SensorMode sensor_mode_ = SensorMode::Enabled;
+    std::int32_t hcm_mode_ = 1;
+    std::int32_t keep_alive_ms_ = 0;
+    Ticks keep_alive_deadline_ = kNever;
+    std::int32_t baudrate_ = kDefaultBaudrate;
+    std::int32_t configured_baudrate_ = kDefaultBaudrate;
+    std::vector<Reply> outbox_;
 };
 
 } // namespace rigsim::mcs

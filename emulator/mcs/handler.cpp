@@ -24,7 +24,22 @@ std::string join(std::string_view prefix, std::int64_t a, std::int64_t b)
     return s;
 }
 
+/// A reply for a channel setter: its error, or the acknowledge from `ack_channel`.
+Reply result(std::optional<ErrorCode> err, int channel, int ack_channel)
+{
+    if (err)
+        return Error{channel, *err};
+    return Ack{ack_channel};
+}
+
 } // namespace
+
+bool Handler::take_reset_request()
+{
+    const bool r = reset_requested_;
+    reset_requested_ = false;
+    return r;
+}
 
 Reply Handler::handle(const Command& command)
 {
@@ -177,6 +192,218 @@ Reply Handler::on(const GetClosedLoopAcceleration& c)
     if (!ch)
         return kNoSuchChannel;
     return Answer{join("CLA", c.channel, ch->closed_loop_acceleration())};
+}
+
+/// GCM: communication mode, 0 sync, 1 async (3.1).
+Reply Handler::on(const GetCommunicationMode&)
+{
+    return Answer{join("CM", static_cast<int>(controller_.communication_mode()))};
+}
+
+/// SCM<mode>: answers in the new mode: E-1,0 in sync mode, nothing in async (3.1).
+Reply Handler::on(const SetCommunicationMode& c)
+{
+    if (c.mode != 0 && c.mode != 1)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    controller_.set_communication_mode(static_cast<CommunicationMode>(c.mode));
+    return Ack{kSystem};
+}
+
+/// R: acknowledge, then the power-down/power-up (3.1).
+Reply Handler::on(const Reset&)
+{
+    reset_requested_ = true;
+    return Ack{kSystem};
+}
+
+/// SHE<mode>: hand control module 0 disabled, 1 enabled, 2 display only (3.1).
+Reply Handler::on(const SetHcmEnabled& c)
+{
+    if (c.mode < 0 || c.mode > 2)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    controller_.set_hcm_mode(c.mode);
+    return Ack{kSystem};
+}
+
+/// GSE: system sensor mode (3.2).
+Reply Handler::on(const GetSensorEnabled&)
+{
+    return Answer{join("SE", static_cast<int>(controller_.sensor_mode()))};
+}
+
+/// SSE<mode>: sensors disabled/enabled/power save; stops every positioner (3.2).
+Reply Handler::on(const SetSensorEnabled& c)
+{
+    if (c.mode < 0 || c.mode > 2)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    controller_.set_sensor_mode(static_cast<SensorMode>(c.mode));
+    return Ack{kSystem};
+}
+
+/// GPPK<ch>: physical position known (3.4).
+Reply Handler::on(const GetPhysicalPositionKnown& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (!ch->sensor())
+        return Error{c.channel, ErrorCode::NoSensorPresent};
+    return Answer{join("PPK", c.channel, ch->physical_position_known() ? 1 : 0)};
+}
+
+/// SCLF<ch>,<frequency>: maximum closed-loop driving frequency 50..18500 Hz (3.2).
+Reply Handler::on(const SetClosedLoopMaxFrequency& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_closed_loop_max_frequency(c.frequency_hz), c.channel, c.channel);
+}
+
+/// SARP<ch>,<accumulate>: accumulate relative targets (3.2).
+Reply Handler::on(const SetAccumulateRelativePositions& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_accumulate_relative(c.accumulate), c.channel, c.channel);
+}
+
+/// SP<ch>,<position>: define the current position (3.2, 2.3.3).
+Reply Handler::on(const SetPosition& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_position(c.position), c.channel, c.channel);
+}
+
+/// SZP<ch>: deprecated form of SP<ch>,0 (3.2).
+Reply Handler::on(const SetZeroPosition& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_position(0), c.channel, c.channel);
+}
+
+/// SSC<ch>,<scale>,<inverted>: acknowledged as E-1,0 per the manual (3.2).
+Reply Handler::on(const SetScale& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (!ch->sensor())
+        return Error{c.channel, ErrorCode::NoSensorPresent};
+    return result(ch->set_scale(c.scale, c.inverted), c.channel, kSystem);
+}
+
+/// GSC<ch>: `SC<ch>,<scale>,<inverted>` (3.2).
+Reply Handler::on(const GetScale& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (!ch->sensor())
+        return Error{c.channel, ErrorCode::NoSensorPresent};
+    return Answer{join("SC", c.channel, ch->scale_offset()) + (ch->scale_inverted() ? ",1" : ",0")};
+}
+
+/// SSD<ch>,<direction>: safe direction; acknowledged as E-1,0 per the manual (3.2).
+Reply Handler::on(const SetSafeDirection& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_safe_direction(c.direction), c.channel, kSystem);
+}
+
+/// GSD<ch>: `SD<ch>,<direction>` (3.2).
+Reply Handler::on(const GetSafeDirection& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return Answer{join("SD", c.channel, ch->safe_direction())};
+}
+
+/// SSWS<ch>,<step>: allow steps while holding a position (3.2).
+Reply Handler::on(const SetStepWhileScan& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_step_while_scan(c.step), c.channel, c.channel);
+}
+
+/// SRC<ch>,<report>: asynchronous mode only (8 in sync mode); no answer (3.2).
+Reply Handler::on(const SetReportOnComplete& c)
+{
+    if (controller_.communication_mode() != CommunicationMode::Async)
+        return Error{kSystem, ErrorCode::WrongMode};
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (c.report != 0 && c.report != 1)
+        return Error{c.channel, ErrorCode::InvalidParameter};
+    ch->set_report_on_complete(c.report == 1);
+    return Silent{};
+}
+
+/// K[<delay>]: keep-alive timeout 100..60000 ms or 0 (off); without a parameter it only
+/// resets the counter (3.5).
+Reply Handler::on(const KeepAlive& c)
+{
+    if (c.delay_ms) {
+        if (*c.delay_ms != 0 && (*c.delay_ms < 100 || *c.delay_ms > 60'000))
+            return Error{kSystem, ErrorCode::InvalidParameter};
+        controller_.set_keep_alive(*c.delay_ms);
+    }
+    return Ack{kSystem};
+}
+
+/// CB<baudrate>: 9600..115200; `BR<effective rate>`, in effect after the next reset (3.5).
+Reply Handler::on(const ConfigureBaudrate& c)
+{
+    if (c.baudrate < 9600 || c.baudrate > 115'200)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    return Answer{join("BR", controller_.configure_baudrate(c.baudrate))};
+}
+
+/// GSN<ch>: `SN<ch>,0x<hex>`, unique per channel (3.5).
+Reply Handler::on(const GetSerialNumber& c)
+{
+    if (!controller_.channel(c.channel))
+        return kNoSuchChannel;
+    static constexpr char kHex[] = "0123456789abcdef";
+    const std::uint64_t serial = (static_cast<std::uint64_t>(controller_.system_id()) << 8) | static_cast<unsigned>(c.channel);
+    std::string hex;
+    for (int shift = 28; shift >= 0; shift -= 4)
+        hex += kHex[(serial >> shift) & 0xf];
+    return Answer{join("SN", c.channel) + ",0x" + hex};
+}
+
+/// GFV<ch>: signal controller (type 2) and signal generator (type 3) versions (3.5).
+Reply Handler::on(const GetFirmwareVersion& c)
+{
+    if (!controller_.channel(c.channel))
+        return kNoSuchChannel;
+    const auto v = controller_.interface_version();
+    const std::string version = std::to_string(v.high) + "," + std::to_string(v.low) + "," + std::to_string(v.update);
+    return Answer{join("FV", c.channel) + ",2," + version + ",3," + version};
+}
+
+/// GFP<ch>,<byte>: feature permission bytes; 255 asks for their number (3.5).
+/// One byte; bit 0 (low vibration) is clear: permitted. Other bits set: not permitted.
+Reply Handler::on(const GetFeaturePermissions& c)
+{
+    if (!controller_.channel(c.channel))
+        return kNoSuchChannel;
+    if (c.byte_index == 255)
+        return Answer{join("FP", c.channel, 1)};
+    if (c.byte_index != 0)
+        return Error{c.channel, ErrorCode::InvalidParameter};
+    return Answer{join("FP", c.channel, 254)};
 }
 
 } // namespace rigsim::mcs

@@ -13,6 +13,28 @@ public:
 
     Reply handle(const Command& command);
 
+    Reply on(const GetCommunicationMode& c);
+    Reply on(const SetCommunicationMode& c);
+    Reply on(const Reset& c);
+    Reply on(const SetHcmEnabled& c);
+    Reply on(const GetSensorEnabled& c);
+    Reply on(const SetSensorEnabled& c);
+    Reply on(const GetPhysicalPositionKnown& c);
+    Reply on(const SetClosedLoopMaxFrequency& c);
+    Reply on(const SetAccumulateRelativePositions& c);
+    Reply on(const SetPosition& c);
+    Reply on(const SetZeroPosition& c);
+    Reply on(const SetScale& c);
+    Reply on(const GetScale& c);
+    Reply on(const SetSafeDirection& c);
+    Reply on(const GetSafeDirection& c);
+    Reply on(const SetStepWhileScan& c);
+    Reply on(const SetReportOnComplete& c);
+    Reply on(const KeepAlive& c);
+    Reply on(const ConfigureBaudrate& c);
+    Reply on(const GetSerialNumber& c);
+    Reply on(const GetFirmwareVersion& c);
+    Reply on(const GetFeaturePermissions& c);
     Reply on(const GetNumberOfChannels& c);
     Reply on(const GetSystemId& c);
     Reply on(const GetInterfaceVersion& c);
@@ -29,8 +51,12 @@ public:
     Reply on(const SetClosedLoopAcceleration& c);
     Reply on(const GetClosedLoopAcceleration& c);
 
+    /// R was handled: the device resets the controller after the acknowledge has been sent.
+    bool take_reset_request();
+
 private:
     Controller& controller_;
+    bool reset_requested_ = false;
 };
 
 } // namespace rigsim::mcs

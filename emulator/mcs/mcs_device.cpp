@@ -4,15 +4,21 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 namespace rigsim::mcs {
-namespace {
 
 class McsSession : public Session {
 public:
     McsSession(McsDevice& device, SendFn send, std::string peer, spdlog::logger& log)
         : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log)
     {
+        device_.attach(this);
     }
+    ~McsSession() override { device_.detach(this); }
+
+    /// Unprompted output (asynchronous mode).
+    void send(std::string_view bytes) { send_(bytes); }
 
     void receive(std::string_view bytes) override
     {
@@ -44,6 +50,7 @@ public:
             log_.warn("{}: ignored {} byte(s) outside ':'...'\\n'", peer_, ignored);
         if (!out_.empty())
             send_(out_);
+        device_.flush_outbox();
     }
 
 private:
@@ -55,18 +62,42 @@ private:
     std::string out_;
 };
 
-} // namespace
-
 McsDevice::McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
     : config_(config), clock_(clock), log_(std::move(log)), controller_(config.mcs, clock),
       handler_(controller_)
 {
-    clock_.add(&controller_);
+    clock_.add(this);
 }
 
 McsDevice::~McsDevice()
 {
-    clock_.remove(&controller_);
+    clock_.remove(this);
+}
+
+void McsDevice::detach(McsSession* s)
+{
+    sessions_.erase(std::remove(sessions_.begin(), sessions_.end(), s), sessions_.end());
+}
+
+void McsDevice::tick(Ticks now)
+{
+    controller_.tick(now);
+    flush_outbox();
+}
+
+void McsDevice::flush_outbox()
+{
+    controller_.collect_events();
+    auto& outbox = controller_.outbox();
+    if (outbox.empty())
+        return;
+    std::string text;
+    for (const auto& r : outbox)
+        encode(r, text);
+    outbox.clear();
+    log_->debug("unprompted: \"{}\"", printable(text));
+    for (auto* s : sessions_)
+        s->send(text);
 }
 
 std::unique_ptr<Session> McsDevice::open_session(SendFn send, std::string peer)
@@ -86,13 +117,21 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
         encode(decoded.error, out);
         return;
     }
-    const auto reply = handler_.handle(*decoded.command);
+    controller_.note_command();   // K: any command that could be parsed
+    auto reply = handler_.handle(*decoded.command);
+    // 2.1: in asynchronous mode acknowledges are omitted (SCM answers in its new mode).
+    if (std::holds_alternative<Ack>(reply) && controller_.communication_mode() == CommunicationMode::Async)
+        reply = Silent{};
     if (const auto* err = std::get_if<Error>(&reply))
         log_->warn("{}: \"{}\": error {} (source channel {})", peer, printable(line),
                    static_cast<int>(err->code), err->channel);
     else
         log_->debug("{}: \"{}\"", peer, printable(line));
     encode(reply, out);
+    if (handler_.take_reset_request()) {
+        log_->info("{}: reset", peer);
+        controller_.reset();
+    }
 }
 
 } // namespace rigsim::mcs

@@ -10,10 +10,13 @@
 #include <spdlog/logger.h>
 
 #include <memory>
+#include <vector>
 
 namespace rigsim::mcs {
 
-class McsDevice : public Device {
+class McsSession;
+
+class McsDevice : public Device, public Tickable {
 public:
     McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log);
     ~McsDevice() override;
@@ -27,6 +30,14 @@ public:
 
     /// Handle one framed command string; appends the encoded answer (if any) to `out`.
     void execute(std::string_view line, std::string_view peer, std::string& out);
+    /// Send what the controller has to say by itself to every connection.
+    void flush_outbox();
+
+    void attach(McsSession* s) { sessions_.push_back(s); }
+    void detach(McsSession* s);
+
+    Ticks next_change(Ticks now) const override { return controller_.next_change(now); }
+    void tick(Ticks now) override;
 
 private:
     DeviceConfig config_;
@@ -34,6 +45,7 @@ private:
     std::shared_ptr<spdlog::logger> log_;
     Controller controller_;
     Handler handler_;
+    std::vector<McsSession*> sessions_;
 };
 
 } // namespace rigsim::mcs

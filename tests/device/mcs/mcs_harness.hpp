@@ -36,12 +36,14 @@ public:
     {
     }
 
-    /// Bytes in, everything the device answered out.
+    /// Bytes in; out comes everything the device sent this connection since the last
+    /// send(): unprompted messages from clock advances first, then the answers.
     std::string send(std::string_view bytes)
     {
-        out_.clear();
         session_->receive(bytes);
-        return out_;
+        std::string result = std::move(out_);
+        out_.clear();
+        return result;
     }
     /// A second connection to the same device.
     std::unique_ptr<Session> open(std::string& sink)
