@@ -32,9 +32,10 @@ constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{
     "name", "protocol", "model", "tcp_port", "pty", "mcs"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
-constexpr std::array<std::string_view, 6> kChannelKeys{
+constexpr std::array<std::string_view, 10> kChannelKeys{
     "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
-    "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2"};
+    "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
+    "reference_position", "coded_mark_spacing", "calibration_ms"};
 
 /// A channel integer whose range does not depend on other keys.
 struct ChannelIntKey {
@@ -44,7 +45,10 @@ struct ChannelIntKey {
     std::int64_t McsChannelConfig::*member;
 };
 
-constexpr std::array<ChannelIntKey, 3> kChannelIntKeys{{
+constexpr std::array<ChannelIntKey, 6> kChannelIntKeys{{
+    {"reference_position", -2'000'000'000, 2'000'000'000, &McsChannelConfig::reference_position},
+    {"coded_mark_spacing", 1'000, 100'000'000, &McsChannelConfig::coded_mark_spacing},
+    {"calibration_ms", 0, 60'000, &McsChannelConfig::calibration_ms},
     {"max_speed_nm_per_s", 1, 100'000'000, &McsChannelConfig::max_speed_nm_per_s},
     {"closed_loop_speed_nm_per_s", 0, 100'000'000, &McsChannelConfig::closed_loop_speed_nm_per_s},
     {"closed_loop_acceleration_um_per_s2", 0, 10'000'000,
@@ -405,6 +409,17 @@ private:
             c.travel_max_nm =
                 get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
             if (c.travel_min_nm >= c.travel_max_nm)
+                fail(travel_pointer, "expected min < max, got " + dump(*t));
+        }
+        if (const auto* t = find(v, "travel_udeg")) {
+            const auto travel_pointer = pointer_to(pointer, "travel_udeg");
+            if (!t->is_array() || t->size() != 2)
+                fail(travel_pointer, "expected [min, max], two integers, got " + describe(*t));
+            c.travel_min_udeg =
+                get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
+            c.travel_max_udeg =
+                get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
+            if (c.travel_min_udeg >= c.travel_max_udeg)
                 fail(travel_pointer, "expected min < max, got " + dump(*t));
         }
         if (const auto* p = find(v, "start_position_nm"))

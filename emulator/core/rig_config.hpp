@@ -23,6 +23,17 @@ struct McsChannelConfig {
     std::int64_t max_speed_nm_per_s = 10'000'000; ///< fastest the stage moves (speed control off)
     std::int64_t closed_loop_speed_nm_per_s = 0;  ///< SCLS power-up value, 0 = speed control off
     std::int64_t closed_loop_acceleration_um_per_s2 = 0;  ///< SCLA power-up value, 0 = off
+    /// End stops of angular channels (goniometers, rotary stages with end stops), in µ°;
+    /// rotary stages referenced by a mark, or not at all, turn endlessly.
+    std::int64_t travel_min_udeg = -10'000'000;
+    std::int64_t travel_max_udeg = 10'000'000;
+    /// Physical position of the reference mark (nm, or µ° for angular sensors); with
+    /// distance-coded marks, the mark that reads as the physical zero.
+    std::int64_t reference_position = 0;
+    /// Distance between distance-coded reference marks (nm or µ°).
+    std::int64_t coded_mark_spacing = 2'000'000;
+    /// How long CS takes (status 6), ms.
+    std::int64_t calibration_ms = 3000;
 };
 
 /// An MCS controller (SmarAct, ASCII protocol).

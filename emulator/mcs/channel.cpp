@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rigsim::mcs {
 
@@ -29,6 +30,8 @@ void Channel::reset()
     unknown_base_nm_ = state_[0];   // "It simply assumes its starting position as the zero position."
     accumulate_relative_ = true;
     step_while_scan_ = true;
+    limit_.reset();   // "The range limit is not saved to non-volatile memory" (2.3.4)
+    reference_legs_.clear();
     report_on_complete_ = false;
     max_frequency_hz_ = kMaxFrequency_hz;
     speed_nm_per_s_ = static_cast<std::int32_t>(config_.closed_loop_speed_nm_per_s);
@@ -51,6 +54,10 @@ ChannelStatus Channel::status() const
         return ChannelStatus::Targeting;
     case Motion::Holding:
         return ChannelStatus::Holding;
+    case Motion::Referencing:
+        return ChannelStatus::FindingReferenceMark;
+    case Motion::Calibrating:
+        return ChannelStatus::Calibrating;
     }
     return ChannelStatus::Stopped;
 }
@@ -82,6 +89,80 @@ std::optional<ErrorCode> Channel::check_linear_sensor() const
     return std::nullopt;
 }
 
+bool Channel::angular() const
+{
+    return sensor_ && sensor_->kind != SensorKind::Linear;
+}
+
+bool Channel::endless() const
+{
+    return sensor_ && sensor_->kind == SensorKind::Rotary && sensor_->reference != ReferenceType::EndStop;
+}
+
+double Channel::travel_min() const
+{
+    if (endless())
+        return -std::numeric_limits<double>::infinity();
+    return angular() ? static_cast<double>(config_.travel_min_udeg) : travel_min_nm_;
+}
+
+double Channel::travel_max() const
+{
+    if (endless())
+        return std::numeric_limits<double>::infinity();
+    return angular() ? static_cast<double>(config_.travel_max_udeg) : travel_max_nm_;
+}
+
+std::pair<double, double> Channel::physical_limit() const
+{
+    double lo = travel_min();
+    double hi = travel_max();
+    if (limit_ && limit_->first < limit_->second) {
+        double a = physical_from_logical(static_cast<double>(limit_->first));
+        double b = physical_from_logical(static_cast<double>(limit_->second));
+        if (a > b)
+            std::swap(a, b);   // an inverted scale turns the limit around
+        lo = std::max(lo, a);
+        hi = std::min(hi, b);
+    }
+    return {lo, hi};
+}
+
+std::optional<ErrorCode> Channel::check_angular_sensor() const
+{
+    if (!sensor_)
+        return ErrorCode::NoSensorPresent;
+    if (sensor_mode_ == SensorMode::Disabled)
+        return ErrorCode::SensorDisabled;
+    if (sensor_->kind == SensorKind::Linear)
+        return ErrorCode::WrongSensorType;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::check_move(std::int32_t hold_ms) const
+{
+    if (hold_ms < 0 || hold_ms > kHoldForever_ms)
+        return ErrorCode::InvalidParameter;
+    return std::nullopt;
+}
+
+std::pair<std::int64_t, std::int64_t> Channel::range_limit() const
+{
+    return limit_ ? *limit_ : std::pair<std::int64_t, std::int64_t>{0, 0};
+}
+
+std::optional<ErrorCode> Channel::set_range_limit(std::int64_t min, std::int64_t max)
+{
+    // 2.3.4: "The range limit may only be set if the positioner knows its physical position."
+    if (!known_)
+        return ErrorCode::PhysicalPositionUnknown;
+    if (min == max)
+        limit_.reset();   // "If both parameters have the same value then the ... limit is disabled."
+    else
+        limit_ = std::make_pair(min, max);
+    return std::nullopt;
+}
+
 double Channel::logical_from_physical(double physical) const
 {
     if (!known_)
@@ -98,7 +179,7 @@ double Channel::physical_from_logical(double logical) const
     return (scale_inverted_ ? -relative : relative) + reference_nm_;
 }
 
-std::int64_t Channel::position_nm() const
+std::int64_t Channel::position() const
 {
     return std::llround(logical_from_physical(state_[0]));
 }
@@ -109,33 +190,39 @@ double Channel::top_speed() const
     return static_cast<double>(config_.max_speed_nm_per_s) * max_frequency_hz_ / kMaxFrequency_hz;
 }
 
-std::optional<ErrorCode> Channel::move_absolute(std::int64_t position_nm, std::int32_t hold_ms)
+std::optional<ErrorCode> Channel::move_absolute(std::int64_t position, std::int32_t hold_ms)
 {
-    if (auto err = check_linear_sensor())
+    if (auto err = check_move(hold_ms))
         return err;
-    if (hold_ms < 0 || hold_ms > kHoldForever_ms)
-        return ErrorCode::InvalidParameter;
-    const double target = physical_from_logical(static_cast<double>(position_nm));
+    const double target = physical_from_logical(static_cast<double>(position));
     begin_movement([this, target, hold_ms](Ticks now) { start_closed_loop(target, hold_ms, now); });
     return std::nullopt;
 }
 
-std::optional<ErrorCode> Channel::move_relative(std::int64_t distance_nm, std::int32_t hold_ms)
+std::optional<ErrorCode> Channel::move_relative(std::int64_t distance, std::int32_t hold_ms)
 {
-    if (auto err = check_linear_sensor())
+    if (auto err = check_move(hold_ms))
         return err;
-    if (hold_ms < 0 || hold_ms > kHoldForever_ms)
-        return ErrorCode::InvalidParameter;
     sample(clock_.now());
     // MPR/SARP: "If relative position commands are to be accumulated all new relative
     // position commands are added to the previous target position."
     const bool accumulate = accumulate_relative_ && motion_ == Motion::Targeting;
     const double base = accumulate ? target_physical_nm_ : state_[0];
-    const double delta = scale_inverted_ && known_ ? -static_cast<double>(distance_nm)
-                                                   : static_cast<double>(distance_nm);
+    const double delta = scale_inverted_ && known_ ? -static_cast<double>(distance)
+                                                   : static_cast<double>(distance);
     const double target = base + delta;
     begin_movement([this, target, hold_ms](Ticks now) { start_closed_loop(target, hold_ms, now); });
     return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::move_angle_absolute(std::int64_t position_udeg, std::int32_t hold_ms)
+{
+    return move_absolute(position_udeg, hold_ms);
+}
+
+std::optional<ErrorCode> Channel::move_angle_relative(std::int64_t distance_udeg, std::int32_t hold_ms)
+{
+    return move_relative(distance_udeg, hold_ms);
 }
 
 void Channel::begin_movement(std::function<void(Ticks)> start)
@@ -152,18 +239,43 @@ void Channel::begin_movement(std::function<void(Ticks)> start)
     start(now);
 }
 
-void Channel::start_closed_loop(double target_physical_nm, std::int32_t hold_ms, Ticks now)
+void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ticks now)
 {
     sample(now);
-    target_physical_nm_ = target_physical_nm;
+    state_[1] = 0;
+    target_physical_nm_ = target_physical;
+    hold_ms_ = hold_ms;
+    const double here = state_[0];
+    // 2.3.4: a movement stops at the software range limit (147 in async mode); from
+    // outside the limit only movements back toward it are allowed; a limit whose maximum
+    // is below its minimum allows no movement at all.
+    if (limit_ && limit_->first > limit_->second) {
+        motion_ = Motion::Idle;
+        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        return;
+    }
+    const auto [lo, hi] = physical_limit();
+    const bool outward = (here <= lo && target_physical < here) || (here >= hi && target_physical > here);
+    if (limit_ && outward) {
+        motion_ = Motion::Idle;
+        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        return;
+    }
+    double reachable = target_physical;
+    if (limit_) {
+        const auto [llo, lhi] = physical_limit();
+        reachable = std::clamp(reachable, std::min(llo, here), std::max(lhi, here));
+    }
+    limit_hit_ = reachable != target_physical;
     // A target beyond a mechanical end stop: the stage runs into the stop and the move
     // is aborted there (MPA: "If a mechanical end stop is detected ... aborted").
-    const double reachable = std::clamp(target_physical_nm, travel_min_nm_, travel_max_nm_);
-    end_stop_hit_ = reachable != target_physical_nm;
+    const double clamped = std::clamp(reachable, travel_min(), travel_max());
+    end_stop_hit_ = clamped != reachable;
+    if (end_stop_hit_)
+        limit_hit_ = false;
     const double speed = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed()) : top_speed();
-    const double acceleration = acceleration_um_per_s2_ * 1000.0;   // µm/s² -> nm/s²
-    profile_ = models::TrapezoidProfile::plan(state_, reachable, speed, acceleration);
-    hold_ms_ = hold_ms;
+    const double acceleration = acceleration_um_per_s2_ * 1000.0;   // µm/s² (m°/s²) -> nm/s² (µ°/s²)
+    profile_ = models::TrapezoidProfile::plan(state_, clamped, speed, acceleration);
     move_start_ = now;
     move_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motion_ = Motion::Targeting;
@@ -171,9 +283,16 @@ void Channel::start_closed_loop(double target_physical_nm, std::int32_t hold_ms,
         arrive(now);
 }
 
+void Channel::start_leg(double to, double speed, Ticks now)
+{
+    profile_ = models::TrapezoidProfile::plan(models::AxisState(state_[0], 0.0), to, speed, 0.0);
+    move_start_ = now;
+    move_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+}
+
 void Channel::sample(Ticks now)
 {
-    if (motion_ != Motion::Targeting)
+    if (motion_ != Motion::Targeting && motion_ != Motion::Referencing)
         return;
     state_ = profile_.sample(clock_.seconds(now - move_start_));
 }
@@ -181,11 +300,12 @@ void Channel::sample(Ticks now)
 void Channel::arrive(Ticks now)
 {
     state_ = models::AxisState(profile_.target(), 0.0);
-    if (end_stop_hit_) {
+    if (end_stop_hit_ || limit_hit_) {
         // 142: "generated in asynchronous mode if the target position of a closed-loop
-        // command could not be reached, because a mechanical end stop was detected".
+        // command could not be reached, because a mechanical end stop was detected";
+        // 147 likewise at a software range limit (2.3.4).
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, ErrorCode::EndStopReached});
+        events_.push_back(Error{index_, end_stop_hit_ ? ErrorCode::EndStopReached : ErrorCode::RangeLimitReached});
         return;
     }
     if (hold_ms_ == 0) {
@@ -205,12 +325,153 @@ void Channel::finish_movement()
         events_.push_back(Answer{"C" + std::to_string(index_)});
 }
 
+std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero)
+{
+    if (!sensor_)
+        return ErrorCode::NoSensorPresent;
+    if (sensor_mode_ == SensorMode::Disabled)
+        return ErrorCode::SensorDisabled;
+    if ((direction != 0 && direction != 1) || (auto_zero != 0 && auto_zero != 1))
+        return ErrorCode::InvalidParameter;
+    if (auto err = check_move(hold_ms))
+        return err;
+    if (sensor_->reference == ReferenceType::None)
+        return ErrorCode::CouldNotFindReferenceMark;   // appendix 4.3: "cannot be referenced"
+    begin_movement([this, direction, hold_ms, auto_zero](Ticks now) {
+        sample(now);
+        state_[1] = 0;
+        hold_ms_ = hold_ms;
+        auto_zero_ = auto_zero == 1;
+        // Searching runs at the closed-loop speed if one is set, else at 1 mm/s (1°/s).
+        search_speed_ = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed())
+                                            : std::min(1'000'000.0, top_speed());
+        const double here = state_[0];
+        const double step = static_cast<double>(config_.coded_mark_spacing);
+        const double mark = static_cast<double>(config_.reference_position);
+        // End stops and range limits both turn the search around (2.3.4).
+        const auto [lo, hi] = physical_limit();
+        reference_legs_.clear();
+        reference_found_ = false;
+        // End-stop types ignore the direction parameter and use the safe direction (SSD).
+        const double dir = sensor_->reference == ReferenceType::EndStop ? (safe_direction_ == 0 ? 1.0 : -1.0)
+                                                                        : (direction == 0 ? 1.0 : -1.0);
+        const double end_ahead = dir > 0 ? hi : lo;
+        const double end_behind = dir > 0 ? lo : hi;
+        switch (sensor_->reference) {
+        case ReferenceType::None:
+            break;
+        case ReferenceType::EndStop:
+            reference_legs_ = {end_ahead};
+            reference_found_ = true;
+            reference_point_ = end_ahead;
+            break;
+        case ReferenceType::Mark:
+            if (endless()) {   // a mark every revolution: at most one turn away
+                const double turn = 360'000'000.0;
+                const double k = dir > 0 ? std::ceil((here - mark) / turn) : std::floor((here - mark) / turn);
+                reference_point_ = mark + k * turn;
+                reference_legs_ = {reference_point_};
+                reference_found_ = true;
+            } else if (mark >= lo && mark <= hi) {
+                if ((mark - here) * dir < 0)
+                    reference_legs_.push_back(end_ahead);   // reverse at the end stop
+                reference_legs_.push_back(mark);
+                reference_point_ = mark;
+                reference_found_ = true;
+            } else {
+                reference_legs_ = {end_ahead, end_behind};   // the mark lies outside: 144
+            }
+            break;
+        case ReferenceType::DistanceCodedMarks: {
+            // Two neighbouring marks give the position (2.3.3): stop at the second one met.
+            auto second_mark = [&](double from, double d, double bound) -> std::optional<double> {
+                double first = d > 0 ? mark + std::floor((from - mark) / step + 1) * step
+                                     : mark + std::ceil((from - mark) / step - 1) * step;
+                const double second = first + d * step;
+                if (std::isinf(bound) || (second - bound) * d <= 0)
+                    return second;
+                return std::nullopt;
+            };
+            if (auto m = second_mark(here, dir, end_ahead)) {
+                reference_legs_ = {*m};
+            } else if (auto back = second_mark(end_ahead, -dir, end_behind)) {
+                reference_legs_ = {end_ahead, *back};
+            } else {
+                reference_legs_ = {end_ahead, end_behind};
+                break;
+            }
+            reference_point_ = mark;   // the marks' code gives the absolute position
+            reference_found_ = true;
+            break;
+        }
+        }
+        motion_ = Motion::Referencing;
+        next_reference_leg(now);
+    });
+    return std::nullopt;
+}
+
+void Channel::next_reference_leg(Ticks now)
+{
+    if (!reference_legs_.empty()) {
+        const double to = reference_legs_.front();
+        reference_legs_.erase(reference_legs_.begin());
+        start_leg(to, search_speed_, now);
+        if (move_end_ > now)
+            return;
+        state_[0] = to;
+        next_reference_leg(now);
+        return;
+    }
+    state_[1] = 0;
+    if (!reference_found_) {
+        // "If a second end stop is detected before the reference mark is found the search
+        // will abort unsuccessfully" (2.3.3): 144 in async mode, status 0.
+        motion_ = Motion::Idle;
+        events_.push_back(Error{index_, ErrorCode::CouldNotFindReferenceMark});
+        return;
+    }
+    become_known(endless() ? reference_point_ : reference_point_, auto_zero_);
+    profile_ = models::TrapezoidProfile::plan(state_, state_[0], 1.0, 0.0);
+    end_stop_hit_ = false;
+    limit_hit_ = false;
+    arrive(now);
+}
+
+void Channel::become_known(double reference_physical, bool auto_zero)
+{
+    known_ = true;
+    reference_nm_ = reference_physical;
+    if (auto_zero) {   // "the current position resp. angle is set to zero"
+        const double relative = state_[0] - reference_nm_;
+        scale_offset_ = static_cast<std::int32_t>(-std::llround(scale_inverted_ ? -relative : relative));
+    }
+}
+
+std::optional<ErrorCode> Channel::calibrate()
+{
+    if (!sensor_)
+        return ErrorCode::NoSensorPresent;
+    if (sensor_mode_ == SensorMode::Disabled)
+        return ErrorCode::SensorDisabled;
+    begin_movement([this](Ticks now) {
+        sample(now);
+        state_[1] = 0;
+        motion_ = Motion::Calibrating;
+        calibrate_until_ = now + clock_.ticks_from_ms(config_.calibration_ms);
+        if (calibrate_until_ <= now)
+            tick(now);
+    });
+    return std::nullopt;
+}
+
 void Channel::stop()
 {
     sample(clock_.now());
     state_[1] = 0;
     motion_ = Motion::Idle;
     pending_start_ = nullptr;
+    reference_legs_.clear();
 }
 
 std::optional<ErrorCode> Channel::set_position(std::int64_t position)
@@ -305,9 +566,12 @@ Ticks Channel::next_change(Ticks now) const
     case Motion::MoveDelay:
         return std::max(delay_until_, now + 1);
     case Motion::Targeting:
+    case Motion::Referencing:
         return now + 1;
     case Motion::Holding:
         return hold_until_;
+    case Motion::Calibrating:
+        return std::max(calibrate_until_, now + 1);
     }
     return kNever;
 }
@@ -333,6 +597,24 @@ void Channel::tick(Ticks now)
         return;
     case Motion::Holding:
         if (now >= hold_until_) {
+            motion_ = Motion::Idle;
+            finish_movement();
+        }
+        return;
+    case Motion::Referencing:
+        if (now >= move_end_) {
+            state_ = models::AxisState(profile_.target(), 0.0);
+            next_reference_leg(now);
+        } else {
+            sample(now);
+        }
+        return;
+    case Motion::Calibrating:
+        if (now >= calibrate_until_) {
+            // CS: end-stop types are moved to the end stop in the safe direction.
+            if (sensor_ && sensor_->reference == ReferenceType::EndStop)
+                state_[0] = safe_direction_ == 0 ? travel_max() : travel_min();
+            calibrated_ = true;
             motion_ = Motion::Idle;
             finish_movement();
         }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace rigsim::mcs {
@@ -68,13 +69,29 @@ public:
 
     /// Errors 129 (no sensor), 140 (sensor disabled), 143 (not a linear sensor).
     std::optional<ErrorCode> check_linear_sensor() const;
-    /// Position on the logical scale in nm (GP).
-    std::int64_t position_nm() const;
+    /// Errors 129, 140, 143 (not a rotary or goniometer sensor).
+    std::optional<ErrorCode> check_angular_sensor() const;
+    /// Position on the logical scale: nm, or µ° (angle + 360,000,000 × revolution).
+    std::int64_t position() const;
+    std::int64_t position_nm() const { return position(); }
     bool physical_position_known() const { return known_; }
 
-    std::optional<ErrorCode> move_absolute(std::int64_t position_nm, std::int32_t hold_ms);
-    std::optional<ErrorCode> move_relative(std::int64_t distance_nm, std::int32_t hold_ms);
+    /// MPA/MAA (`position` in nm or µ°), MPR/MAR (`distance`).
+    std::optional<ErrorCode> move_absolute(std::int64_t position, std::int32_t hold_ms);
+    std::optional<ErrorCode> move_relative(std::int64_t distance, std::int32_t hold_ms);
+    std::optional<ErrorCode> move_angle_absolute(std::int64_t position_udeg, std::int32_t hold_ms);
+    std::optional<ErrorCode> move_angle_relative(std::int64_t distance_udeg, std::int32_t hold_ms);
+    /// FRM (2.3.3): search the reference mark(s), or the end stop in the safe direction.
+    std::optional<ErrorCode> find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero);
+    /// CS: status 6 for the calibration time; end-stop types end at the safe end stop.
+    std::optional<ErrorCode> calibrate();
     void stop();
+
+    /// SPL/SAL (2.3.4): software range limit on the logical scale; min == max removes it.
+    /// 148 while the physical position is unknown.
+    std::optional<ErrorCode> set_range_limit(std::int64_t min, std::int64_t max);
+    /// Current limit (0,0 when none).
+    std::pair<std::int64_t, std::int64_t> range_limit() const;
 
     /// SP (and SZP with 0): the current position reads `position` from now on (2.3.3).
     std::optional<ErrorCode> set_position(std::int64_t position);
@@ -105,19 +122,30 @@ public:
     void tick(Ticks now);
 
 private:
-    enum class Motion { Idle, MoveDelay, Targeting, Holding };
+    enum class Motion { Idle, MoveDelay, Targeting, Holding, Referencing, Calibrating };
 
-    /// A physical position (nm on the travel axis) as read on the logical scale, and back.
+    /// A physical position (nm or µ° on the travel axis) as read on the logical scale, and back.
     double logical_from_physical(double physical) const;
     double physical_from_logical(double logical) const;
     double top_speed() const;
+    bool angular() const;
+    /// Rotary stages referenced by a mark (or not at all) have no end stops.
+    bool endless() const;
+    double travel_min() const;
+    double travel_max() const;
+    /// Physical bounds a movement may not pass: end stops and the software range limit.
+    std::pair<double, double> physical_limit() const;
 
+    std::optional<ErrorCode> check_move(std::int32_t hold_ms) const;
     /// Runs `start` now, or after the sensor powered up (power save mode, status 5).
     void begin_movement(std::function<void(Ticks)> start);
-    void start_closed_loop(double target_physical_nm, std::int32_t hold_ms, Ticks now);
+    void start_closed_loop(double target_physical, std::int32_t hold_ms, Ticks now);
+    void start_leg(double to, double speed, Ticks now);
     void sample(Ticks now);
     void arrive(Ticks now);
+    void next_reference_leg(Ticks now);
     void finish_movement();
+    void become_known(double reference_physical, bool auto_zero);
 
     int index_;
     const Clock& clock_;
@@ -153,6 +181,16 @@ private:
     Ticks hold_until_ = 0;           ///< kNever: hold until stopped
     std::int32_t hold_ms_ = 0;
     bool end_stop_hit_ = false;      ///< the target lay beyond a mechanical end stop
+    bool limit_hit_ = false;         ///< the target lay beyond the software range limit
+    std::optional<std::pair<std::int64_t, std::int64_t>> limit_;   ///< logical min, max
+    // FRM in progress: the legs still to drive, and the outcome at the end of the last.
+    std::vector<double> reference_legs_;
+    bool reference_found_ = false;
+    double reference_point_ = 0;     ///< physical position that becomes the reference
+    bool auto_zero_ = false;
+    double search_speed_ = 0;
+    Ticks calibrate_until_ = 0;
+    bool calibrated_ = false;
     double target_physical_nm_ = 0;  ///< MPR accumulates onto this while targeting
     std::vector<Reply> events_;
 };

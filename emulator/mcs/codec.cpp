@@ -63,14 +63,22 @@ const CommandEntry kCommands[] = {
     {"GSN", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSerialNumber{i32(p[0])}; }},
     {"GFV", 1, 1, [](const Params& p, std::size_t) -> Command { return GetFirmwareVersion{i32(p[0])}; }},
     {"GFP", 2, 2, [](const Params& p, std::size_t) -> Command { return GetFeaturePermissions{i32(p[0]), i32(p[1])}; }},
+    {"FRM", 4, 4, [](const Params& p, std::size_t) -> Command { return FindReferenceMark{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {"CS", 1, 1, [](const Params& p, std::size_t) -> Command { return CalibrateSensor{i32(p[0])}; }},
+    {"MAA", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveAngleAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {"MAR", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveAngleRelative{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {"GA", 1, 1, [](const Params& p, std::size_t) -> Command { return GetAngle{i32(p[0])}; }},
+    {"SPL", 3, 3, [](const Params& p, std::size_t) -> Command { return SetPositionLimit{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"GPL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPositionLimit{i32(p[0])}; }},
+    {"SAL", 5, 5, [](const Params& p, std::size_t) -> Command { return SetAngleLimit{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3]), i32(p[4])}; }},
+    {"GAL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetAngleLimit{i32(p[0])}; }},
 };
 
 // Chapter 3 commands that rigsim does not implement yet: answered like an unknown
 // command (E-1,2), but logged as unimplemented rather than as a client mistake.
 constexpr std::string_view kUnimplemented[] = {
-    "GAL", "GCP", "GEET", "GESM", "GPL", "SAL", "SCP", "SEET", "SESM", "SPL", "SRT", "SZF",
-    "ATC", "CS", "CTCQ", "FRM", "MAA", "MAR", "MGFA", "MGOA", "MGOR", "MSCA", "MSCR", "MST",
-    "TC", "GA", "GB", "GF", "GGO", "GVL",
+    "GCP", "GEET", "GESM", "SCP", "SEET", "SESM", "SRT", "SZF", "ATC", "CTCQ", "MGFA",
+    "MGOA", "MGOR", "MSCA", "MSCR", "MST", "TC", "GB", "GF", "GGO", "GVL",
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }

@@ -86,6 +86,16 @@ struct ConfigureBaudrate { std::int32_t baudrate; };              ///< CB
 struct GetSerialNumber { std::int32_t channel; };                 ///< GSN
 struct GetFirmwareVersion { std::int32_t channel; };              ///< GFV
 struct GetFeaturePermissions { std::int32_t channel; std::int32_t byte_index; };  ///< GFP
+struct FindReferenceMark { std::int32_t channel; std::int32_t direction; std::int32_t hold_ms; std::int32_t auto_zero; };  ///< FRM
+struct CalibrateSensor { std::int32_t channel; };                 ///< CS
+struct MoveAngleAbsolute { std::int32_t channel; std::int32_t angle_udeg; std::int32_t revolution; std::int32_t hold_ms; };  ///< MAA
+struct MoveAngleRelative { std::int32_t channel; std::int32_t angle_udeg; std::int32_t revolution; std::int32_t hold_ms; };  ///< MAR
+struct GetAngle { std::int32_t channel; };                        ///< GA
+struct SetPositionLimit { std::int32_t channel; std::int32_t min_nm; std::int32_t max_nm; };  ///< SPL
+struct GetPositionLimit { std::int32_t channel; };                ///< GPL
+struct SetAngleLimit { std::int32_t channel; std::int32_t min_angle_udeg; std::int32_t min_revolution;
+                       std::int32_t max_angle_udeg; std::int32_t max_revolution; };  ///< SAL
+struct GetAngleLimit { std::int32_t channel; };                   ///< GAL
 
 using Command = std::variant<
     GetCommunicationMode, SetCommunicationMode, GetNumberOfChannels, GetSystemId,
@@ -95,7 +105,9 @@ using Command = std::variant<
     SetClosedLoopSpeed, GetClosedLoopSpeed, SetClosedLoopAcceleration, GetClosedLoopAcceleration,
     SetClosedLoopMaxFrequency, SetAccumulateRelativePositions, SetPosition, SetZeroPosition,
     SetScale, GetScale, SetSafeDirection, GetSafeDirection, SetStepWhileScan, SetReportOnComplete,
-    KeepAlive, ConfigureBaudrate, GetSerialNumber, GetFirmwareVersion, GetFeaturePermissions>;
+    KeepAlive, ConfigureBaudrate, GetSerialNumber, GetFirmwareVersion, GetFeaturePermissions,
+    FindReferenceMark, CalibrateSensor, MoveAngleAbsolute, MoveAngleRelative, GetAngle,
+    SetPositionLimit, GetPositionLimit, SetAngleLimit, GetAngleLimit>;
 
 // ---- Answers ----
 

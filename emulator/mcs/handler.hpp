@@ -35,6 +35,15 @@ public:
     Reply on(const GetSerialNumber& c);
     Reply on(const GetFirmwareVersion& c);
     Reply on(const GetFeaturePermissions& c);
+    Reply on(const FindReferenceMark& c);
+    Reply on(const CalibrateSensor& c);
+    Reply on(const MoveAngleAbsolute& c);
+    Reply on(const MoveAngleRelative& c);
+    Reply on(const GetAngle& c);
+    Reply on(const SetPositionLimit& c);
+    Reply on(const GetPositionLimit& c);
+    Reply on(const SetAngleLimit& c);
+    Reply on(const GetAngleLimit& c);
     Reply on(const GetNumberOfChannels& c);
     Reply on(const GetSystemId& c);
     Reply on(const GetInterfaceVersion& c);

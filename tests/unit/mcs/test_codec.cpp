@@ -45,7 +45,7 @@ TEST_CASE("codec answers unknown and unimplemented commands with error 2", "[uni
 {
     CHECK(error_of("FOO") == 2);
     CHECK(error_of("FOO1,2") == 2);
-    const auto d = decode("FRM0,0,0,0");
+    const auto d = decode("MST0,1,100,100");
     CHECK(static_cast<int>(d.error.code) == 2);
     CHECK(d.known_unimplemented);
     CHECK_FALSE(decode("XYZ").known_unimplemented);
