@@ -32,10 +32,11 @@ constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{
     "name", "protocol", "model", "tcp_port", "pty", "mcs"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
-constexpr std::array<std::string_view, 10> kChannelKeys{
+constexpr std::array<std::string_view, 13> kChannelKeys{
     "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
     "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
-    "reference_position", "coded_mark_spacing", "calibration_ms"};
+    "reference_position", "coded_mark_spacing", "calibration_ms", "step_width_nm",
+    "step_jitter_percent", "scan_range_nm"};
 
 /// A channel integer whose range does not depend on other keys.
 struct ChannelIntKey {
@@ -45,7 +46,10 @@ struct ChannelIntKey {
     std::int64_t McsChannelConfig::*member;
 };
 
-constexpr std::array<ChannelIntKey, 6> kChannelIntKeys{{
+constexpr std::array<ChannelIntKey, 9> kChannelIntKeys{{
+    {"step_width_nm", 1, 100'000, &McsChannelConfig::step_width_nm},
+    {"step_jitter_percent", 0, 50, &McsChannelConfig::step_jitter_percent},
+    {"scan_range_nm", 1, 1'000'000, &McsChannelConfig::scan_range_nm},
     {"reference_position", -2'000'000'000, 2'000'000'000, &McsChannelConfig::reference_position},
     {"coded_mark_spacing", 1'000, 100'000'000, &McsChannelConfig::coded_mark_spacing},
     {"calibration_ms", 0, 60'000, &McsChannelConfig::calibration_ms},

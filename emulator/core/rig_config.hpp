@@ -34,6 +34,13 @@ struct McsChannelConfig {
     std::int64_t coded_mark_spacing = 2'000'000;
     /// How long CS takes (status 6), ms.
     std::int64_t calibration_ms = 3000;
+    /// Open loop: width of one step at full amplitude (4095 = 100 V), nm (µ° on angular
+    /// channels); the width grows in proportion to the amplitude.
+    std::int64_t step_width_nm = 1000;
+    /// Open loop: each step's width varies by up to this many percent (stick-slip drift).
+    std::int64_t step_jitter_percent = 3;
+    /// Scanning: piezo deflection at 100 V (level 4095), nm (µ° on angular channels).
+    std::int64_t scan_range_nm = 1500;
 };
 
 /// An MCS controller (SmarAct, ASCII protocol).

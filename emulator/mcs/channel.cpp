@@ -16,7 +16,8 @@ Channel::Channel(int index, const McsChannelConfig& config, const Clock& clock)
       unknown_base_nm_(static_cast<double>(config.start_position_nm)),
       speed_nm_per_s_(0),
       acceleration_um_per_s2_(0),
-      state_(static_cast<double>(config.start_position_nm), 0.0)
+      state_(static_cast<double>(config.start_position_nm), 0.0),
+      jitter_state_(0x9e3779b9u ^ static_cast<std::uint32_t>(index))
 {
     reset();
 }
@@ -58,6 +59,10 @@ ChannelStatus Channel::status() const
         return ChannelStatus::FindingReferenceMark;
     case Motion::Calibrating:
         return ChannelStatus::Calibrating;
+    case Motion::Stepping:
+        return ChannelStatus::Stepping;
+    case Motion::Scanning:
+        return ChannelStatus::Scanning;
     }
     return ChannelStatus::Stopped;
 }
@@ -448,6 +453,123 @@ void Channel::become_known(double reference_physical, bool auto_zero)
     }
 }
 
+bool Channel::displace(double delta)
+{
+    const double before_logical = logical_from_physical(state_[0]);
+    const auto [lo, hi] = physical_limit();
+    const double target = state_[0] + delta;
+    const double reached = std::clamp(target, std::min(lo, state_[0]), std::max(hi, state_[0]));
+    state_[0] = reached;
+    if (sensor_mode_ == SensorMode::Disabled && sensor_) {
+        // 2.3.2: "the positioner cannot track its position during the movement".
+        known_ = false;
+        unknown_base_nm_ = state_[0] - before_logical;
+    }
+    if (reached == target)
+        return true;
+    const bool at_limit = limit_ && !(reached <= travel_min() || reached >= travel_max());
+    if (at_limit) {   // 2.3.4: open-loop movements stop at the range limit too
+        motion_ = Motion::Idle;
+        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        return false;
+    }
+    return true;   // against a mechanical end stop the steps go on, without moving
+}
+
+std::optional<ErrorCode> Channel::move_steps(std::int32_t steps, std::int32_t amplitude, std::int32_t frequency_hz)
+{
+    if (steps < -30'000 || steps > 30'000 || amplitude < 0 || amplitude > 4095 || frequency_hz < 1
+        || frequency_hz > kMaxFrequency_hz)
+        return ErrorCode::InvalidParameter;
+    if (steps == 0) {   // "A value of 0 stops the positioner"
+        stop();
+        return std::nullopt;
+    }
+    begin_movement([this, steps, amplitude, frequency_hz](Ticks now) {
+        sample(now);
+        state_[1] = 0;
+        motion_ = Motion::Stepping;
+        step_start_ = now;
+        steps_total_ = std::abs(steps) == 30'000 ? 0 : std::abs(steps);   // ±30000: unbounded
+        steps_done_ = 0;
+        step_dir_ = steps > 0 ? 1.0 : -1.0;
+        step_width_ = static_cast<double>(config_.step_width_nm) * amplitude / 4095.0;
+        step_frequency_hz_ = frequency_hz;
+    });
+    return std::nullopt;
+}
+
+void Channel::step_until(Ticks now)
+{
+    const double due = std::floor(clock_.seconds(now - step_start_) * step_frequency_hz_ + 1e-9);
+    auto target = static_cast<std::int64_t>(due);
+    if (steps_total_ > 0)
+        target = std::min(target, steps_total_);
+    const double jitter = static_cast<double>(config_.step_jitter_percent) / 100.0;
+    while (steps_done_ < target && motion_ == Motion::Stepping) {
+        ++steps_done_;
+        // A stick-slip step is never exactly the same twice: open-loop positions drift.
+        jitter_state_ = jitter_state_ * 1664525u + 1013904223u;
+        const double u = static_cast<double>(jitter_state_ >> 8) / static_cast<double>(1u << 24) * 2.0 - 1.0;
+        if (!displace(step_dir_ * step_width_ * (1.0 + jitter * u)))
+            return;
+    }
+    if (motion_ == Motion::Stepping && steps_total_ > 0 && steps_done_ >= steps_total_) {
+        motion_ = Motion::Idle;
+        finish_movement();
+    }
+}
+
+std::int32_t Channel::voltage_level() const
+{
+    return static_cast<std::int32_t>(std::lround(scan_level_));
+}
+
+std::optional<ErrorCode> Channel::scan_absolute(std::int32_t target, std::int64_t speed)
+{
+    if (target < 0 || target > 4095 || speed < 1 || speed > 4'095'000'000LL)
+        return ErrorCode::InvalidParameter;
+    begin_movement([this, target, speed](Ticks now) {
+        sample(now);
+        state_[1] = 0;
+        if (motion_ == Motion::Scanning)
+            scan_until(now);
+        motion_ = Motion::Scanning;
+        scan_start_ = now;
+        scan_from_ = scan_level_;
+        scan_target_ = target;
+        scan_speed_ = static_cast<double>(speed);
+        scan_until(now);
+    });
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::scan_relative(std::int32_t diff, std::int64_t speed)
+{
+    if (diff < -4095 || diff > 4095 || speed < 1 || speed > 4'095'000'000LL)
+        return ErrorCode::InvalidParameter;
+    // "If the resulting absolute scan target exceeds the valid range of 0..4,095 the scan
+    // movement will stop at the boundary."
+    const auto target = static_cast<std::int32_t>(std::clamp(std::lround(scan_level_) + diff, 0L, 4095L));
+    return scan_absolute(target, speed);
+}
+
+void Channel::scan_until(Ticks now)
+{
+    const double t = clock_.seconds(now - scan_start_);
+    const double span = scan_target_ - scan_from_;
+    const double done = std::min(std::abs(span), t * scan_speed_);
+    const double level = scan_from_ + std::copysign(done, span);
+    const double delta = (level - scan_level_) * static_cast<double>(config_.scan_range_nm) / 4095.0;
+    scan_level_ = level;
+    // Scans are not limited by the software range limit (2.3.4) but by the end stops.
+    state_[0] = std::clamp(state_[0] + delta, travel_min(), travel_max());
+    if (done >= std::abs(span)) {
+        motion_ = Motion::Idle;
+        finish_movement();
+    }
+}
+
 std::optional<ErrorCode> Channel::calibrate()
 {
     if (!sensor_)
@@ -467,6 +589,19 @@ std::optional<ErrorCode> Channel::calibrate()
 
 void Channel::stop()
 {
+    if (motion_ == Motion::Stepping) {
+        // MST: "the current step is completed before the positioner is stopped".
+        step_until(clock_.now());
+        if (motion_ == Motion::Stepping && (steps_total_ == 0 || steps_done_ < steps_total_)) {
+            const Ticks elapsed = clock_.now() - step_start_;
+            if (clock_.seconds(elapsed) * step_frequency_hz_ > static_cast<double>(steps_done_)) {
+                ++steps_done_;
+                displace(step_dir_ * step_width_);
+            }
+        }
+    }
+    if (motion_ == Motion::Scanning)
+        scan_until(clock_.now());
     sample(clock_.now());
     state_[1] = 0;
     motion_ = Motion::Idle;
@@ -572,6 +707,9 @@ Ticks Channel::next_change(Ticks now) const
         return hold_until_;
     case Motion::Calibrating:
         return std::max(calibrate_until_, now + 1);
+    case Motion::Stepping:
+    case Motion::Scanning:
+        return now + 1;
     }
     return kNever;
 }
@@ -618,6 +756,12 @@ void Channel::tick(Ticks now)
             motion_ = Motion::Idle;
             finish_movement();
         }
+        return;
+    case Motion::Stepping:
+        step_until(now);
+        return;
+    case Motion::Scanning:
+        scan_until(now);
         return;
     }
 }

@@ -85,6 +85,13 @@ public:
     std::optional<ErrorCode> find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero);
     /// CS: status 6 for the calibration time; end-stop types end at the safe end stop.
     std::optional<ErrorCode> calibrate();
+    /// MST: a burst of open-loop steps (status 1); ±30000 steps run until stopped, 0 stops.
+    std::optional<ErrorCode> move_steps(std::int32_t steps, std::int32_t amplitude, std::int32_t frequency_hz);
+    /// MSCA/MSCR: scan the piezo to a 12-bit level at `speed` levels per second (status 2).
+    std::optional<ErrorCode> scan_absolute(std::int32_t target, std::int64_t speed);
+    std::optional<ErrorCode> scan_relative(std::int32_t diff, std::int64_t speed);
+    /// GVL: the piezo voltage level 0..4095.
+    std::int32_t voltage_level() const;
     void stop();
 
     /// SPL/SAL (2.3.4): software range limit on the logical scale; min == max removes it.
@@ -122,7 +129,7 @@ public:
     void tick(Ticks now);
 
 private:
-    enum class Motion { Idle, MoveDelay, Targeting, Holding, Referencing, Calibrating };
+    enum class Motion { Idle, MoveDelay, Targeting, Holding, Referencing, Calibrating, Stepping, Scanning };
 
     /// A physical position (nm or µ° on the travel axis) as read on the logical scale, and back.
     double logical_from_physical(double physical) const;
@@ -146,6 +153,12 @@ private:
     void next_reference_leg(Ticks now);
     void finish_movement();
     void become_known(double reference_physical, bool auto_zero);
+    /// Moves the stage by `delta` physically within end stops and range limit; returns
+    /// false if it was stopped there. Without an enabled sensor the logical position does
+    /// not follow (2.3.2: the position becomes invalid).
+    bool displace(double delta);
+    void step_until(Ticks now);
+    void scan_until(Ticks now);
 
     int index_;
     const Clock& clock_;
@@ -191,6 +204,20 @@ private:
     double search_speed_ = 0;
     Ticks calibrate_until_ = 0;
     bool calibrated_ = false;
+    // MST in progress.
+    Ticks step_start_ = 0;
+    std::int64_t steps_total_ = 0;   ///< 0: until stopped
+    std::int64_t steps_done_ = 0;
+    double step_dir_ = 1;
+    double step_width_ = 0;
+    double step_frequency_hz_ = 1;
+    std::uint32_t jitter_state_;
+    // Piezo scan level (MSCA/MSCR), 0..4095, and a scan in progress.
+    double scan_level_ = 0;
+    double scan_from_ = 0;
+    double scan_target_ = 0;
+    double scan_speed_ = 1;
+    Ticks scan_start_ = 0;
     double target_physical_nm_ = 0;  ///< MPR accumulates onto this while targeting
     std::vector<Reply> events_;
 };

@@ -72,13 +72,18 @@ const CommandEntry kCommands[] = {
     {"GPL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPositionLimit{i32(p[0])}; }},
     {"SAL", 5, 5, [](const Params& p, std::size_t) -> Command { return SetAngleLimit{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3]), i32(p[4])}; }},
     {"GAL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetAngleLimit{i32(p[0])}; }},
+    {"MST", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveStep{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    // MSCA/MSCR scan speed: 1 .. 4,095,000,000, wider than a signed 32-bit value.
+    {"MSCA", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanAbsolute{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
+    {"MSCR", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanRelative{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
+    {"GVL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetVoltageLevel{i32(p[0])}; }},
 };
 
 // Chapter 3 commands that rigsim does not implement yet: answered like an unknown
 // command (E-1,2), but logged as unimplemented rather than as a client mistake.
 constexpr std::string_view kUnimplemented[] = {
     "GCP", "GEET", "GESM", "SCP", "SEET", "SESM", "SRT", "SZF", "ATC", "CTCQ", "MGFA",
-    "MGOA", "MGOR", "MSCA", "MSCR", "MST", "TC", "GB", "GF", "GGO", "GVL",
+    "MGOA", "MGOR", "TC", "GB", "GF", "GGO",
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }

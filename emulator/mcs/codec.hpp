@@ -96,6 +96,10 @@ struct GetPositionLimit { std::int32_t channel; };                ///< GPL
 struct SetAngleLimit { std::int32_t channel; std::int32_t min_angle_udeg; std::int32_t min_revolution;
                        std::int32_t max_angle_udeg; std::int32_t max_revolution; };  ///< SAL
 struct GetAngleLimit { std::int32_t channel; };                   ///< GAL
+struct MoveStep { std::int32_t channel; std::int32_t steps; std::int32_t amplitude; std::int32_t frequency_hz; };  ///< MST
+struct MoveScanAbsolute { std::int32_t channel; std::int32_t target; std::int64_t speed; };  ///< MSCA
+struct MoveScanRelative { std::int32_t channel; std::int32_t diff; std::int64_t speed; };    ///< MSCR
+struct GetVoltageLevel { std::int32_t channel; };                 ///< GVL
 
 using Command = std::variant<
     GetCommunicationMode, SetCommunicationMode, GetNumberOfChannels, GetSystemId,
@@ -107,7 +111,8 @@ using Command = std::variant<
     SetScale, GetScale, SetSafeDirection, GetSafeDirection, SetStepWhileScan, SetReportOnComplete,
     KeepAlive, ConfigureBaudrate, GetSerialNumber, GetFirmwareVersion, GetFeaturePermissions,
     FindReferenceMark, CalibrateSensor, MoveAngleAbsolute, MoveAngleRelative, GetAngle,
-    SetPositionLimit, GetPositionLimit, SetAngleLimit, GetAngleLimit>;
+    SetPositionLimit, GetPositionLimit, SetAngleLimit, GetAngleLimit, MoveStep, MoveScanAbsolute,
+    MoveScanRelative, GetVoltageLevel>;
 
 // ---- Answers ----
 

@@ -536,4 +536,40 @@ Reply Handler::on(const GetAngleLimit& c)
     return Answer{join("AL", c.channel) + "," + angle_text(lo) + "," + angle_text(hi)};
 }
 
+/// MST<ch>,<steps>,<amplitude>,<frequency>: open-loop steps, also without sensor (3.3).
+Reply Handler::on(const MoveStep& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->move_steps(c.steps, c.amplitude, c.frequency_hz), c.channel, c.channel);
+}
+
+/// MSCA<ch>,<target>,<speed>: scan the piezo to a 12-bit level (3.3).
+Reply Handler::on(const MoveScanAbsolute& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->scan_absolute(c.target, c.speed), c.channel, c.channel);
+}
+
+/// MSCR<ch>,<diff>,<speed>: relative scan, stopping at 0 and 4095 (3.3).
+Reply Handler::on(const MoveScanRelative& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->scan_relative(c.diff, c.speed), c.channel, c.channel);
+}
+
+/// GVL<ch>: `VL<ch>,<level>` (3.4).
+Reply Handler::on(const GetVoltageLevel& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return Answer{join("VL", c.channel, ch->voltage_level())};
+}
+
 } // namespace rigsim::mcs

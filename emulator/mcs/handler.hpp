@@ -44,6 +44,10 @@ public:
     Reply on(const GetPositionLimit& c);
     Reply on(const SetAngleLimit& c);
     Reply on(const GetAngleLimit& c);
+    Reply on(const MoveStep& c);
+    Reply on(const MoveScanAbsolute& c);
+    Reply on(const MoveScanRelative& c);
+    Reply on(const GetVoltageLevel& c);
     Reply on(const GetNumberOfChannels& c);
     Reply on(const GetSystemId& c);
     Reply on(const GetInterfaceVersion& c);

@@ -45,7 +45,7 @@ TEST_CASE("codec answers unknown and unimplemented commands with error 2", "[uni
 {
     CHECK(error_of("FOO") == 2);
     CHECK(error_of("FOO1,2") == 2);
-    const auto d = decode("MST0,1,100,100");
+    const auto d = decode("GGO0");
     CHECK(static_cast<int>(d.error.code) == 2);
     CHECK(d.known_unimplemented);
     CHECK_FALSE(decode("XYZ").known_unimplemented);
@@ -72,6 +72,10 @@ TEST_CASE("codec answers syntax, parse, count and overflow errors", "[unit][mcs]
     CHECK(error_of("MPA0,-2147483649,0") == 3);
     CHECK(error_of("GP99999999999999999999999") == 3);
     CHECK(decode("MPA0,-2147483648,0").command);
+    // MSCA/MSCR speeds reach 4,095,000,000: wider than 32 bits signed, within unsigned.
+    CHECK(std::get<MoveScanAbsolute>(*decode("MSCA0,1,4095000000").command).speed == 4'095'000'000);
+    CHECK(error_of("MSCA0,1,4294967296") == 3);
+    CHECK(error_of("MSCA0,2147483648,1") == 3);
 }
 
 TEST_CASE("codec encodes answers without spaces", "[unit][mcs][codec]")
