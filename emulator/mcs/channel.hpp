@@ -10,6 +10,7 @@
 #include "emulator/mcs/sensor_types.hpp"
 #include "models/trapezoid.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -48,6 +49,8 @@ public:
     static constexpr std::int32_t kMaxFrequency_hz = 18'500;
     /// Power save: "it takes a few milliseconds to power up the sensor" (2.3.2).
     static constexpr std::int64_t kSensorPowerUp_ms = 5;
+    /// Acceleration that enabling low vibration mode switches on (2.5.1 "default settings").
+    static constexpr std::int32_t kDefaultLowVibrationAcceleration = 1'000'000;
 
     Channel(int index, const McsChannelConfig& config, const Clock& clock);
 
@@ -120,6 +123,39 @@ public:
 
     /// SRC: report completed movements (asynchronous mode only; checked by the handler).
     void set_report_on_complete(bool report) { report_on_complete_ = report; }
+    /// SRT: report T<ch> when a queued command is triggered.
+    void set_report_on_triggered(bool report) { report_on_triggered_ = report; }
+    bool report_on_triggered() const { return report_on_triggered_; }
+
+    /// GCP/SCP (2.2, appendix 4.4). Errors: 154 component, 155 sub component, 156 property
+    /// (also for writing a read-only property), 7 value out of range, 150 not stopped.
+    std::optional<ErrorCode> get_property(std::uint32_t key, std::int64_t& value) const;
+    std::optional<ErrorCode> set_property(std::uint32_t key, std::int64_t value);
+
+    /// Emergency stop (2.2.1): a falling edge of the ES line; `rising` the edge after it.
+    void emergency_stop_edge(bool rising);
+    bool locked() const { return locked_; }
+    /// SESM: every channel's emergency stop mode; any SESM unlocks.
+    void set_emergency_stop_mode(std::int32_t mode);
+    /// Broadcast stop (2.2.3): this channel detected an end stop and wants every channel
+    /// stopped; the controller reads and clears the flag.
+    bool take_broadcast_request();
+
+    /// Event receivers (2.4): counter 0, capture buffer 0, command queue.
+    void on_event(std::int32_t source);
+    /// GB buffer 0: position, revolution, counter 0 at the last capture.
+    std::array<std::int64_t, 3> capture_buffer() const { return capture_; }
+    /// Command queue (2.4.5), capacity 1.
+    static constexpr std::size_t kQueueCapacity = 1;
+    std::size_t queue_size() const { return queue_.size(); }
+    void arm_queue(std::int32_t source) { atc_source_ = source; }
+    std::optional<std::int32_t> armed_queue_source() const { return atc_source_; }
+    /// Append the command that followed ATC; 153 when full.
+    std::optional<ErrorCode> enqueue(Command command);
+    void disarm_queue() { atc_source_.reset(); }
+    void clear_queue();
+    /// Queued commands whose trigger arrived, for the controller to execute in order.
+    std::vector<Command> take_triggered();
 
     /// Messages the channel sends by itself: asynchronous errors (142, 147, 144) and
     /// completion reports. The controller delivers them only in asynchronous mode.
@@ -179,6 +215,25 @@ private:
     bool accumulate_relative_ = true;
     bool step_while_scan_ = true;
     bool report_on_complete_ = false;
+    bool report_on_triggered_ = false;
+
+    // Channel properties (appendix 4.4).
+    std::int32_t es_mode_ = 0;
+    std::int32_t es_default_mode_ = 0;   ///< non-volatile
+    bool locked_ = false;
+    bool low_vibration_ = false;
+    bool broadcast_stop_ = false;
+    bool broadcast_request_ = false;
+    bool forced_slip_ = true;            ///< 2.2.4: "enabled by default"
+    std::array<std::int32_t, 2> digital_in_mode_{};
+    std::array<std::int32_t, 2> digital_in_edge_{};
+    std::int32_t counter_source_ = 0;
+    std::int64_t counter_ = 0;
+    std::int32_t capture_source_ = 0;
+    std::array<std::int64_t, 3> capture_{};
+    std::vector<std::pair<std::int32_t, Command>> queue_;   ///< trigger source, command
+    std::optional<std::int32_t> atc_source_;
+    std::vector<Command> triggered_;
 
     std::int32_t speed_nm_per_s_;
     std::int32_t acceleration_um_per_s2_;

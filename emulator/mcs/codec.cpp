@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <limits>
+#include <type_traits>
 
 namespace rigsim::mcs {
 namespace {
@@ -77,13 +78,21 @@ const CommandEntry kCommands[] = {
     {"MSCA", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanAbsolute{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
     {"MSCR", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanRelative{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
     {"GVL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetVoltageLevel{i32(p[0])}; }},
+    {"GCP", 2, 2, [](const Params& p, std::size_t) -> Command { return GetChannelProperty{i32(p[0]), i32(p[1])}; }},
+    {"SCP", 3, 3, [](const Params& p, std::size_t) -> Command { return SetChannelProperty{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"GESM", 0, 0, [](const Params&, std::size_t) -> Command { return GetEmergencyStopMode{}; }},
+    {"SESM", 1, 1, [](const Params& p, std::size_t) -> Command { return SetEmergencyStopMode{i32(p[0])}; }},
+    {"ATC", 2, 2, [](const Params& p, std::size_t) -> Command { return AppendTriggeredCommand{i32(p[0]), i32(p[1])}; }},
+    {"CTCQ", 1, 1, [](const Params& p, std::size_t) -> Command { return ClearTriggeredCommandQueue{i32(p[0])}; }},
+    {"TC", 1, 1, [](const Params& p, std::size_t) -> Command { return TriggerCommand{i32(p[0])}; }},
+    {"SRT", 2, 2, [](const Params& p, std::size_t) -> Command { return SetReportOnTriggered{i32(p[0]), i32(p[1])}; }},
+    {"GB", 2, 2, [](const Params& p, std::size_t) -> Command { return GetCaptureBuffer{i32(p[0]), i32(p[1])}; }},
 };
 
 // Chapter 3 commands that rigsim does not implement yet: answered like an unknown
 // command (E-1,2), but logged as unimplemented rather than as a client mistake.
 constexpr std::string_view kUnimplemented[] = {
-    "GCP", "GEET", "GESM", "SCP", "SEET", "SESM", "SRT", "SZF", "ATC", "CTCQ", "MGFA",
-    "MGOA", "MGOR", "TC", "GB", "GF", "GGO",
+    "GEET", "SEET", "SZF", "MGFA", "MGOA", "MGOR", "GF", "GGO",
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }
@@ -168,6 +177,39 @@ Decoded decode(std::string_view line)
         if (name == d.name)
             d.known_unimplemented = true;
     return fail(d, ErrorCode::InvalidCommand);
+}
+
+namespace {
+
+template <typename T, typename = void>
+struct HasChannel : std::false_type {};
+template <typename T>
+struct HasChannel<T, std::void_t<decltype(T::channel)>>
+    : std::is_same<std::decay_t<decltype(T::channel)>, std::int32_t> {};
+
+} // namespace
+
+std::optional<std::int32_t> channel_of(const Command& command)
+{
+    return std::visit(
+        [](const auto& c) -> std::optional<std::int32_t> {
+            if constexpr (HasChannel<std::decay_t<decltype(c)>>::value)
+                return c.channel;
+            else
+                return std::nullopt;
+        },
+        command);
+}
+
+bool is_movement(const Command& command)
+{
+    return std::holds_alternative<MovePositionAbsolute>(command)
+        || std::holds_alternative<MovePositionRelative>(command)
+        || std::holds_alternative<MoveAngleAbsolute>(command)
+        || std::holds_alternative<MoveAngleRelative>(command)
+        || std::holds_alternative<MoveStep>(command) || std::holds_alternative<MoveScanAbsolute>(command)
+        || std::holds_alternative<MoveScanRelative>(command)
+        || std::holds_alternative<FindReferenceMark>(command);
 }
 
 void encode(const Reply& reply, std::string& out)

@@ -100,6 +100,15 @@ struct MoveStep { std::int32_t channel; std::int32_t steps; std::int32_t amplitu
 struct MoveScanAbsolute { std::int32_t channel; std::int32_t target; std::int64_t speed; };  ///< MSCA
 struct MoveScanRelative { std::int32_t channel; std::int32_t diff; std::int64_t speed; };    ///< MSCR
 struct GetVoltageLevel { std::int32_t channel; };                 ///< GVL
+struct GetChannelProperty { std::int32_t channel; std::int32_t key; };  ///< GCP
+struct SetChannelProperty { std::int32_t channel; std::int32_t key; std::int32_t value; };  ///< SCP
+struct GetEmergencyStopMode {};                                   ///< GESM
+struct SetEmergencyStopMode { std::int32_t mode; };               ///< SESM
+struct AppendTriggeredCommand { std::int32_t channel; std::int32_t trigger_source; };  ///< ATC
+struct ClearTriggeredCommandQueue { std::int32_t channel; };      ///< CTCQ
+struct TriggerCommand { std::int32_t trigger_index; };            ///< TC
+struct SetReportOnTriggered { std::int32_t channel; std::int32_t report; };  ///< SRT
+struct GetCaptureBuffer { std::int32_t channel; std::int32_t buffer; };  ///< GB
 
 using Command = std::variant<
     GetCommunicationMode, SetCommunicationMode, GetNumberOfChannels, GetSystemId,
@@ -112,7 +121,14 @@ using Command = std::variant<
     KeepAlive, ConfigureBaudrate, GetSerialNumber, GetFirmwareVersion, GetFeaturePermissions,
     FindReferenceMark, CalibrateSensor, MoveAngleAbsolute, MoveAngleRelative, GetAngle,
     SetPositionLimit, GetPositionLimit, SetAngleLimit, GetAngleLimit, MoveStep, MoveScanAbsolute,
-    MoveScanRelative, GetVoltageLevel>;
+    MoveScanRelative, GetVoltageLevel, GetChannelProperty, SetChannelProperty, GetEmergencyStopMode,
+    SetEmergencyStopMode, AppendTriggeredCommand, ClearTriggeredCommandQueue, TriggerCommand,
+    SetReportOnTriggered, GetCaptureBuffer>;
+
+/// The channel a command addresses, if it addresses one.
+std::optional<std::int32_t> channel_of(const Command& command);
+/// Movement commands: the ones the command queue takes after ATC (2.4.5).
+bool is_movement(const Command& command);
 
 // ---- Answers ----
 

@@ -75,8 +75,34 @@ void Controller::stop_all()
         c.stop();
 }
 
+void Controller::set_emergency_stop_mode(std::int32_t mode)
+{
+    esm_mode_ = mode;
+    for (auto& c : channels_)
+        c.set_emergency_stop_mode(mode);
+}
+
+void Controller::emergency_stop_pulse()
+{
+    for (auto& c : channels_)
+        c.emergency_stop_edge(false);
+    for (auto& c : channels_)
+        c.emergency_stop_edge(true);
+}
+
+void Controller::trigger(std::int32_t source)
+{
+    for (auto& c : channels_)
+        c.on_event(source);
+}
+
 void Controller::collect_events()
 {
+    bool broadcast = false;
+    for (auto& c : channels_)
+        broadcast = c.take_broadcast_request() || broadcast;
+    if (broadcast)   // 2.2.3: an end stop on a channel with broadcast stop halts them all
+        emergency_stop_pulse();
     for (auto& c : channels_) {
         auto& events = c.events();
         if (mode_ == CommunicationMode::Async)

@@ -60,6 +60,14 @@ public:
 
     void stop_all();
 
+    /// GESM/SESM (deprecated system-wide emergency stop mode, 3.2).
+    std::int32_t emergency_stop_mode() const { return esm_mode_; }
+    void set_emergency_stop_mode(std::int32_t mode);
+    /// A pulse on the ES line: every channel reacts per its emergency stop mode (2.2.1).
+    void emergency_stop_pulse();
+    /// An event of a trigger source reaches every channel's receivers (2.4, TC).
+    void trigger(std::int32_t source);
+
     /// Messages sent by the controller by itself, to every connection: filled during
     /// tick() (asynchronous mode only), emptied by the device.
     std::vector<Reply>& outbox() { return outbox_; }
@@ -76,6 +84,7 @@ private:
     CommunicationMode mode_ = CommunicationMode::Sync;
     SensorMode sensor_mode_ = SensorMode::Enabled;
     std::int32_t hcm_mode_ = 1;
+    std::int32_t esm_mode_ = 0;
     std::int32_t keep_alive_ms_ = 0;
     Ticks keep_alive_deadline_ = kNever;
     std::int32_t baudrate_ = kDefaultBaudrate;

@@ -57,6 +57,28 @@ bool Handler::take_reset_request()
 
 Reply Handler::handle(const Command& command)
 {
+    // 2.4.5: after ATC the channel's next command goes to its queue if it is a movement
+    // (152 otherwise); with a command queued, immediate movements answer 151.
+    if (const auto index = channel_of(command)) {
+        if (auto* ch = controller_.channel(*index)) {
+            if (ch->armed_queue_source()) {
+                if (!is_movement(command)) {
+                    ch->disarm_queue();
+                    return Error{*index, ErrorCode::CommandNotTriggerable};
+                }
+                if (auto err = ch->enqueue(command))
+                    return Error{*index, *err};
+                return Silent{};
+            }
+            if (is_movement(command) && ch->queue_size() > 0)
+                return Error{*index, ErrorCode::WaitingForTrigger};
+        }
+    }
+    return execute(command);
+}
+
+Reply Handler::execute(const Command& command)
+{
     return std::visit([this](const auto& c) { return on(c); }, command);
 }
 
@@ -570,6 +592,110 @@ Reply Handler::on(const GetVoltageLevel& c)
     if (!ch)
         return kNoSuchChannel;
     return Answer{join("VL", c.channel, ch->voltage_level())};
+}
+
+/// GCP<ch>,<key>: `CPR<ch>,<key>,<value>` (3.2, appendix 4.4).
+Reply Handler::on(const GetChannelProperty& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    std::int64_t value = 0;
+    if (auto err = ch->get_property(static_cast<std::uint32_t>(c.key), value))
+        return Error{c.channel, *err};
+    return Answer{join("CPR", c.channel, c.key) + "," + std::to_string(value)};
+}
+
+/// SCP<ch>,<key>,<value>: acknowledged as E-1,0 per the manual (3.2, appendix 4.4).
+Reply Handler::on(const SetChannelProperty& c)
+{
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    return result(ch->set_property(static_cast<std::uint32_t>(c.key), c.value), c.channel, kSystem);
+}
+
+/// GESM: `ESM<mode>` (deprecated, 3.2).
+Reply Handler::on(const GetEmergencyStopMode&)
+{
+    return Answer{join("ESM", controller_.emergency_stop_mode())};
+}
+
+/// SESM<mode>: 0 normal, 1 restricted, 2 disabled for every channel; unlocks (3.2).
+Reply Handler::on(const SetEmergencyStopMode& c)
+{
+    if (c.mode < 0 || c.mode > 2)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    controller_.set_emergency_stop_mode(c.mode);
+    return Ack{kSystem};
+}
+
+/// ATC<ch>,<source>: queue the channel's next movement command (async only, 3.3, 2.4.5).
+Reply Handler::on(const AppendTriggeredCommand& c)
+{
+    if (controller_.communication_mode() != CommunicationMode::Async)
+        return Error{kSystem, ErrorCode::WrongMode};
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    const bool valid = c.trigger_source == 512 || c.trigger_source == 513
+        || (c.trigger_source >= 1792 && c.trigger_source <= 2047);   // 4.4.1, 0 not allowed
+    if (!valid)
+        return Error{c.channel, ErrorCode::InvalidParameter};
+    if (ch->queue_size() >= Channel::kQueueCapacity)
+        return Error{c.channel, ErrorCode::CommandQueueFull};
+    ch->arm_queue(c.trigger_source);
+    return Silent{};
+}
+
+/// CTCQ<ch>: drop the queued commands (async only, 3.3).
+Reply Handler::on(const ClearTriggeredCommandQueue& c)
+{
+    if (controller_.communication_mode() != CommunicationMode::Async)
+        return Error{kSystem, ErrorCode::WrongMode};
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    ch->clear_queue();
+    return Silent{};
+}
+
+/// TC<index>: software trigger 0..255 to every channel (async only, 3.3, 2.4.2).
+Reply Handler::on(const TriggerCommand& c)
+{
+    if (controller_.communication_mode() != CommunicationMode::Async)
+        return Error{kSystem, ErrorCode::WrongMode};
+    if (c.trigger_index < 0 || c.trigger_index > 255)
+        return Error{kSystem, ErrorCode::InvalidParameter};
+    controller_.trigger(1792 + c.trigger_index);
+    return Silent{};
+}
+
+/// SRT<ch>,<report>: report T<ch> when a queued command is triggered (async only, 3.2).
+Reply Handler::on(const SetReportOnTriggered& c)
+{
+    if (controller_.communication_mode() != CommunicationMode::Async)
+        return Error{kSystem, ErrorCode::WrongMode};
+    auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (c.report != 0 && c.report != 1)
+        return Error{c.channel, ErrorCode::InvalidParameter};
+    ch->set_report_on_triggered(c.report == 1);
+    return Silent{};
+}
+
+/// GB<ch>,<buffer>: `CB<ch>,0,<position>,<revolution>,<counter>` (3.4, 2.4.4).
+Reply Handler::on(const GetCaptureBuffer& c)
+{
+    const auto* ch = controller_.channel(c.channel);
+    if (!ch)
+        return kNoSuchChannel;
+    if (c.buffer != 0)
+        return Error{c.channel, ErrorCode::InvalidParameter};
+    const auto b = ch->capture_buffer();
+    return Answer{join("CB", c.channel, 0) + "," + std::to_string(b[0]) + "," + std::to_string(b[1]) + ","
+                  + std::to_string(b[2])};
 }
 
 } // namespace rigsim::mcs

@@ -11,7 +11,10 @@ class Handler {
 public:
     explicit Handler(Controller& controller) : controller_(controller) {}
 
+    /// A command from a client: through the command queue checks (2.4.5), then its handler.
     Reply handle(const Command& command);
+    /// A queued command whose trigger arrived: straight to its handler.
+    Reply execute(const Command& command);
 
     Reply on(const GetCommunicationMode& c);
     Reply on(const SetCommunicationMode& c);
@@ -48,6 +51,15 @@ public:
     Reply on(const MoveScanAbsolute& c);
     Reply on(const MoveScanRelative& c);
     Reply on(const GetVoltageLevel& c);
+    Reply on(const GetChannelProperty& c);
+    Reply on(const SetChannelProperty& c);
+    Reply on(const GetEmergencyStopMode& c);
+    Reply on(const SetEmergencyStopMode& c);
+    Reply on(const AppendTriggeredCommand& c);
+    Reply on(const ClearTriggeredCommandQueue& c);
+    Reply on(const TriggerCommand& c);
+    Reply on(const SetReportOnTriggered& c);
+    Reply on(const GetCaptureBuffer& c);
     Reply on(const GetNumberOfChannels& c);
     Reply on(const GetSystemId& c);
     Reply on(const GetInterfaceVersion& c);

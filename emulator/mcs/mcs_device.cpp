@@ -87,6 +87,11 @@ void McsDevice::tick(Ticks now)
 
 void McsDevice::flush_outbox()
 {
+    // Queued commands whose trigger arrived run now; their errors go out unprompted.
+    for (std::size_t i = 0; i < controller_.channel_count(); ++i)
+        for (const auto& command : controller_.channel(static_cast<std::int32_t>(i))->take_triggered())
+            if (auto r = handler_.execute(command); std::holds_alternative<Error>(r))
+                controller_.outbox().push_back(r);
     controller_.collect_events();
     auto& outbox = controller_.outbox();
     if (outbox.empty())
