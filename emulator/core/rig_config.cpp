@@ -32,8 +32,8 @@ constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{
     "name", "protocol", "model", "tcp_port", "pty", "mcs"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
-constexpr std::array<std::string_view, 13> kChannelKeys{
-    "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
+constexpr std::array<std::string_view, 16> kChannelKeys{
+    "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
     "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
     "reference_position", "coded_mark_spacing", "calibration_ms", "step_width_nm",
     "step_jitter_percent", "scan_range_nm"};
@@ -46,7 +46,9 @@ struct ChannelIntKey {
     std::int64_t McsChannelConfig::*member;
 };
 
-constexpr std::array<ChannelIntKey, 9> kChannelIntKeys{{
+constexpr std::array<ChannelIntKey, 11> kChannelIntKeys{{
+    {"gripper_contact_cv", 0, 22'500, &McsChannelConfig::gripper_contact_cv},
+    {"gripper_stiffness_dun_per_cv", 1, 100'000, &McsChannelConfig::gripper_stiffness_dun_per_cv},
     {"step_width_nm", 1, 100'000, &McsChannelConfig::step_width_nm},
     {"step_jitter_percent", 0, 50, &McsChannelConfig::step_jitter_percent},
     {"scan_range_nm", 1, 1'000'000, &McsChannelConfig::scan_range_nm},
@@ -394,6 +396,12 @@ private:
     {
         McsChannelConfig c;
         check_keys(v, pointer, kChannelKeys);
+        if (const auto* k = find(v, "kind")) {
+            const auto kind_pointer = pointer_to(pointer, "kind");
+            if (!k->is_string() || (k->get<std::string>() != "positioner" && k->get<std::string>() != "end_effector"))
+                fail(kind_pointer, "expected \"positioner\" or \"end_effector\", got " + describe(*k));
+            c.kind = k->get<std::string>();
+        }
         if (const auto* t = find(v, "sensor_type")) {
             const auto type_pointer = pointer_to(pointer, "sensor_type");
             const std::string symbols(mcs::sensor_type_symbols());

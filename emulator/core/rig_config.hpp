@@ -14,8 +14,13 @@ namespace rigsim {
 
 enum class Protocol { Mcs, Apt };
 
-/// One MCS positioner channel.
+/// One MCS channel: a positioner (the default) or an end effector.
 struct McsChannelConfig {
+    std::string kind = "positioner";             ///< "positioner" or "end_effector"
+    /// End effector: the gripper's jaws touch the object at this voltage (1/100 V) ...
+    std::int64_t gripper_contact_cv = 8000;
+    /// ... and beyond it the force sensor reads this many 1/10 µN per 1/100 V.
+    std::int64_t gripper_stiffness_dun_per_cv = 5;
     std::string sensor_type = "S";               ///< appendix 4.3 symbol, or "none"
     std::int64_t travel_min_nm = -10'500'000;     ///< mechanical end stop (physical position)
     std::int64_t travel_max_nm = 10'500'000;      ///< mechanical end stop (physical position)

@@ -87,12 +87,14 @@ const CommandEntry kCommands[] = {
     {"TC", 1, 1, [](const Params& p, std::size_t) -> Command { return TriggerCommand{i32(p[0])}; }},
     {"SRT", 2, 2, [](const Params& p, std::size_t) -> Command { return SetReportOnTriggered{i32(p[0]), i32(p[1])}; }},
     {"GB", 2, 2, [](const Params& p, std::size_t) -> Command { return GetCaptureBuffer{i32(p[0]), i32(p[1])}; }},
-};
-
-// Chapter 3 commands that rigsim does not implement yet: answered like an unknown
-// command (E-1,2), but logged as unimplemented rather than as a client mistake.
-constexpr std::string_view kUnimplemented[] = {
-    "GEET", "SEET", "SZF", "MGFA", "MGOA", "MGOR", "GF", "GGO",
+    {"SEET", 4, 4, [](const Params& p, std::size_t) -> Command { return SetEndEffectorType{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {"GEET", 1, 1, [](const Params& p, std::size_t) -> Command { return GetEndEffectorType{i32(p[0])}; }},
+    {"MGOA", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"MGOR", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {"MGFA", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveGripperForceAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {"GGO", 1, 1, [](const Params& p, std::size_t) -> Command { return GetGripperOpening{i32(p[0])}; }},
+    {"GF", 1, 1, [](const Params& p, std::size_t) -> Command { return GetForce{i32(p[0])}; }},
+    {"SZF", 1, 1, [](const Params& p, std::size_t) -> Command { return SetZeroForce{i32(p[0])}; }},
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }
@@ -173,9 +175,6 @@ Decoded decode(std::string_view line)
         d.command = entry.build(params, count);
         return d;
     }
-    for (auto name : kUnimplemented)
-        if (name == d.name)
-            d.known_unimplemented = true;
     return fail(d, ErrorCode::InvalidCommand);
 }
 

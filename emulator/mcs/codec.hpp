@@ -109,6 +109,14 @@ struct ClearTriggeredCommandQueue { std::int32_t channel; };      ///< CTCQ
 struct TriggerCommand { std::int32_t trigger_index; };            ///< TC
 struct SetReportOnTriggered { std::int32_t channel; std::int32_t report; };  ///< SRT
 struct GetCaptureBuffer { std::int32_t channel; std::int32_t buffer; };  ///< GB
+struct SetEndEffectorType { std::int32_t channel; std::int32_t type; std::int32_t param1; std::int32_t param2; };  ///< SEET
+struct GetEndEffectorType { std::int32_t channel; };              ///< GEET
+struct MoveGripperOpeningAbsolute { std::int32_t channel; std::int32_t opening_cv; std::int32_t speed_v_per_s; };  ///< MGOA
+struct MoveGripperOpeningRelative { std::int32_t channel; std::int32_t diff_cv; std::int32_t speed_v_per_s; };  ///< MGOR
+struct MoveGripperForceAbsolute { std::int32_t channel; std::int32_t force_dun; std::int32_t speed_v_per_s; std::int32_t hold_ms; };  ///< MGFA
+struct GetGripperOpening { std::int32_t channel; };               ///< GGO
+struct GetForce { std::int32_t channel; };                        ///< GF
+struct SetZeroForce { std::int32_t channel; };                    ///< SZF
 
 using Command = std::variant<
     GetCommunicationMode, SetCommunicationMode, GetNumberOfChannels, GetSystemId,
@@ -123,7 +131,9 @@ using Command = std::variant<
     SetPositionLimit, GetPositionLimit, SetAngleLimit, GetAngleLimit, MoveStep, MoveScanAbsolute,
     MoveScanRelative, GetVoltageLevel, GetChannelProperty, SetChannelProperty, GetEmergencyStopMode,
     SetEmergencyStopMode, AppendTriggeredCommand, ClearTriggeredCommandQueue, TriggerCommand,
-    SetReportOnTriggered, GetCaptureBuffer>;
+    SetReportOnTriggered, GetCaptureBuffer, SetEndEffectorType, GetEndEffectorType,
+    MoveGripperOpeningAbsolute, MoveGripperOpeningRelative, MoveGripperForceAbsolute,
+    GetGripperOpening, GetForce, SetZeroForce>;
 
 /// The channel a command addresses, if it addresses one.
 std::optional<std::int32_t> channel_of(const Command& command);
@@ -152,7 +162,6 @@ struct Decoded {
     std::optional<Command> command;   ///< set when the string is a valid command
     Error error{kSystem, ErrorCode::None};   ///< otherwise, the answer the manual gives
     std::string_view name;            ///< the command name as sent (for logs)
-    bool known_unimplemented = false; ///< a chapter 3 command rigsim does not implement yet
 };
 
 /// Decode one command string (without ':' and '\n').

@@ -16,13 +16,40 @@ Controller::Controller(const McsConfig& config, const Clock& clock)
     : clock_(clock), system_id_(config.system_id)
 {
     channels_.reserve(config.channels.size());
-    for (std::size_t i = 0; i < config.channels.size(); ++i)
-        channels_.emplace_back(static_cast<int>(i), config.channels[i], clock);
+    for (std::size_t i = 0; i < config.channels.size(); ++i) {
+        const auto& c = config.channels[i];
+        channels_.emplace_back(static_cast<int>(i), c, clock);
+        if (c.kind == "end_effector")
+            effectors_.push_back(std::make_unique<EndEffector>(
+                clock, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
+                                        static_cast<std::int32_t>(c.gripper_stiffness_dun_per_cv)}));
+        else
+            effectors_.push_back(nullptr);
+    }
+    effector_report_.assign(channels_.size(), false);
+}
+
+EndEffector* Controller::effector(std::int32_t index)
+{
+    if (!valid_index(index))
+        return nullptr;
+    return effectors_[static_cast<std::size_t>(index)].get();
+}
+
+const EndEffector* Controller::effector(std::int32_t index) const
+{
+    return const_cast<Controller*>(this)->effector(index);
+}
+
+void Controller::set_effector_report(std::int32_t index, bool report)
+{
+    if (valid_index(index))
+        effector_report_[static_cast<std::size_t>(index)] = report;
 }
 
 Channel* Controller::channel(std::int32_t index)
 {
-    if (index < 0 || static_cast<std::size_t>(index) >= channels_.size())
+    if (!valid_index(index) || effectors_[static_cast<std::size_t>(index)])
         return nullptr;
     return &channels_[static_cast<std::size_t>(index)];
 }
@@ -67,12 +94,19 @@ void Controller::reset()
     outbox_.clear();
     for (auto& c : channels_)
         c.reset();
+    for (auto& e : effectors_)
+        if (e)
+            e->stop();   // the end effector type (SEET) is kept, like the sensor types
+    effector_report_.assign(channels_.size(), false);
 }
 
 void Controller::stop_all()
 {
     for (auto& c : channels_)
         c.stop();
+    for (auto& e : effectors_)
+        if (e)
+            e->stop();
 }
 
 void Controller::set_emergency_stop_mode(std::int32_t mode)
@@ -103,6 +137,10 @@ void Controller::collect_events()
         broadcast = c.take_broadcast_request() || broadcast;
     if (broadcast)   // 2.2.3: an end stop on a channel with broadcast stop halts them all
         emergency_stop_pulse();
+    for (std::size_t i = 0; i < effectors_.size(); ++i)
+        if (effectors_[i] && effectors_[i]->take_completed() && effector_report_[i]
+            && mode_ == CommunicationMode::Async)
+            outbox_.push_back(Answer{"C" + std::to_string(i)});
     for (auto& c : channels_) {
         auto& events = c.events();
         if (mode_ == CommunicationMode::Async)
@@ -116,6 +154,9 @@ Ticks Controller::next_change(Ticks now) const
     Ticks next = keep_alive_deadline_ > now ? keep_alive_deadline_ : (keep_alive_deadline_ == kNever ? kNever : now + 1);
     for (const auto& c : channels_)
         next = std::min(next, c.next_change(now));
+    for (const auto& e : effectors_)
+        if (e)
+            next = std::min(next, e->next_change(now));
     return next;
 }
 
@@ -129,6 +170,9 @@ void Controller::tick(Ticks now)
     for (auto& c : channels_)
         if (c.next_change(now - 1) <= now)
             c.tick(now);
+    for (auto& e : effectors_)
+        if (e && e->next_change(now - 1) <= now)
+            e->tick(now);
     collect_events();
 }
 

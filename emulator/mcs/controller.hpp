@@ -4,6 +4,9 @@
 #include "emulator/core/clock.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/channel.hpp"
+#include "emulator/mcs/end_effector.hpp"
+
+#include <memory>
 
 #include <cstdint>
 #include <vector>
@@ -26,9 +29,18 @@ public:
     Controller(const McsConfig& config, const Clock& clock);
 
     std::size_t channel_count() const { return channels_.size(); }
-    /// The channel with this index, or nullptr when the index is out of range.
+    /// The positioner with this index, or nullptr (out of range, or an end effector).
     Channel* channel(std::int32_t index);
     const Channel* channel(std::int32_t index) const;
+    /// The end effector with this index, or nullptr.
+    EndEffector* effector(std::int32_t index);
+    const EndEffector* effector(std::int32_t index) const;
+    bool valid_index(std::int32_t index) const
+    {
+        return index >= 0 && static_cast<std::size_t>(index) < channels_.size();
+    }
+    /// SRC for an end effector channel.
+    void set_effector_report(std::int32_t index, bool report);
 
     std::uint32_t system_id() const { return system_id_; }
     InterfaceVersion interface_version() const { return {}; }
@@ -80,7 +92,9 @@ public:
 private:
     const Clock& clock_;
     std::uint32_t system_id_;
-    std::vector<Channel> channels_;
+    std::vector<Channel> channels_;   ///< one per index; end effector indices hold an unused one
+    std::vector<std::unique_ptr<EndEffector>> effectors_;   ///< non-null for end effector indices
+    std::vector<bool> effector_report_;
     CommunicationMode mode_ = CommunicationMode::Sync;
     SensorMode sensor_mode_ = SensorMode::Enabled;
     std::int32_t hcm_mode_ = 1;

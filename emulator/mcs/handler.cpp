@@ -5,9 +5,6 @@
 namespace rigsim::mcs {
 namespace {
 
-// A channel index that names no channel is a system error: no channel generated it
-// (manual 1.1: "-1 ... the error does not originate from a specific channel").
-const Error kNoSuchChannel{kSystem, ErrorCode::InvalidParameter};
 
 std::string join(std::string_view prefix, std::int64_t a)
 {
@@ -47,6 +44,16 @@ Reply result(std::optional<ErrorCode> err, int channel, int ack_channel)
 }
 
 } // namespace
+
+Error Handler::missing(std::int32_t index) const
+{
+    // An index that names no channel is a system error: no channel generated it (manual
+    // 1.1: "-1 ... the error does not originate from a specific channel"). A channel of
+    // the other type (positioner command to an end effector, or the reverse) answers 7.
+    if (controller_.valid_index(index))
+        return Error{index, ErrorCode::InvalidParameter};
+    return Error{kSystem, ErrorCode::InvalidParameter};
+}
 
 bool Handler::take_reset_request()
 {
@@ -104,9 +111,11 @@ Reply Handler::on(const GetInterfaceVersion&)
 /// GCT<ch>: channel type, 0 positioner, 1 end effector (3.1).
 Reply Handler::on(const GetChannelType& c)
 {
+    if (controller_.effector(c.channel))
+        return Answer{join("CT", c.channel, static_cast<int>(ChannelType::EndEffector))};
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("CT", c.channel, static_cast<int>(ch->type()))};
 }
 
@@ -115,7 +124,7 @@ Reply Handler::on(const GetSensorType& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (!ch->sensor())
         return Error{c.channel, ErrorCode::NoSensorPresent};
     return Answer{join("ST", c.channel, ch->sensor()->code)};
@@ -126,7 +135,7 @@ Reply Handler::on(const SetSensorType& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (!ch->sensor())
         return Error{c.channel, ErrorCode::NoSensorPresent};
     if (auto err = ch->set_sensor_type(c.type_code))
@@ -139,7 +148,7 @@ Reply Handler::on(const GetPosition& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_linear_sensor())
         return Error{c.channel, *err};
     return Answer{join("P", c.channel, ch->position_nm())};
@@ -148,9 +157,11 @@ Reply Handler::on(const GetPosition& c)
 /// GS<ch>: channel status code of appendix 4.1 (3.4).
 Reply Handler::on(const GetStatus& c)
 {
+    if (const auto* ee = controller_.effector(c.channel))
+        return Answer{join("S", c.channel, static_cast<int>(ee->status()))};
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("S", c.channel, static_cast<int>(ch->status()))};
 }
 
@@ -159,7 +170,7 @@ Reply Handler::on(const MovePositionAbsolute& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_linear_sensor())
         return Error{c.channel, *err};
     if (auto err = ch->move_absolute(c.position_nm, c.hold_ms))
@@ -172,7 +183,7 @@ Reply Handler::on(const MovePositionRelative& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_linear_sensor())
         return Error{c.channel, *err};
     if (auto err = ch->move_relative(c.distance_nm, c.hold_ms))
@@ -187,9 +198,13 @@ Reply Handler::on(const Stop& c)
         controller_.stop_all();
         return Ack{kSystem};
     }
+    if (auto* ee = controller_.effector(*c.channel)) {
+        ee->stop();
+        return Ack{*c.channel};
+    }
     auto* ch = controller_.channel(*c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(*c.channel);
     ch->stop();
     return Ack{*c.channel};
 }
@@ -199,7 +214,7 @@ Reply Handler::on(const SetClosedLoopSpeed& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->set_closed_loop_speed(c.speed))
         return Error{c.channel, *err};
     return Ack{kSystem};
@@ -210,7 +225,7 @@ Reply Handler::on(const GetClosedLoopSpeed& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("CLS", c.channel, ch->closed_loop_speed())};
 }
 
@@ -219,7 +234,7 @@ Reply Handler::on(const SetClosedLoopAcceleration& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->set_closed_loop_acceleration(c.acceleration))
         return Error{c.channel, *err};
     return Ack{c.channel};
@@ -230,7 +245,7 @@ Reply Handler::on(const GetClosedLoopAcceleration& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("CLA", c.channel, ch->closed_loop_acceleration())};
 }
 
@@ -285,7 +300,7 @@ Reply Handler::on(const GetPhysicalPositionKnown& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (!ch->sensor())
         return Error{c.channel, ErrorCode::NoSensorPresent};
     return Answer{join("PPK", c.channel, ch->physical_position_known() ? 1 : 0)};
@@ -296,7 +311,7 @@ Reply Handler::on(const SetClosedLoopMaxFrequency& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_closed_loop_max_frequency(c.frequency_hz), c.channel, c.channel);
 }
 
@@ -305,7 +320,7 @@ Reply Handler::on(const SetAccumulateRelativePositions& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_accumulate_relative(c.accumulate), c.channel, c.channel);
 }
 
@@ -314,7 +329,7 @@ Reply Handler::on(const SetPosition& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_position(c.position), c.channel, c.channel);
 }
 
@@ -323,7 +338,7 @@ Reply Handler::on(const SetZeroPosition& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_position(0), c.channel, c.channel);
 }
 
@@ -332,7 +347,7 @@ Reply Handler::on(const SetScale& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (!ch->sensor())
         return Error{c.channel, ErrorCode::NoSensorPresent};
     return result(ch->set_scale(c.scale, c.inverted), c.channel, kSystem);
@@ -343,7 +358,7 @@ Reply Handler::on(const GetScale& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (!ch->sensor())
         return Error{c.channel, ErrorCode::NoSensorPresent};
     return Answer{join("SC", c.channel, ch->scale_offset()) + (ch->scale_inverted() ? ",1" : ",0")};
@@ -354,7 +369,7 @@ Reply Handler::on(const SetSafeDirection& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_safe_direction(c.direction), c.channel, kSystem);
 }
 
@@ -363,7 +378,7 @@ Reply Handler::on(const GetSafeDirection& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("SD", c.channel, ch->safe_direction())};
 }
 
@@ -372,7 +387,7 @@ Reply Handler::on(const SetStepWhileScan& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_step_while_scan(c.step), c.channel, c.channel);
 }
 
@@ -381,9 +396,15 @@ Reply Handler::on(const SetReportOnComplete& c)
 {
     if (controller_.communication_mode() != CommunicationMode::Async)
         return Error{kSystem, ErrorCode::WrongMode};
+    if (controller_.effector(c.channel)) {
+        if (c.report != 0 && c.report != 1)
+            return Error{c.channel, ErrorCode::InvalidParameter};
+        controller_.set_effector_report(c.channel, c.report == 1);
+        return Silent{};
+    }
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (c.report != 0 && c.report != 1)
         return Error{c.channel, ErrorCode::InvalidParameter};
     ch->set_report_on_complete(c.report == 1);
@@ -413,8 +434,8 @@ Reply Handler::on(const ConfigureBaudrate& c)
 /// GSN<ch>: `SN<ch>,0x<hex>`, unique per channel (3.5).
 Reply Handler::on(const GetSerialNumber& c)
 {
-    if (!controller_.channel(c.channel))
-        return kNoSuchChannel;
+    if (!controller_.valid_index(c.channel))
+        return missing(c.channel);
     static constexpr char kHex[] = "0123456789abcdef";
     const std::uint64_t serial = (static_cast<std::uint64_t>(controller_.system_id()) << 8) | static_cast<unsigned>(c.channel);
     std::string hex;
@@ -426,10 +447,12 @@ Reply Handler::on(const GetSerialNumber& c)
 /// GFV<ch>: signal controller (type 2) and signal generator (type 3) versions (3.5).
 Reply Handler::on(const GetFirmwareVersion& c)
 {
-    if (!controller_.channel(c.channel))
-        return kNoSuchChannel;
+    if (!controller_.valid_index(c.channel))
+        return missing(c.channel);
     const auto v = controller_.interface_version();
     const std::string version = std::to_string(v.high) + "," + std::to_string(v.low) + "," + std::to_string(v.update);
+    if (controller_.effector(c.channel))   // device type 9: end effector module
+        return Answer{join("FV", c.channel) + ",9," + version + ",9," + version};
     return Answer{join("FV", c.channel) + ",2," + version + ",3," + version};
 }
 
@@ -437,8 +460,8 @@ Reply Handler::on(const GetFirmwareVersion& c)
 /// One byte; bit 0 (low vibration) is clear: permitted. Other bits set: not permitted.
 Reply Handler::on(const GetFeaturePermissions& c)
 {
-    if (!controller_.channel(c.channel))
-        return kNoSuchChannel;
+    if (!controller_.valid_index(c.channel))
+        return missing(c.channel);
     if (c.byte_index == 255)
         return Answer{join("FP", c.channel, 1)};
     if (c.byte_index != 0)
@@ -451,7 +474,7 @@ Reply Handler::on(const FindReferenceMark& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->find_reference(c.direction, c.hold_ms, c.auto_zero), c.channel, c.channel);
 }
 
@@ -460,7 +483,7 @@ Reply Handler::on(const CalibrateSensor& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->calibrate(), c.channel, c.channel);
 }
 
@@ -470,7 +493,7 @@ Reply Handler::on(const MoveAngleAbsolute& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_angular_sensor())
         return Error{c.channel, *err};
     if (c.angle_udeg < 0 || c.angle_udeg >= kFullTurn_udeg || c.revolution < -32768 || c.revolution > 32767)
@@ -484,7 +507,7 @@ Reply Handler::on(const MoveAngleRelative& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_angular_sensor())
         return Error{c.channel, *err};
     if (c.angle_udeg <= -kFullTurn_udeg || c.angle_udeg >= kFullTurn_udeg || c.revolution < -32768
@@ -499,7 +522,7 @@ Reply Handler::on(const GetAngle& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_angular_sensor())
         return Error{c.channel, *err};
     return Answer{join("A", c.channel) + "," + angle_text(ch->position())};
@@ -510,7 +533,7 @@ Reply Handler::on(const SetPositionLimit& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_linear_sensor())
         return Error{c.channel, *err};
     return result(ch->set_range_limit(c.min_nm, c.max_nm), c.channel, c.channel);
@@ -521,7 +544,7 @@ Reply Handler::on(const GetPositionLimit& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_linear_sensor())
         return Error{c.channel, *err};
     const auto [lo, hi] = ch->range_limit();
@@ -533,7 +556,7 @@ Reply Handler::on(const SetAngleLimit& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_angular_sensor())
         return Error{c.channel, *err};
     auto valid_angle = [](std::int32_t a) { return a >= 0 && a < kFullTurn_udeg; };
@@ -551,7 +574,7 @@ Reply Handler::on(const GetAngleLimit& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (auto err = ch->check_angular_sensor())
         return Error{c.channel, *err};
     const auto [lo, hi] = ch->range_limit();
@@ -563,7 +586,7 @@ Reply Handler::on(const MoveStep& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->move_steps(c.steps, c.amplitude, c.frequency_hz), c.channel, c.channel);
 }
 
@@ -572,7 +595,7 @@ Reply Handler::on(const MoveScanAbsolute& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->scan_absolute(c.target, c.speed), c.channel, c.channel);
 }
 
@@ -581,7 +604,7 @@ Reply Handler::on(const MoveScanRelative& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->scan_relative(c.diff, c.speed), c.channel, c.channel);
 }
 
@@ -590,7 +613,7 @@ Reply Handler::on(const GetVoltageLevel& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return Answer{join("VL", c.channel, ch->voltage_level())};
 }
 
@@ -599,7 +622,7 @@ Reply Handler::on(const GetChannelProperty& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     std::int64_t value = 0;
     if (auto err = ch->get_property(static_cast<std::uint32_t>(c.key), value))
         return Error{c.channel, *err};
@@ -611,7 +634,7 @@ Reply Handler::on(const SetChannelProperty& c)
 {
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     return result(ch->set_property(static_cast<std::uint32_t>(c.key), c.value), c.channel, kSystem);
 }
 
@@ -637,7 +660,7 @@ Reply Handler::on(const AppendTriggeredCommand& c)
         return Error{kSystem, ErrorCode::WrongMode};
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     const bool valid = c.trigger_source == 512 || c.trigger_source == 513
         || (c.trigger_source >= 1792 && c.trigger_source <= 2047);   // 4.4.1, 0 not allowed
     if (!valid)
@@ -655,7 +678,7 @@ Reply Handler::on(const ClearTriggeredCommandQueue& c)
         return Error{kSystem, ErrorCode::WrongMode};
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     ch->clear_queue();
     return Silent{};
 }
@@ -678,7 +701,7 @@ Reply Handler::on(const SetReportOnTriggered& c)
         return Error{kSystem, ErrorCode::WrongMode};
     auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (c.report != 0 && c.report != 1)
         return Error{c.channel, ErrorCode::InvalidParameter};
     ch->set_report_on_triggered(c.report == 1);
@@ -690,12 +713,91 @@ Reply Handler::on(const GetCaptureBuffer& c)
 {
     const auto* ch = controller_.channel(c.channel);
     if (!ch)
-        return kNoSuchChannel;
+        return missing(c.channel);
     if (c.buffer != 0)
         return Error{c.channel, ErrorCode::InvalidParameter};
     const auto b = ch->capture_buffer();
     return Answer{join("CB", c.channel, 0) + "," + std::to_string(b[0]) + "," + std::to_string(b[1]) + ","
                   + std::to_string(b[2])};
+}
+
+/// SEET<ch>,<type>,<param1>,<param2>: acknowledged as E-1,0 per the manual (3.2).
+Reply Handler::on(const SetEndEffectorType& c)
+{
+    auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return result(ee->set_type(c.type, c.param1, c.param2), c.channel, kSystem);
+}
+
+/// GEET<ch>: `EET<ch>,<type>,<param1>,<param2>` (3.2).
+Reply Handler::on(const GetEndEffectorType& c)
+{
+    const auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return Answer{join("EET", c.channel, static_cast<int>(ee->type())) + "," + std::to_string(ee->param1()) + ","
+                  + std::to_string(ee->param2())};
+}
+
+/// MGOA<ch>,<opening>,<speed>: gripper voltage in 1/100 V at V/s; status 8 (3.3).
+Reply Handler::on(const MoveGripperOpeningAbsolute& c)
+{
+    auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return result(ee->move_opening_absolute(c.opening_cv, c.speed_v_per_s), c.channel, c.channel);
+}
+
+/// MGOR<ch>,<diff>,<speed>: relative gripper voltage (3.3).
+Reply Handler::on(const MoveGripperOpeningRelative& c)
+{
+    auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return result(ee->move_opening_relative(c.diff_cv, c.speed_v_per_s), c.channel, c.channel);
+}
+
+/// MGFA<ch>,<force>,<speed>,<hold>: grip with a force in 1/10 µN; status 4, then 3 (3.3).
+Reply Handler::on(const MoveGripperForceAbsolute& c)
+{
+    auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return result(ee->move_force_absolute(c.force_dun, c.speed_v_per_s, c.hold_ms), c.channel, c.channel);
+}
+
+/// GGO<ch>: `GO<ch>,<opening>` in 1/100 V (3.4).
+Reply Handler::on(const GetGripperOpening& c)
+{
+    const auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    std::int32_t value = 0;
+    if (auto err = ee->opening_cv(value))
+        return Error{c.channel, *err};
+    return Answer{join("GO", c.channel, value)};
+}
+
+/// GF<ch>: `F<ch>,<force>` in 1/10 µN (3.4).
+Reply Handler::on(const GetForce& c)
+{
+    const auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    std::int32_t value = 0;
+    if (auto err = ee->force_dun(value))
+        return Error{c.channel, *err};
+    return Answer{join("F", c.channel, value)};
+}
+
+/// SZF<ch>: zero the force sensor; status 6 for about a second (3.2).
+Reply Handler::on(const SetZeroForce& c)
+{
+    auto* ee = controller_.effector(c.channel);
+    if (!ee)
+        return missing(c.channel);
+    return result(ee->zero_force(), c.channel, c.channel);
 }
 
 } // namespace rigsim::mcs

@@ -60,6 +60,14 @@ public:
     Reply on(const TriggerCommand& c);
     Reply on(const SetReportOnTriggered& c);
     Reply on(const GetCaptureBuffer& c);
+    Reply on(const SetEndEffectorType& c);
+    Reply on(const GetEndEffectorType& c);
+    Reply on(const MoveGripperOpeningAbsolute& c);
+    Reply on(const MoveGripperOpeningRelative& c);
+    Reply on(const MoveGripperForceAbsolute& c);
+    Reply on(const GetGripperOpening& c);
+    Reply on(const GetForce& c);
+    Reply on(const SetZeroForce& c);
     Reply on(const GetNumberOfChannels& c);
     Reply on(const GetSystemId& c);
     Reply on(const GetInterfaceVersion& c);
@@ -80,6 +88,9 @@ public:
     bool take_reset_request();
 
 private:
+    /// The answer for an index without a channel of the right kind.
+    Error missing(std::int32_t index) const;
+
     Controller& controller_;
     bool reset_requested_ = false;
 };

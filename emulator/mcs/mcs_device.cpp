@@ -89,9 +89,10 @@ void McsDevice::flush_outbox()
 {
     // Queued commands whose trigger arrived run now; their errors go out unprompted.
     for (std::size_t i = 0; i < controller_.channel_count(); ++i)
-        for (const auto& command : controller_.channel(static_cast<std::int32_t>(i))->take_triggered())
-            if (auto r = handler_.execute(command); std::holds_alternative<Error>(r))
-                controller_.outbox().push_back(r);
+        if (auto* ch = controller_.channel(static_cast<std::int32_t>(i)))
+            for (const auto& command : ch->take_triggered())
+                if (auto r = handler_.execute(command); std::holds_alternative<Error>(r))
+                    controller_.outbox().push_back(r);
     controller_.collect_events();
     auto& outbox = controller_.outbox();
     if (outbox.empty())
@@ -114,11 +115,7 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
 {
     const auto decoded = decode(line);
     if (!decoded.command) {
-        if (decoded.known_unimplemented)
-            log_->warn("{}: \"{}\": command {} is not implemented by rigsim: error {}", peer,
-                       printable(line), decoded.name, static_cast<int>(decoded.error.code));
-        else
-            log_->warn("{}: \"{}\": error {}", peer, printable(line), static_cast<int>(decoded.error.code));
+        log_->warn("{}: \"{}\": error {}", peer, printable(line), static_cast<int>(decoded.error.code));
         encode(decoded.error, out);
         return;
     }

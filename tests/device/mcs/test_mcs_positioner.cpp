@@ -163,7 +163,7 @@ TEST_CASE("client mistakes get the appendix 4.2 error with the right source", "[
 {
     McsHarness h;
     CHECK(h.send(":FOO\n") == ":E-1,2\n");
-    CHECK(h.send(":GGO0\n") == ":E-1,2\n");            // not implemented yet: unknown command
+    CHECK(h.send(":GGO0\n") == ":E0,7\n");             // an end effector command to a positioner
     CHECK(h.send(":GP\n") == ":E-1,5\n");
     CHECK(h.send(":GP0,0\n") == ":E-1,6\n");
     CHECK(h.send(":GP3\n") == ":E-1,7\n");

@@ -202,7 +202,8 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     {
         rig["devices"][0]["mcs"]["channels"].push_back({{"travel", 1}});
         CHECK(error_of(rig) ==
-              "rig.json: /devices/0/mcs/channels/1: unknown key \"travel\" (allowed: sensor_type, "
+              "rig.json: /devices/0/mcs/channels/1: unknown key \"travel\" (allowed: kind, "
+              "gripper_contact_cv, gripper_stiffness_dun_per_cv, sensor_type, "
               "travel_nm, start_position_nm, max_speed_nm_per_s, closed_loop_speed_nm_per_s, "
               "closed_loop_acceleration_um_per_s2, travel_udeg, reference_position, "
                              "coded_mark_spacing, calibration_ms, step_width_nm, step_jitter_percent, "
