@@ -5,12 +5,16 @@
 //   > :GNC                bytes sent (a '\n' is appended)
 //   < :N3                 one expected answer line, in order ("< " alone: nothing more)
 //   ~ 250ms | ~ 3 ticks   advance the clock
-// After each '>' line, the answers the device gave must equal the '<' lines that follow.
+//   @ config <path>       (before the first '>') run on the first device of this rig file,
+//                         relative to the source tree, instead of the default rig's MCS
+// After each '>' line, the answers the device gave must equal the '<' lines that follow;
+// unprompted messages (asynchronous mode) appear before the answers of the next '>' line.
 #include "mcs_harness.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 using rigsim::test::McsHarness;
@@ -21,7 +25,7 @@ void replay(const std::string& path)
 {
     std::ifstream in(path);
     REQUIRE(in);
-    McsHarness h;
+    std::unique_ptr<McsHarness> harness;
     std::string line, pending_answer, expected;
     int number = 0, commands = 0;
     auto settle = [&](int at) {
@@ -38,6 +42,16 @@ void replay(const std::string& path)
         REQUIRE(line.size() >= 1);
         const char kind = line[0];
         const std::string rest = line.size() > 2 ? line.substr(2) : "";
+        if (kind == '@') {
+            REQUIRE(!harness);
+            REQUIRE(rest.rfind("config ", 0) == 0);
+            const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/" + rest.substr(7));
+            harness = std::make_unique<McsHarness>(rig.devices.at(0), rig.tick_hz);
+            continue;
+        }
+        if (!harness)
+            harness = std::make_unique<McsHarness>();
+        auto& h = *harness;
         if (kind == '>') {
             settle(last_command_line);
             pending_answer = h.send(rest + "\n");
@@ -65,6 +79,8 @@ void replay(const std::string& path)
     settle(last_command_line);
     CHECK(commands > 0);
 }
+
+/// Every transcript in tests/device/transcripts/ is replayed by a test case below.
 
 } // namespace
 
