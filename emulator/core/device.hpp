@@ -5,6 +5,7 @@
 
 #include "emulator/core/rig_config.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -31,6 +32,9 @@ public:
     virtual const DeviceConfig& config() const = 0;
     /// A new connection; `peer` names it in logs ("tcp 127.0.0.1:53122", "pty").
     virtual std::unique_ptr<Session> open_session(SendFn send, std::string peer) = 0;
+    /// Baud rate at which the serial port (pty) paces the device's output; 0 = no pacing
+    /// (the rig's `faithful_timing` is off).
+    virtual std::uint32_t serial_baud() const { return 0; }
 };
 
 /// Printable form of client bytes for log lines (non-printable bytes as \xNN, at most `max` bytes).

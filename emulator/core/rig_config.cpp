@@ -29,8 +29,8 @@ constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 
 // The keys each object may hold; anything else is an error.
 constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
-constexpr std::array<std::string_view, 6> kDeviceKeys{
-    "name", "protocol", "model", "tcp_port", "pty", "mcs"};
+constexpr std::array<std::string_view, 7> kDeviceKeys{
+    "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
 constexpr std::array<std::string_view, 16> kChannelKeys{
     "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
@@ -330,6 +330,11 @@ private:
             if (d.pty.front() != '/')
                 fail(pty_pointer, "expected " + std::string(expected) + ", got " + quote(d.pty));
             claim(ptys_, d.pty, pty_pointer, pointer, "path " + quote(d.pty));
+        }
+        if (const auto* t = find(v, "faithful_timing")) {
+            if (!t->is_boolean())
+                fail(pointer_to(pointer, "faithful_timing"), "expected true or false, got " + describe(*t));
+            d.faithful_timing = t->get<bool>();
         }
         d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
         return d;

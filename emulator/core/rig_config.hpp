@@ -60,6 +60,8 @@ struct DeviceConfig {
     std::string model = "MCS-3D";     ///< controller model
     std::uint16_t tcp_port = 0;       ///< 0 = ephemeral
     std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
+    /// Pace the pty's output at the controller's baud rate (MCS: CB, effective after R).
+    bool faithful_timing = false;
     McsConfig mcs;
 };
 

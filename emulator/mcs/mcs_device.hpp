@@ -25,6 +25,11 @@ public:
 
     const DeviceConfig& config() const override { return config_; }
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
+    /// With `faithful_timing`, the serial line runs at the controller's baud rate (1.2, CB).
+    std::uint32_t serial_baud() const override
+    {
+        return config_.faithful_timing ? static_cast<std::uint32_t>(controller_.baudrate()) : 0;
+    }
 
     Controller& controller() { return controller_; }
 

@@ -59,7 +59,7 @@ void replace_symlink(const std::string& target, const std::string& link)
 
 PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
                          std::shared_ptr<spdlog::logger> log)
-    : master_(io), inotify_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
+    : device_(device), master_(io), inotify_(io), pacing_timer_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
 {
     int master = -1;
     char name[PATH_MAX] = {};
@@ -167,6 +167,7 @@ void PtyEndpoint::stop()
     master_.cancel(ec);
     master_.close(ec);
     inotify_.close(ec);
+    pacing_timer_.cancel();
     // Remove the symlink only if it is still ours.
     char target[PATH_MAX] = {};
     const auto n = ::readlink(symlink_path_.c_str(), target, sizeof target - 1);
@@ -218,6 +219,26 @@ void PtyEndpoint::send(std::string_view bytes)
 }
 
 void PtyEndpoint::write()
+{
+    const auto baud = device_.serial_baud();
+    if (baud == 0) {
+        paced_write();
+        return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const auto transmit = std::chrono::nanoseconds(
+        static_cast<std::int64_t>(queue_.front().size() * 10 * 1'000'000'000ULL / baud));
+    line_free_ = std::max(line_free_, now) + transmit;
+    pacing_timer_.expires_at(line_free_);
+    std::weak_ptr<bool> alive = alive_;
+    pacing_timer_.async_wait([this, alive](const boost::system::error_code& ec) {
+        if (!alive.lock() || stopped_ || ec)
+            return;
+        paced_write();
+    });
+}
+
+void PtyEndpoint::paced_write()
 {
     std::weak_ptr<bool> alive = alive_;
     asio::async_write(master_, asio::buffer(queue_.front()),

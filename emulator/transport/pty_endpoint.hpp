@@ -17,6 +17,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <spdlog/logger.h>
 
 #include <array>
@@ -52,8 +53,15 @@ private:
     /// Apply pending open/close events of the slave device to openers_.
     void drain_open_events();
 
+    /// Faithful timing: a frame leaves once the line has had time to transmit it at the
+    /// device's baud rate (10 bits per byte: 8N1).
+    void paced_write();
+
+    Device& device_;
     boost::asio::posix::stream_descriptor master_;
     boost::asio::posix::stream_descriptor inotify_;
+    boost::asio::steady_timer pacing_timer_;
+    std::chrono::steady_clock::time_point line_free_{};
     int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
     int slave_fd_ = -1;
     std::string slave_name_;

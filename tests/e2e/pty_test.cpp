@@ -79,3 +79,33 @@ TEST_CASE("pty: answers unread when the client closes the port are not read by t
     CHECK(p.request(":GP0\n") == ":P0,1000\n");   // the first answer read is its own
     CHECK(p.request(":GNC\n") == ":N3\n");
 }
+
+TEST_CASE("pty: faithful timing paces answers at the controller's baud rate", "[e2e][pty]")
+{
+    Daemon::Options options;
+    options.config_json = R"({"devices":[{"name":"mcs0","protocol":"mcs","faithful_timing":true,
+        "mcs":{"channels":[{},{},{}]}}]})";
+    Daemon daemon(options);
+    const Endpoint ep = daemon.endpoint();
+    PtyClient p(ep.pty);
+    // 100 answers ":N3\n" = 400 bytes = 4000 bits: at the factory 9600 baud (1.2) they
+    // cannot arrive in less than 0.41 s; at 115200 baud (CB, effective after R) in ~35 ms.
+    auto burst = [&] {
+        std::string commands;
+        for (int i = 0; i < 100; ++i)
+            commands += ":GNC\n";
+        const auto start = SteadyClock::now();
+        p.send(commands);
+        for (int i = 0; i < 100; ++i)
+            REQUIRE(p.read_line() == std::optional<std::string>(":N3\n"));
+        return elapsed_ms(start);
+    };
+    CHECK(burst() >= 410);
+    CHECK(p.request(":CB115200\n") == ":BR114285\n");
+    CHECK(p.request(":R\n") == ":E-1,0\n");
+    const double fast = burst();
+    CHECK(fast >= 34);
+    CHECK(fast < 410);
+    TcpClient t(ep);                                          // TCP is not a serial line
+    CHECK(t.request(":GNC\n") == ":N3\n");
+}

@@ -44,7 +44,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, mcs)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, faithful_timing, mcs)";
 
 } // namespace
 
@@ -533,5 +533,18 @@ TEST_CASE("rig config: resolved pty paths default to <pty-dir>/<name> and never 
         CHECK(std::string(e.what())
               == "rig.json: /devices/1/name: pty path \"/tmp/x/b\" is already used by /devices/0 "
                  "(this device's default is <pty-dir>/<name>)");
+    }
+}
+
+TEST_CASE("rig config: faithful_timing is a boolean", "[unit][config]")
+{
+    const auto ok = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","faithful_timing":true,"mcs":{"channels":[{}]}}]})", "rig.json");
+    CHECK(ok.devices[0].faithful_timing);
+    CHECK_FALSE(rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json").devices[0].faithful_timing);
+    try {
+        rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","faithful_timing":1,"mcs":{"channels":[{}]}}]})", "rig.json");
+        FAIL("no error");
+    } catch (const rigsim::ConfigError& e) {
+        CHECK(std::string(e.what()) == "rig.json: /devices/0/faithful_timing: expected true or false, got 1");
     }
 }
