@@ -96,8 +96,9 @@ void Controller::reset()
         c.reset();
     for (auto& e : effectors_)
         if (e)
-            e->stop();   // the end effector type (SEET) is kept, like the sensor types
+            e->reset();   // the end effector type (SEET) is kept, like the sensor types
     effector_report_.assign(channels_.size(), false);
+    esm_mode_ = 0;        // SESM: 0 is "the default mode"; channels restart in their default
 }
 
 void Controller::stop_all()
@@ -164,7 +165,8 @@ void Controller::tick(Ticks now)
 {
     if (now >= keep_alive_deadline_) {
         // K: "If a timeout occurs, all positioners are immediately stopped."
-        stop_all();
+        for (auto& c : channels_)
+            c.stop();
         keep_alive_deadline_ = kNever;
     }
     for (auto& c : channels_)

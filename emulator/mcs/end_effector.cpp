@@ -90,6 +90,14 @@ std::int32_t EndEffector::max_voltage_cv() const
     return 0;
 }
 
+void EndEffector::reset()
+{
+    stop();
+    voltage_cv_ = 0;
+    zero_offset_dun_ = 0;
+    completed_ = false;
+}
+
 std::optional<ErrorCode> EndEffector::set_type(std::int32_t type, std::int32_t param1, std::int32_t param2)
 {
     // SEET names types 1..3 only: None (0) cannot be set again.

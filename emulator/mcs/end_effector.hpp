@@ -63,6 +63,9 @@ public:
 
     /// S: the voltage stays where it is; ends a ramp, an MGFA hold or an SZF (no completion).
     void stop();
+    /// Power-up (R): stopped, gripper voltage 0 (fully open), force zero lost; the type
+    /// configured with SEET is kept.
+    void reset();
 
     /// True once after a movement or SZF has completed (for SRC reports); clears the flag.
     bool take_completed();

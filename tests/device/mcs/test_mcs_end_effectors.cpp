@@ -77,3 +77,13 @@ TEST_CASE("end effectors report completion (SRC) in async mode", "[device][mcs][
     CHECK(h.send(":GS1\n") == ":C1\n:S1,0\n");
     CHECK(h.send(":S\n") == "");
 }
+
+TEST_CASE("K stops positioners only; R opens the gripper and keeps its type", "[device][mcs][end-effector]")
+{
+    McsHarness h(with_gripper());
+    CHECK(h.send(":SEET1,1,10000,0\n:K200\n:MGOA1,5000,10\n") == ":E-1,0\n:E-1,0\n:E1,0\n");
+    h.advance_ms(300);                                         // the keep-alive timed out at 200 ms
+    CHECK(h.send(":GS1\n:GGO1\n") == ":S1,8\n:GO1,300\n");
+    CHECK(h.send(":K0\n:R\n") == ":E-1,0\n:E-1,0\n");
+    CHECK(h.send(":GS1\n:GGO1\n:GEET1\n") == ":S1,0\n:GO1,0\n:EET1,1,10000,0\n");
+}

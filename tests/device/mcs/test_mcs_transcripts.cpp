@@ -88,3 +88,33 @@ TEST_CASE("transcript: positioner slice session", "[device][mcs][transcript]")
 {
     replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_positioner_slice.txt");
 }
+
+TEST_CASE("transcript: initialization", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_initialization.txt");
+}
+
+TEST_CASE("transcript: sensors and references", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_sensors_references.txt");
+}
+
+TEST_CASE("transcript: rotary", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_rotary.txt");
+}
+
+TEST_CASE("transcript: closed and open loop", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_closed_open_loop.txt");
+}
+
+TEST_CASE("transcript: events", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_events.txt");
+}
+
+TEST_CASE("transcript: end effectors", "[device][mcs][transcript]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_end_effectors.txt");
+}
