@@ -110,6 +110,13 @@ std::optional<ErrorCode> Channel::check_linear_sensor() const
     return std::nullopt;
 }
 
+void Channel::post_error(ErrorCode code)
+{
+    // emplace with an explicit alternative: GCC 12 -O2 misreads push_back(Error{...})
+    // as copying an uninitialised std::string of the Answer alternative.
+    events_.emplace_back(std::in_place_type<Error>, Error{index_, code});
+}
+
 bool Channel::angular() const
 {
     return sensor_ && sensor_->kind != SensorKind::Linear;
@@ -274,14 +281,14 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
     // is below its minimum allows no movement at all.
     if (limit_ && limit_->first > limit_->second) {
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        post_error(ErrorCode::RangeLimitReached);
         return;
     }
     const auto [lo, hi] = physical_limit();
     const bool outward = (here <= lo && target_physical < here) || (here >= hi && target_physical > here);
     if (limit_ && outward) {
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        post_error(ErrorCode::RangeLimitReached);
         return;
     }
     double reachable = target_physical;
@@ -328,7 +335,7 @@ void Channel::arrive(Ticks now)
         // command could not be reached, because a mechanical end stop was detected";
         // 147 likewise at a software range limit (2.3.4).
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, end_stop_hit_ ? ErrorCode::EndStopReached : ErrorCode::RangeLimitReached});
+        post_error(end_stop_hit_ ? ErrorCode::EndStopReached : ErrorCode::RangeLimitReached);
         if (end_stop_hit_ && broadcast_stop_)
             broadcast_request_ = true;   // 2.2.3: an end stop halts every channel
         return;
@@ -453,7 +460,7 @@ void Channel::next_reference_leg(Ticks now)
         // "If a second end stop is detected before the reference mark is found the search
         // will abort unsuccessfully" (2.3.3): 144 in async mode, status 0.
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, ErrorCode::CouldNotFindReferenceMark});
+        post_error(ErrorCode::CouldNotFindReferenceMark);
         return;
     }
     become_known(endless() ? reference_point_ : reference_point_, auto_zero_);
@@ -490,7 +497,7 @@ bool Channel::displace(double delta)
     const bool at_limit = limit_ && !(reached <= travel_min() || reached >= travel_max());
     if (at_limit) {   // 2.3.4: open-loop movements stop at the range limit too
         motion_ = Motion::Idle;
-        events_.push_back(Error{index_, ErrorCode::RangeLimitReached});
+        post_error(ErrorCode::RangeLimitReached);
         return false;
     }
     return true;   // against a mechanical end stop the steps go on, without moving

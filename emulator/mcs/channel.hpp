@@ -189,6 +189,8 @@ private:
     void next_reference_leg(Ticks now);
     void finish_movement();
     void become_known(double reference_physical, bool auto_zero);
+    /// Queue an unprompted error of this channel (async mode: 142, 144, 147).
+    void post_error(ErrorCode code);
     /// Moves the stage by `delta` physically within end stops and range limit; returns
     /// false if it was stopped there. Without an enabled sensor the logical position does
     /// not follow (2.3.2: the position becomes invalid).
