@@ -1,0 +1,339 @@
+// APT frame framer (manual sections 3 and 4): arbitrary splits and coalescing, garbage,
+// resync past implausible headers, bounded memory.
+#include "emulator/apt/frame_framer.hpp"
+#include "emulator/apt/messages.hpp"
+#include "emulator/apt/wire.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace rigsim::apt;
+
+namespace {
+
+std::string hex(std::string_view bytes)
+{
+    std::string out;
+    char buf[4];
+    for (unsigned char c : bytes) {
+        std::snprintf(buf, sizeof buf, "%02X", c);
+        if (!out.empty())
+            out += ' ';
+        out += buf;
+    }
+    return out;
+}
+
+/// "0453 d=50 s=01 p=01,00" for header-only frames, "0453 d=50 s=01 [01 00 ...]" with data.
+std::string describe(const Frame& f)
+{
+    char head[32];
+    std::snprintf(head, sizeof head, "%04X d=%02X s=%02X ", f.id, f.dest, f.source);
+    std::string out = head;
+    if (f.has_data) {
+        out += "[" + hex(f.data) + "]";
+    } else {
+        char params[16];
+        std::snprintf(params, sizeof params, "p=%02X,%02X", f.param1, f.param2);
+        out += params;
+    }
+    return out;
+}
+
+/// Feed `input` in pieces of `chunk` bytes; describe every frame; add dropped bytes up.
+std::vector<std::string> frame(FrameFramer& f, const std::string& input, std::size_t chunk,
+                               std::size_t* dropped = nullptr)
+{
+    std::vector<std::string> frames;
+    for (std::size_t pos = 0; pos < input.size(); pos += chunk) {
+        std::string_view piece = std::string_view(input).substr(pos, chunk);
+        while (!piece.empty()) {
+            const auto r = f.parse(piece);
+            REQUIRE(r.consumed > 0);
+            REQUIRE(r.consumed <= piece.size());
+            piece.remove_prefix(r.consumed);
+            if (dropped)
+                *dropped += r.dropped;
+            switch (r.status) {
+            case FrameFramer::Status::NeedMore:
+                REQUIRE(piece.empty());
+                break;
+            case FrameFramer::Status::Frame:
+                REQUIRE(r.frame.info != nullptr);
+                CHECK(r.frame.info->id == r.frame.id);
+                frames.push_back(describe(r.frame));
+                break;
+            }
+        }
+    }
+    return frames;
+}
+
+std::vector<std::string> frame(const std::string& input, std::size_t chunk, std::size_t* dropped = nullptr)
+{
+    FrameFramer f;
+    return frame(f, input, chunk, dropped);
+}
+
+std::string bytes(std::initializer_list<unsigned> list)
+{
+    std::string out;
+    for (unsigned b : list)
+        out.push_back(static_cast<char>(b));
+    return out;
+}
+
+/// A MOVE_ABSOLUTE long form: chan 1, position.
+std::string move_absolute(std::int32_t position, std::uint8_t dest = kGenericUsb)
+{
+    std::string data;
+    put_u16(data, 1);
+    put_i32(data, position);
+    return encode_with_data(MGMSG_MOT_MOVE_ABSOLUTE, dest, kHost, data);
+}
+
+const std::string kReqInfo = bytes({0x05, 0x00, 0x00, 0x00, 0x50, 0x01});
+const std::string kReqInfoSeen = "0005 d=50 s=01 p=00,00";
+
+} // namespace
+
+TEST_CASE("apt framer yields header-only and data frames", "[unit][apt][framer]")
+{
+    CHECK(frame(kReqInfo, 100) == std::vector<std::string>{kReqInfoSeen});
+    CHECK(frame(move_absolute(200000), 100)
+          == std::vector<std::string>{"0453 d=50 s=01 [01 00 40 0D 03 00]"});
+    CHECK(frame(kReqInfo + move_absolute(-1, kBay0) + kReqInfo, 100)
+          == std::vector<std::string>{kReqInfoSeen, "0453 d=21 s=01 [01 00 FF FF FF FF]", kReqInfoSeen});
+}
+
+TEST_CASE("apt framer reports the header fields", "[unit][apt][framer]")
+{
+    FrameFramer f;
+    const std::string in = encode_header_only(MGMSG_MOT_MOVE_JOG, 0x01, 0x02, 0x22, kHost);
+    const auto r = f.parse(in);
+    REQUIRE(r.status == FrameFramer::Status::Frame);
+    CHECK(r.consumed == 6);
+    CHECK(r.dropped == 0);
+    CHECK(r.frame.id == MGMSG_MOT_MOVE_JOG);
+    CHECK(r.frame.param1 == 0x01);
+    CHECK(r.frame.param2 == 0x02);
+    CHECK(r.frame.dest == 0x22);
+    CHECK(r.frame.source == kHost);
+    CHECK_FALSE(r.frame.has_data);
+    CHECK(r.frame.data.empty());
+    CHECK(r.frame.info == find_message(MGMSG_MOT_MOVE_JOG));
+
+    const std::string long_form = move_absolute(7, kBay9);
+    const auto d = f.parse(long_form);
+    REQUIRE(d.status == FrameFramer::Status::Frame);
+    CHECK(d.frame.dest == kBay9);   // without the 0x80 flag
+    CHECK(d.frame.has_data);
+    CHECK(d.frame.param1 == 0);
+    CHECK(d.frame.param2 == 0);
+    CHECK(d.frame.data.size() == 6);
+    CHECK(get_i32(d.frame.data, 2) == 7);
+    CHECK(d.frame.data.data() == long_form.data() + 6);   // zero-copy when whole
+    CHECK(f.frames() == 2);
+}
+
+TEST_CASE("apt framer gives the same frames for every split of the input", "[unit][apt][framer]")
+{
+    std::string info_data(84, '\0');
+    info_data.replace(4, 6, "TDC001");
+    const std::string input = bytes({0xFF, 0x00, 0x13})                  // garbage
+        + kReqInfo
+        + move_absolute(200000)
+        + encode_header_only(MGMSG_MOT_MOVE_ABSOLUTE, 0x01, 0x00, 0x22, kHost)   // short form
+        + bytes({0x04, 0x50, 0x01})                                        // garbage
+        + encode_with_data(MGMSG_HW_GET_INFO, kHost, kGenericUsb, info_data)
+        + encode_header_only(MGMSG_MOT_MOVE_STOP, 0x01, 0x02, kGenericUsb, kHost)
+        + bytes({0x44});                                                   // garbage
+    const auto expected = frame(input, input.size());
+    REQUIRE(expected.size() == 5);
+    CHECK(expected[0] == kReqInfoSeen);
+    CHECK(expected[2] == "0453 d=22 s=01 p=01,00");
+    CHECK(expected[4] == "0465 d=50 s=01 p=01,02");
+    // The trailing 0x44 stays buffered (0x44 0x?? may still be MOVE_HOMED).
+    const std::size_t garbage = 3 + 3;
+
+    for (std::size_t chunk = 1; chunk <= input.size(); ++chunk) {
+        INFO("chunk " << chunk);
+        std::size_t dropped = 0;
+        CHECK(frame(input, chunk, &dropped) == expected);
+        CHECK(dropped == garbage);
+    }
+    // Every split into three pieces (Beast's parsegrind, and then some).
+    for (std::size_t cut1 = 0; cut1 <= input.size(); ++cut1) {
+        for (std::size_t cut2 = cut1; cut2 <= input.size(); ++cut2) {
+            FrameFramer f;
+            std::size_t dropped = 0;
+            auto frames = frame(f, input.substr(0, cut1), input.size() + 1, &dropped);
+            auto middle = frame(f, input.substr(cut1, cut2 - cut1), input.size() + 1, &dropped);
+            auto rest = frame(f, input.substr(cut2), input.size() + 1, &dropped);
+            frames.insert(frames.end(), middle.begin(), middle.end());
+            frames.insert(frames.end(), rest.begin(), rest.end());
+            if (frames != expected || dropped != garbage) {
+                INFO("cuts " << cut1 << " " << cut2);
+                CHECK(frames == expected);
+                CHECK(dropped == garbage);
+            }
+            CHECK(f.buffered() == 1);
+        }
+    }
+}
+
+TEST_CASE("apt framer skips garbage before and between frames", "[unit][apt][framer]")
+{
+    const std::string prefix = "hello world\r\n";
+    const std::string infix = bytes({0x00, 0x00, 0xFF, 0x80, 0x7F});
+    const std::string input = prefix + kReqInfo + infix + move_absolute(5) + infix + kReqInfo;
+    for (std::size_t chunk : {1u, 2u, 5u, 6u, 7u, 64u}) {
+        INFO("chunk " << chunk);
+        FrameFramer f;
+        std::size_t dropped = 0;
+        CHECK(frame(f, input, chunk, &dropped)
+              == std::vector<std::string>{kReqInfoSeen, "0453 d=50 s=01 [01 00 05 00 00 00]", kReqInfoSeen});
+        CHECK(dropped == prefix.size() + 2 * infix.size());
+        CHECK(f.dropped_bytes() == dropped);
+        CHECK(f.frames() == 3);
+        CHECK(f.garbage_runs() == 3);
+        CHECK(f.buffered() == 0);
+    }
+}
+
+TEST_CASE("apt framer reports dropped bytes in the call that drops them", "[unit][apt][framer]")
+{
+    FrameFramer f;
+    auto r = f.parse(bytes({0x05, 0x00, 0x00, 0x00}));   // plausible so far: held
+    CHECK(r.status == FrameFramer::Status::NeedMore);
+    CHECK(r.consumed == 4);
+    CHECK(r.dropped == 0);
+    CHECK(f.buffered() == 4);
+    CHECK_FALSE(f.in_frame());
+    r = f.parse(bytes({0x30}));   // 0x30 is no address: the held bytes are garbage after all
+    CHECK(r.status == FrameFramer::Status::NeedMore);
+    CHECK(r.dropped == 4);
+    CHECK(f.buffered() == 1);     // 0x30 itself may still start a header
+    r = f.parse(kReqInfo);        // 0x0530 is no message
+    CHECK(r.status == FrameFramer::Status::Frame);
+    CHECK(r.dropped == 1);
+    CHECK(f.dropped_bytes() == 5);
+    CHECK(f.garbage_runs() == 1);
+}
+
+TEST_CASE("apt framer resyncs past implausible headers", "[unit][apt][framer]")
+{
+    const std::string zeros14(14, '\0');
+    struct Case {
+        const char* what;
+        std::string bad;
+    };
+    const std::vector<Case> cases{
+        {"unknown ID", bytes({0xFF, 0xFF, 0x00, 0x00, 0x50, 0x01})},
+        {"unknown ID 0x0000", bytes({0x00, 0x00, 0x00, 0x00, 0x50, 0x01})},
+        {"wrong source", bytes({0x05, 0x00, 0x00, 0x00, 0x50, 0x02})},
+        {"source with the data flag", bytes({0x05, 0x00, 0x00, 0x00, 0x50, 0x81})},
+        {"source 0x00 (the HW_DISCONNECT example)", bytes({0x02, 0x00, 0x00, 0x00, 0x11, 0x00})},
+        {"wrong destination", bytes({0x05, 0x00, 0x00, 0x00, 0x30, 0x01})},
+        {"destination past the last bay", bytes({0x05, 0x00, 0x00, 0x00, 0x2B, 0x01})},
+        {"header-only message with the data flag", bytes({0x05, 0x00, 0x00, 0x00, 0xD0, 0x01})},
+        {"data message without the data flag", bytes({0x13, 0x04, 0x0E, 0x00, 0x50, 0x01}) + zeros14},
+        {"absurd length", bytes({0x13, 0x04, 0xFF, 0xFF, 0xD0, 0x01}) + zeros14},
+        {"length over 255", bytes({0x06, 0x00, 0x00, 0x01, 0x81, 0x50}) + zeros14},
+        {"length one short", bytes({0x13, 0x04, 0x0D, 0x00, 0xD0, 0x01}) + zeros14},
+        {"length one long", bytes({0x13, 0x04, 0x0F, 0x00, 0xD0, 0x01}) + zeros14},
+        {"MOVE_COMPLETED without its status", bytes({0x64, 0x04, 0x01, 0x00, 0x01, 0x50})},
+        {"MOVE_JOG with data", bytes({0x6A, 0x04, 0x06, 0x00, 0xD0, 0x01, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00})},
+    };
+    for (const auto& c : cases) {
+        INFO(c.what << ": " << hex(c.bad));
+        const std::string input = c.bad + kReqInfo + c.bad + move_absolute(1);
+        for (std::size_t chunk : {1u, 3u, 6u, 1000u}) {
+            INFO("chunk " << chunk);
+            std::size_t dropped = 0;
+            CHECK(frame(input, chunk, &dropped)
+                  == std::vector<std::string>{kReqInfoSeen, "0453 d=50 s=01 [01 00 01 00 00 00]"});
+            CHECK(dropped == 2 * c.bad.size());
+        }
+    }
+}
+
+TEST_CASE("apt framer holds a frame until its data has arrived", "[unit][apt][framer]")
+{
+    FrameFramer f;
+    const std::string m = move_absolute(0x01020304);
+    auto r = f.parse(std::string_view(m).substr(0, 8));
+    CHECK(r.status == FrameFramer::Status::NeedMore);
+    CHECK(f.in_frame());
+    CHECK(f.buffered() == 8);
+    r = f.parse(std::string_view(m).substr(8));
+    REQUIRE(r.status == FrameFramer::Status::Frame);
+    CHECK(r.consumed == 4);
+    CHECK_FALSE(f.in_frame());
+    // The data lives in the framer until the next parse().
+    CHECK(hex(r.frame.data) == "01 00 04 03 02 01");
+    r = f.parse(kReqInfo);
+    CHECK(r.status == FrameFramer::Status::Frame);
+    CHECK(f.buffered() == 0);
+}
+
+TEST_CASE("apt framer accepts both forms of MOVE_RELATIVE and MOVE_ABSOLUTE", "[unit][apt][framer]")
+{
+    std::string data;
+    put_u16(data, 1);
+    put_i32(data, -20000);
+    const std::string input = encode_header_only(MGMSG_MOT_MOVE_RELATIVE, 1, 0, kGenericUsb, kHost)
+        + encode_with_data(MGMSG_MOT_MOVE_RELATIVE, kGenericUsb, kHost, data)
+        + encode_header_only(MGMSG_MOT_MOVE_ABSOLUTE, 1, 0, kGenericUsb, kHost)
+        + encode_with_data(MGMSG_MOT_MOVE_ABSOLUTE, kGenericUsb, kHost, data);
+    for (std::size_t chunk = 1; chunk <= input.size(); ++chunk)
+        CHECK(frame(input, chunk) == std::vector<std::string>{
+                  "0448 d=50 s=01 p=01,00", "0448 d=50 s=01 [01 00 E0 B1 FF FF]",
+                  "0453 d=50 s=01 p=01,00", "0453 d=50 s=01 [01 00 E0 B1 FF FF]"});
+}
+
+TEST_CASE("apt framer survives 10 MB of garbage", "[unit][apt][framer]")
+{
+    SECTION("one repeated byte")
+    {
+        FrameFramer f;
+        const std::string chunk(64 * 1024, 'Z');   // 0x5A5A is no message
+        for (int i = 0; i < 160; ++i) {            // 10 MiB
+            const auto r = f.parse(chunk);
+            CHECK(r.status == FrameFramer::Status::NeedMore);
+            CHECK(r.consumed == chunk.size());
+            CHECK(f.buffered() <= 1);
+        }
+        CHECK(frame(f, kReqInfo, 100) == std::vector<std::string>{kReqInfoSeen});
+        CHECK(f.dropped_bytes() == 160u * chunk.size());
+        CHECK(f.garbage_runs() == 1);
+    }
+    SECTION("random bytes")
+    {
+        FrameFramer f;
+        std::mt19937 rng(12345);
+        std::string chunk(64 * 1024, '\0');
+        for (int i = 0; i < 160; ++i) {
+            for (auto& c : chunk)
+                c = static_cast<char>(rng() & 0xFF);
+            std::string_view piece = chunk;
+            while (!piece.empty()) {
+                const auto r = f.parse(piece);
+                REQUIRE(r.consumed > 0);
+                piece.remove_prefix(r.consumed);
+                REQUIRE(f.buffered() <= kMaxFrameSize);
+            }
+        }
+        // Random bytes hold a plausible header now and then; whatever is held, at most one
+        // frame of zeros completes it, and the zeros after that are dropped.
+        CHECK(f.dropped_bytes() > 10u * 1000 * 1000);
+        const auto frames = frame(f, std::string(kMaxFrameSize, '\0') + kReqInfo, 7);
+        REQUIRE_FALSE(frames.empty());
+        CHECK(frames.back() == kReqInfoSeen);
+        CHECK(f.buffered() == 0);
+    }
+}

@@ -1,0 +1,519 @@
+// APT message table: the ERRATA corrections, a round trip of every message through
+// encode -> framer, and the byte examples of the manual.
+#include "emulator/apt/frame_framer.hpp"
+#include "emulator/apt/messages.hpp"
+#include "emulator/apt/wire.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace rigsim::apt;
+
+namespace {
+
+const std::vector<std::uint8_t> kAddresses{0x01, 0x11, 0x21, 0x22, 0x23, 0x24, 0x25,
+                                           0x26, 0x27, 0x28, 0x29, 0x2A, 0x50};
+
+/// "23 02 00 00 21 01" -> bytes.
+std::string unhex(const std::string& text)
+{
+    std::istringstream in(text);
+    std::string out;
+    unsigned byte = 0;
+    while (in >> std::hex >> byte)
+        out.push_back(static_cast<char>(byte));
+    return out;
+}
+
+std::string hex(std::string_view bytes)
+{
+    std::string out;
+    char buf[4];
+    for (unsigned char c : bytes) {
+        std::snprintf(buf, sizeof buf, "%02X", c);
+        if (!out.empty())
+            out += ' ';
+        out += buf;
+    }
+    return out;
+}
+
+struct Parsed {
+    std::vector<Frame> frames;
+    std::vector<std::string> data;   // copies: a frame's view dies with the next parse()
+    std::size_t dropped = 0;
+    std::size_t buffered = 0;
+};
+
+/// Feed `input` in pieces of `chunk` bytes to a fresh framer.
+Parsed parse_all(std::string_view input, std::size_t chunk)
+{
+    FrameFramer f;
+    Parsed p;
+    for (std::size_t pos = 0; pos < input.size(); pos += chunk) {
+        std::string_view piece = input.substr(pos, chunk);
+        while (!piece.empty()) {
+            const auto r = f.parse(piece);
+            REQUIRE(r.consumed > 0);
+            piece.remove_prefix(r.consumed);
+            p.dropped += r.dropped;
+            if (r.status == FrameFramer::Status::Frame) {
+                p.frames.push_back(r.frame);
+                p.data.emplace_back(r.frame.data);
+            }
+        }
+    }
+    p.buffered = f.buffered();
+    return p;
+}
+
+std::size_t count(Group g)
+{
+    std::size_t n = 0;
+    for (const auto& m : all_messages())
+        n += m.group == g ? 1 : 0;
+    return n;
+}
+
+const std::string kSentinel = encode_header_only(MGMSG_HW_REQ_INFO, 0, 0, kGenericUsb, kHost);
+
+/// `bad` is no frame: the framer drops every byte of it and finds the frame after it.
+void check_rejected(const std::string& bad)
+{
+    INFO("rejected: " << hex(bad));
+    for (std::size_t chunk : {1u, 1000u}) {
+        const auto p = parse_all(bad + kSentinel, chunk);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(p.frames[0].id == MGMSG_HW_REQ_INFO);
+        CHECK(p.dropped == bad.size());
+    }
+}
+
+} // namespace
+
+TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
+{
+    std::set<std::uint16_t> ids;
+    std::set<std::string_view> names;
+    for (const auto& m : all_messages()) {
+        INFO(m.name);
+        CHECK(ids.insert(m.id).second);
+        CHECK(names.insert(m.name).second);
+        CHECK(find_message(m.id) == &m);
+        CHECK(m.name.substr(0, 6) == "MGMSG_");
+        if (m.group == Group::Motor) {
+            CHECK(m.name.substr(0, 10) == "MGMSG_MOT_");
+        } else {
+            const auto kind = m.name.substr(6, m.name.find('_', 6) - 6);
+            CHECK((kind == "MOD" || kind == "HW" || kind == "RACK" || kind == "HUB"));
+        }
+        CHECK(m.data_length >= -1);
+        CHECK(m.data_length <= static_cast<int>(kMaxDataLength));
+        CHECK(m.header_only() == (m.data_length == -1));
+        if (m.header_only_allowed)
+            CHECK_FALSE(m.header_only());
+    }
+    CHECK(count(Group::Generic) == 22);
+    CHECK(count(Group::Motor) == 92);
+    CHECK(all_messages().size() == 114);
+    CHECK(find_message(0x0000) == nullptr);
+    CHECK(find_message(0xFFFF) == nullptr);
+    CHECK(find_message(0x0640) == nullptr);   // piezo messages are not in this table
+}
+
+TEST_CASE("apt message table applies the ERRATA", "[unit][apt][messages]")
+{
+    struct Expect {
+        std::uint16_t id;
+        std::string_view name;
+        int data_length;
+    };
+    const std::vector<Expect> expected{
+        {0x0002, "MGMSG_HW_DISCONNECT", -1},
+        {0x0005, "MGMSG_HW_REQ_INFO", -1},
+        {0x0006, "MGMSG_HW_GET_INFO", 84},
+        {0x0011, "MGMSG_HW_START_UPDATEMSGS", -1},
+        {0x0012, "MGMSG_HW_STOP_UPDATEMSGS", -1},
+        {0x0060, "MGMSG_RACK_REQ_BAYUSED", -1},
+        {0x0061, "MGMSG_RACK_GET_BAYUSED", -1},
+        {0x0226, "MGMSG_RACK_REQ_STATUSBITS", -1},
+        {0x0227, "MGMSG_RACK_GET_STATUSBITS", 4},
+        {0x0230, "MGMSG_RACK_GET_DIGOUTPUTS", -1},
+        {0x0411, "MGMSG_MOT_REQ_POSCOUNTER", -1},
+        {0x040A, "MGMSG_MOT_REQ_ENCCOUNTER", -1},
+        {0x0413, "MGMSG_MOT_SET_VELPARAMS", 14},
+        {0x0414, "MGMSG_MOT_REQ_VELPARAMS", -1},
+        {0x0415, "MGMSG_MOT_GET_VELPARAMS", 14},
+        {0x0440, "MGMSG_MOT_SET_HOMEPARAMS", 14},
+        {0x0441, "MGMSG_MOT_REQ_HOMEPARAMS", -1},
+        {0x0442, "MGMSG_MOT_GET_HOMEPARAMS", 14},
+        {0x0423, "MGMSG_MOT_SET_LIMSWITCHPARAMS", 16},
+        {0x0425, "MGMSG_MOT_GET_LIMSWITCHPARAMS", 16},
+        {0x0448, "MGMSG_MOT_MOVE_RELATIVE", 6},
+        {0x0453, "MGMSG_MOT_MOVE_ABSOLUTE", 6},
+        {0x0464, "MGMSG_MOT_MOVE_COMPLETED", 14},
+        {0x0465, "MGMSG_MOT_MOVE_STOP", -1},
+        {0x0466, "MGMSG_MOT_MOVE_STOPPED", 14},
+        {0x04A0, "MGMSG_MOT_SET_DCPIDPARAMS", 20},
+        {0x04A1, "MGMSG_MOT_REQ_DCPIDPARAMS", -1},
+        {0x04A2, "MGMSG_MOT_GET_DCPIDPARAMS", 20},
+        {0x04B4, "MGMSG_MOT_REQ_AVMODES", -1},
+        {0x04B1, "MGMSG_MOT_REQ_POTPARAMS", -1},
+        {0x04B2, "MGMSG_MOT_GET_POTPARAMS", 26},
+        {0x04B6, "MGMSG_MOT_SET_BUTTONPARAMS", 16},
+        {0x04B7, "MGMSG_MOT_REQ_BUTTONPARAMS", -1},
+        {0x04B8, "MGMSG_MOT_GET_BUTTONPARAMS", 16},
+        {0x04E2, "MGMSG_MOT_GET_PMDTRACKSETTLEPARAMS", 12},
+        {0x04D5, "MGMSG_MOT_REQ_PMDCURRENTLOOPPARAMS", -1},
+        {0x04EA, "MGMSG_MOT_REQ_PMDSETTLEDCURRENTLOOPPARAMS", -1},
+        {0x04F2, "MGMSG_MOT_GET_PMDSTAGEAXISPARAMS", 74},
+        {0x0480, "MGMSG_MOT_REQ_STATUSUPDATE", -1},
+        {0x0481, "MGMSG_MOT_GET_STATUSUPDATE", 14},
+        {0x0491, "MGMSG_MOT_GET_DCSTATUSUPDATE", 14},
+        {0x0492, "MGMSG_MOT_ACK_DCSTATUSUPDATE", -1},
+        {0x0686, "MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS", -1},
+    };
+    for (const auto& e : expected) {
+        INFO(e.name);
+        const auto* m = find_message(e.id);
+        REQUIRE(m != nullptr);
+        CHECK(m->name == e.name);
+        CHECK(m->data_length == e.data_length);
+    }
+    CHECK(MGMSG_HW_STOP_UPDATEMSGS == 0x0012);
+    CHECK(MGMSG_MOT_SET_VELPARAMS == 0x0413);
+    CHECK(MGMSG_MOT_SET_HOMEPARAMS == 0x0440);
+}
+
+TEST_CASE("apt message table flags the short forms and the later-issue messages", "[unit][apt][messages]")
+{
+    std::vector<std::string_view> short_forms;
+    std::vector<std::string_view> later;
+    for (const auto& m : all_messages()) {
+        if (m.header_only_allowed)
+            short_forms.push_back(m.name);
+        if (m.later_issue)
+            later.push_back(m.name);
+    }
+    CHECK(short_forms == std::vector<std::string_view>{"MGMSG_MOT_MOVE_RELATIVE", "MGMSG_MOT_MOVE_ABSOLUTE"});
+    CHECK(later == std::vector<std::string_view>{"MGMSG_HW_YES_FLASH_PROGRAMMING", "MGMSG_HW_NO_FLASH_PROGRAMMING"});
+    CHECK(find_message(MGMSG_HW_NO_FLASH_PROGRAMMING)->header_only());
+    CHECK(find_message(MGMSG_HW_YES_FLASH_PROGRAMMING)->header_only());
+    CHECK(find_message(MGMSG_MOT_MOVE_JOG)->header_only());
+    CHECK(find_message(MGMSG_MOT_MOVE_VELOCITY)->header_only());
+}
+
+TEST_CASE("every apt message round-trips through encode and the framer", "[unit][apt][messages]")
+{
+    for (const auto& m : all_messages()) {
+        INFO(m.name);
+        std::string data;
+        if (!m.header_only())
+            for (int k = 0; k < m.data_length; ++k)
+                data.push_back(static_cast<char>(k * 37 + 11));
+
+        // Every destination and source of section 4.
+        std::string stream;
+        for (auto dest : kAddresses)
+            for (auto source : kAddresses)
+                stream += m.header_only() ? encode_header_only(m.id, 0x01, 0x02, dest, source)
+                                          : encode_with_data(m.id, dest, source, data);
+        const auto p = parse_all(stream, stream.size());
+        REQUIRE(p.frames.size() == kAddresses.size() * kAddresses.size());
+        CHECK(p.dropped == 0);
+        CHECK(p.buffered == 0);
+        std::size_t n = 0;
+        for (auto dest : kAddresses) {
+            for (auto source : kAddresses) {
+                const Frame& f = p.frames[n];
+                CHECK(f.id == m.id);
+                CHECK(f.info == &m);
+                CHECK(f.dest == dest);
+                CHECK(f.source == source);
+                CHECK(f.has_data == !m.header_only());
+                CHECK(f.param1 == (m.header_only() ? 0x01 : 0));
+                CHECK(f.param2 == (m.header_only() ? 0x02 : 0));
+                CHECK(p.data[n] == data);
+                ++n;
+            }
+        }
+
+        // Byte-wise too (the frame is assembled inside the framer).
+        const std::string one = m.header_only() ? encode_header_only(m.id, 0x7F, 0xFF, kGenericUsb, kHost)
+                                                : encode_with_data(m.id, kHost, kGenericUsb, data);
+        const auto b = parse_all(one, 1);
+        REQUIRE(b.frames.size() == 1);
+        CHECK(b.frames[0].id == m.id);
+        CHECK(b.data[0] == data);
+
+        // The other form is no frame, except where the table lists both.
+        if (m.header_only()) {
+            check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(6, '\0')));
+            check_rejected(encode_with_data(m.id, kGenericUsb, kHost, ""));
+        } else {
+            const std::string short_form = encode_header_only(m.id, 0x01, 0x00, kGenericUsb, kHost);
+            if (m.header_only_allowed) {
+                const auto s = parse_all(short_form, 1);
+                REQUIRE(s.frames.size() == 1);
+                CHECK_FALSE(s.frames[0].has_data);
+                CHECK(s.frames[0].param1 == 0x01);
+            } else {
+                check_rejected(short_form);
+            }
+            const auto length = static_cast<std::size_t>(m.data_length);
+            if (length > 0)
+                check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(length - 1, '\0')));
+            if (length < kMaxDataLength)
+                check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(length + 1, '\0')));
+        }
+    }
+}
+
+TEST_CASE("apt wire helpers are little-endian", "[unit][apt][messages]")
+{
+    std::string out;
+    put_u16(out, 0x3039);
+    put_i32(out, 123456789);
+    put_i32(out, -2);
+    put_u32(out, 0x80000000u);
+    put_i16(out, -32768);
+    CHECK(hex(out) == "39 30 15 CD 5B 07 FE FF FF FF 00 00 00 80 00 80");   // section 6's examples
+    CHECK(get_u16(out, 0) == 0x3039);
+    CHECK(get_i32(out, 2) == 123456789);
+    CHECK(get_i32(out, 6) == -2);
+    CHECK(get_u32(out, 10) == 0x80000000u);
+    CHECK(get_i16(out, 14) == -32768);
+    CHECK(get_u8(out, 1) == 0x30);
+    CHECK(hex(encode_header_only(MGMSG_HW_REQ_INFO, 0, 0, kGenericUsb, kHost)) == "05 00 00 00 50 01");
+    CHECK(hex(encode_with_data(MGMSG_MOT_MOVE_ABSOLUTE, kBay0 + 1, kHost, unhex("01 00 40 0D 03 00")))
+          == "53 04 06 00 A2 01 01 00 40 0D 03 00");
+    CHECK(is_valid_address(0x2A));
+    CHECK_FALSE(is_valid_address(0x2B));
+    CHECK_FALSE(is_valid_address(0x00));
+    CHECK_FALSE(is_valid_address(0x81));
+}
+
+TEST_CASE("apt manual examples decode as documented", "[unit][apt][messages]")
+{
+    struct Example {
+        const char* where;
+        std::string bytes;
+        std::uint16_t id;
+        std::uint8_t dest, source;
+        std::string params_or_data;   // "p1 p2" for header-only frames, else the data packet
+    };
+    const std::vector<Example> examples{
+        {"MOD_IDENTIFY p.16", "23 02 00 00 21 01", 0x0223, 0x21, 0x01, "00 00"},
+        {"MOD_SET_CHANENABLESTATE p.17", "10 02 01 01 22 01", 0x0210, 0x22, 0x01, "01 01"},
+        {"HW_RESPONSE p.19", "80 00 00 00 01 11", 0x0080, 0x01, 0x11, "00 00"},
+        {"HW_REQ_INFO p.21", "05 00 00 00 11 01", 0x0005, 0x11, 0x01, "00 00"},
+        {"HW_REQ_INFO to a USB unit", "05 00 00 00 50 01", 0x0005, 0x50, 0x01, "00 00"},
+        {"HUB_REQ_BAYUSED p.24", "65 00 00 00 50 01", 0x0065, 0x50, 0x01, "00 00"},
+        {"HUB_GET_BAYUSED p.24", "66 00 06 00 01 50", 0x0066, 0x01, 0x50, "06 00"},
+        {"RACK_SET_DIGOUTPUTS p.26", "28 02 01 22 11 01", 0x0228, 0x11, 0x01, "01 22"},
+        {"MOT_SET_POSCOUNTER p.28", "10 04 06 00 A2 01 01 00 04 0D 03 00", 0x0410, 0x22, 0x01,
+         "01 00 04 0D 03 00"},
+        {"MOT_SET_ENCCOUNTER p.29", "09 04 06 00 A2 01 01 00 04 0D 03 00", 0x0409, 0x22, 0x01,
+         "01 00 04 0D 03 00"},
+        {"MOT_SET_VELPARAMS p.30", "13 04 0E 00 A2 01 01 00 00 00 00 00 B0 35 00 00 CD CC CC 00", 0x0413,
+         0x22, 0x01, "01 00 00 00 00 00 B0 35 00 00 CD CC CC 00"},
+        {"MOT_SET_JOGPARAMS p.33",
+         "16 04 16 00 A2 01 01 00 01 00 E8 03 00 00 00 00 00 00 B0 35 00 00 CD CC CC 00 02 00", 0x0416, 0x22,
+         0x01, "01 00 01 00 E8 03 00 00 00 00 00 00 B0 35 00 00 CD CC CC 00 02 00"},
+        {"MOT_SET_GENMOVEPARAMS p.34", "3A 04 06 00 A2 01 01 00 20 4E 00 00", 0x043A, 0x22, 0x01,
+         "01 00 20 4E 00 00"},
+        {"MOT_SET_MOVERELPARAMS p.35", "45 04 06 00 A2 01 01 00 40 0D 03 00", 0x0445, 0x22, 0x01,
+         "01 00 40 0D 03 00"},
+        {"MOT_SET_MOVEABSPARAMS p.36", "50 04 06 00 A2 01 01 00 40 0D 03 00", 0x0450, 0x22, 0x01,
+         "01 00 40 0D 03 00"},
+        {"MOT_SET_LIMSWITCHPARAMS p.40", "23 04 10 00 A2 01 01 00 02 00 02 00 E8 CC CC 00 00 00 00 00 03 00",
+         0x0423, 0x22, 0x01, "01 00 02 00 02 00 E8 CC CC 00 00 00 00 00 03 00"},
+        {"MOT_MOVE_HOME p.41", "43 04 01 00 22 01", 0x0443, 0x22, 0x01, "01 00"},
+        {"MOT_MOVE_HOMED p.41", "44 04 01 00 01 22", 0x0444, 0x01, 0x22, "01 00"},
+        {"MOT_MOVE_RELATIVE short p.42", "48 04 01 00 22 01", 0x0448, 0x22, 0x01, "01 00"},
+        {"MOT_MOVE_RELATIVE long p.43", "48 04 06 00 A2 01 01 00 40 0D 03 00", 0x0448, 0x22, 0x01,
+         "01 00 40 0D 03 00"},
+        {"MOT_MOVE_ABSOLUTE short p.45", "53 04 01 00 22 01", 0x0453, 0x22, 0x01, "01 00"},
+        {"MOT_MOVE_ABSOLUTE long p.46", "53 04 06 00 A2 01 01 00 40 0D 03 00", 0x0453, 0x22, 0x01,
+         "01 00 40 0D 03 00"},
+        {"MOT_MOVE_VELOCITY p.48", "57 04 01 01 22 01", 0x0457, 0x22, 0x01, "01 01"},
+        {"MOT_SET_AVMODES p.53", "B3 04 04 00 D0 01 01 00 09 00", 0x04B3, 0x50, 0x01, "01 00 09 00"},
+        {"MOT_SET_EEPROMPARAMS p.60", "B9 04 04 00 D0 01 01 00 B6 04", 0x04B9, 0x50, 0x01, "01 00 B6 04"},
+        {"MOT_SET_PMDMOTOROUTPUTPARAMS p.65", "DA 04 0E 00 A2 01 01 00 99 19 C0 12 00 00 00 00 00 00 00 00",
+         0x04DA, 0x22, 0x01, "01 00 99 19 C0 12 00 00 00 00 00 00 00 00"},
+        {"MOT_SET_PMDPROFILEMODEPARAMS p.70", "E3 04 0C 00 A2 01 01 00 02 00 E1 12 0E 00 00 00 00 00", 0x04E3,
+         0x22, 0x01, "01 00 02 00 E1 12 0E 00 00 00 00 00"},
+        {"MOT_SET_PMDCURRENTLOOPPARAMS p.72",
+         "D4 04 12 00 A2 01 01 00 02 00 23 00 50 00 FF 7F 32 00 00 00 00 00 00 00", 0x04D4, 0x22, 0x01,
+         "01 00 02 00 23 00 50 00 FF 7F 32 00 00 00 00 00 00 00"},
+        {"MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS p.74",
+         "E9 04 12 00 A2 01 01 00 02 00 00 00 28 00 30 75 32 00 F4 01 00 00 00 00", 0x04E9, 0x22, 0x01,
+         "01 00 02 00 00 00 28 00 30 75 32 00 F4 01 00 00 00 00"},
+        {"MOT_ACK_DCSTATUSUPDATE p.80", "92 04 00 00 21 01", 0x0492, 0x21, 0x01, "00 00"},
+        {"MOT_SET_SOL_OPERATINGMODE p.85", "C0 04 01 02 50 01", 0x04C0, 0x50, 0x01, "01 02"},
+        {"MOT_REQ_SOL_OPERATINGMODE p.86", "C1 04 01 00 50 01", 0x04C1, 0x50, 0x01, "01 00"},
+        {"MOT_GET_SOL_OPERATINGMODE p.86", "C2 04 01 01 01 50", 0x04C2, 0x01, 0x50, "01 01"},
+        {"MOT_SET_SOL_CYCLEPARAMS p.87", "C3 04 0E 00 D0 01 01 00 A0 0F 00 00 A0 0F 00 00 14 00 00 00",
+         0x04C3, 0x50, 0x01, "01 00 A0 0F 00 00 A0 0F 00 00 14 00 00 00"},
+        {"MOT_SET_SOL_INTERLOCKMODE p.89", "C6 04 01 01 50 01", 0x04C6, 0x50, 0x01, "01 01"},
+        {"MOT_REQ_SOL_INTERLOCKMODE p.90", "C7 04 01 00 50 01", 0x04C7, 0x50, 0x01, "01 00"},
+        {"MOT_GET_SOL_INTERLOCKMODE p.90", "C8 04 01 01 01 50", 0x04C8, 0x01, 0x50, "01 01"},
+        {"MOT_SET_SOL_STATE p.91", "CB 04 01 01 50 01", 0x04CB, 0x50, 0x01, "01 01"},
+        {"MOT_REQ_SOL_STATE p.92", "CC 04 01 00 50 01", 0x04CC, 0x50, 0x01, "01 00"},
+        {"MOT_GET_SOL_STATE p.92", "CD 04 01 01 01 50", 0x04CD, 0x01, 0x50, "01 01"},
+        {"HW_NO_FLASH_PROGRAMMING later issues", "18 00 00 00 50 01", 0x0018, 0x50, 0x01, "00 00"},
+    };
+    std::string all;
+    for (const auto& e : examples) {
+        INFO(e.where);
+        const std::string in = unhex(e.bytes);
+        all += in;
+        for (std::size_t chunk : {1u, 100u}) {
+            const auto p = parse_all(in, chunk);
+            REQUIRE(p.frames.size() == 1);
+            const Frame& f = p.frames[0];
+            CHECK(f.id == e.id);
+            CHECK(f.dest == e.dest);
+            CHECK(f.source == e.source);
+            CHECK(p.dropped == 0);
+            if (f.has_data) {
+                CHECK(hex(p.data[0]) == e.params_or_data);
+            } else {
+                char params[8];
+                std::snprintf(params, sizeof params, "%02X %02X", f.param1, f.param2);
+                CHECK(std::string(params) == e.params_or_data);
+            }
+        }
+    }
+    // All of them back to back: one frame each.
+    const auto p = parse_all(all, 7);
+    CHECK(p.frames.size() == examples.size());
+    CHECK(p.dropped == 0);
+}
+
+TEST_CASE("apt manual example fields decode as explained", "[unit][apt][messages]")
+{
+    // MOVE_ABSOLUTE long form (p.46): chan 1, 10 mm = 200,000 counts.
+    auto p = parse_all(unhex("53 04 06 00 A2 01 01 00 40 0D 03 00"), 5);
+    REQUIRE(p.frames.size() == 1);
+    CHECK(get_u16(p.data[0], 0) == 1);
+    CHECK(get_i32(p.data[0], 2) == 200000);
+
+    // SET_VELPARAMS (p.30): acceleration 13744, max velocity 13421773 (99 mm/s).
+    p = parse_all(unhex("13 04 0E 00 A2 01 01 00 00 00 00 00 B0 35 00 00 CD CC CC 00"), 3);
+    REQUIRE(p.frames.size() == 1);
+    CHECK(get_i32(p.data[0], 2) == 0);
+    CHECK(get_i32(p.data[0], 6) == 13744);
+    CHECK(get_i32(p.data[0], 10) == 13421773);
+
+    // HW_GET_INFO (p.22), the example completed with the zeros its "00..." stands for.
+    std::string info = unhex("89 53 9A 05 49 4F 4E 30 30 31 20 00 2C 00 02 01 39 00");
+    info += "Brushless DC Motor ION Drive";
+    info.resize(76, '\0');
+    info += unhex("11 00 01 00 00 00 01 00");
+    REQUIRE(info.size() == 84);
+    const std::string message = unhex("06 00 54 00 81 22") + info;
+    for (std::size_t chunk : {1u, 13u, 90u}) {
+        p = parse_all(message, chunk);
+        REQUIRE(p.frames.size() == 1);
+        const Frame& f = p.frames[0];
+        CHECK(f.id == MGMSG_HW_GET_INFO);
+        CHECK(f.dest == kHost);
+        CHECK(f.source == 0x22);   // "Motor Channel 2": bay 1
+        CHECK(get_u32(p.data[0], 0) == 94000009);
+        CHECK(p.data[0].substr(4, 6) == "ION001");
+        CHECK(get_u16(p.data[0], 12) == 44);   // brushless DC controller card
+        CHECK(get_u32(p.data[0], 14) == 3735810);
+        CHECK(p.data[0].substr(18, 28) == "Brushless DC Motor ION Drive");
+        CHECK(get_u16(p.data[0], 82) == 1);   // one channel
+    }
+}
+
+TEST_CASE("apt manual examples that the ERRATA correct", "[unit][apt][messages]")
+{
+    SECTION("RACK_REQ_BAYUSED printed as 06 00 (p.23) is rejected and 60 00 decodes")
+    {
+        check_rejected(unhex("06 00 00 00 11 01"));
+        const auto p = parse_all(unhex("60 00 00 00 11 01"), 1);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(p.frames[0].id == MGMSG_RACK_REQ_BAYUSED);
+    }
+    SECTION("RACK_GET_STATUSBITS without the data flag (p.25) is rejected")
+    {
+        check_rejected(unhex("27 02 04 00 01 22 00 00 00 00"));
+        const auto p = parse_all(unhex("27 02 04 00 81 22 01 00 00 00"), 1);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(p.frames[0].id == MGMSG_RACK_GET_STATUSBITS);
+        CHECK(get_u32(p.data[0], 0) == 1);
+    }
+    SECTION("HW_DISCONNECT from source 0x00 (p.19) is rejected")
+    {
+        check_rejected(unhex("02 00 00 00 11 00"));
+        const auto p = parse_all(unhex("02 00 00 00 11 01"), 1);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(p.frames[0].id == MGMSG_HW_DISCONNECT);
+    }
+    SECTION("the DCPIDPARAMS example (p.52) is 6 bytes short of its 20-byte packet")
+    {
+        const auto p = parse_all(unhex("A0 04 14 00 D0 01 01 00 41 00 AF 00 58 02 20 4E 00 00 0F 00"), 1);
+        CHECK(p.frames.empty());
+        CHECK(p.buffered == 20);
+        std::string full;
+        put_u16(full, 1);
+        for (std::int32_t v : {65, 175, 600, 20000})
+            put_i32(full, v);
+        put_u16(full, 15);
+        const auto q = parse_all(encode_with_data(MGMSG_MOT_SET_DCPIDPARAMS, kGenericUsb, kHost, full), 1);
+        REQUIRE(q.frames.size() == 1);
+        CHECK(get_i32(q.data[0], 14) == 20000);
+    }
+    SECTION("the PMDPOSITIONLOOPPARAMS example (p.62) is 2 bytes short of its 28-byte packet")
+    {
+        const std::string example = unhex("D7 04 1C 00 A2 01 01 00 41 00 AF 00 80 38 01 00 58 02 05 00 "
+                                          "CD 0C 00 00 E8 03 FF FF 00 00 00 00");
+        auto p = parse_all(example, 1);
+        CHECK(p.frames.empty());
+        CHECK(p.buffered == 32);
+        p = parse_all(example + unhex("00 00"), 1);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(get_u16(p.data[0], 4) == 175);     // Ki
+        CHECK(get_u32(p.data[0], 6) == 80000);   // integral limit
+        CHECK(get_u32(p.data[0], 20) == 65535);  // position error limit
+    }
+    SECTION("the BUTTONPARAMS example (p.59) is 2 bytes short of its 16-byte packet")
+    {
+        const auto p = parse_all(unhex("B6 04 10 00 D0 01 01 00 02 00 C0 12 00 00 00 00 00 00 00 00"), 1);
+        CHECK(p.frames.empty());
+        CHECK(p.buffered == 20);
+    }
+    SECTION("the TRACKSETTLEPARAMS example (p.67) has 2 bytes past its 12-byte packet")
+    {
+        const auto p = parse_all(unhex("E0 04 0C 00 A2 01 01 00 00 00 14 00 00 00 00 00 00 00 00 00"), 1);
+        REQUIRE(p.frames.size() == 1);
+        CHECK(p.frames[0].id == MGMSG_MOT_SET_PMDTRACKSETTLEPARAMS);
+        CHECK(get_u16(p.data[0], 4) == 20);   // settle window
+        CHECK(p.dropped == 1);    // 0x0000 is no message
+        CHECK(p.buffered == 1);   // a lone byte may still start a header
+    }
+    SECTION("MOVE_COMPLETED and MOVE_STOPPED carry the 14-byte status")
+    {
+        std::string status;
+        put_u16(status, 1);
+        put_i32(status, 200000);
+        put_u16(status, 0);
+        put_u16(status, 0);
+        put_u32(status, 0x80000400u);
+        for (auto id : {MGMSG_MOT_MOVE_COMPLETED, MGMSG_MOT_MOVE_STOPPED}) {
+            const auto p = parse_all(encode_with_data(id, kHost, kGenericUsb, status), 1);
+            REQUIRE(p.frames.size() == 1);
+            CHECK(p.frames[0].id == id);
+            CHECK(get_u32(p.data[0], 10) == 0x80000400u);
+            check_rejected(encode_header_only(id, 0x01, 0x00, kHost, kGenericUsb));
+        }
+    }
+}
