@@ -1,5 +1,6 @@
 #include "emulator/core/rig.hpp"
 
+#include "emulator/apt/apt_device.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 
 #include <nlohmann/json.hpp>
@@ -56,9 +57,9 @@ std::unique_ptr<Device> make_device(const DeviceConfig& config, Clock& clock,
     case Protocol::Mcs:
         return std::make_unique<mcs::McsDevice>(config, clock, std::move(log));
     case Protocol::Apt:
-        break;
+        return std::make_unique<apt::AptDevice>(config, clock, std::move(log));
     }
-    throw ConfigError("device \"" + config.name + "\": protocol \"apt\" is not supported yet");
+    throw ConfigError("device \"" + config.name + "\": unknown protocol");
 }
 
 } // namespace

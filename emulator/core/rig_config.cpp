@@ -1,5 +1,6 @@
 #include "emulator/core/rig_config.hpp"
 
+#include "emulator/apt/catalogue.hpp"
 #include "emulator/mcs/sensor_types.hpp"
 
 #include <nlohmann/json.hpp>
@@ -29,8 +30,9 @@ constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 
 // The keys each object may hold; anything else is an error.
 constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
-constexpr std::array<std::string_view, 7> kDeviceKeys{
-    "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs"};
+constexpr std::array<std::string_view, 8> kDeviceKeys{
+    "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs", "apt"};
+constexpr std::array<std::string_view, 2> kAptKeys{"stage", "serial_number"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
 constexpr std::array<std::string_view, 16> kChannelKeys{
     "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
@@ -336,7 +338,32 @@ private:
                 fail(pointer_to(pointer, "faithful_timing"), "expected true or false, got " + describe(*t));
             d.faithful_timing = t->get<bool>();
         }
-        d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
+        if (d.protocol == Protocol::Mcs) {
+            if (find(v, "apt"))
+                fail(pointer_to(pointer, "apt"), "an \"apt\" object belongs to an APT device, not to protocol \"mcs\"");
+            d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
+            return d;
+        }
+        if (find(v, "mcs"))
+            fail(pointer_to(pointer, "mcs"), "an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
+        const auto* controller = apt::find_controller(d.model);
+        if (!find(v, "model") || !controller)
+            fail(pointer_to(pointer, "model"), "expected an APT controller model (" + std::string(apt::controller_names())
+                                                  + "), got " + (find(v, "model") ? quote(d.model) : std::string("nothing")));
+        const auto apt_pointer = pointer_to(pointer, "apt");
+        const auto& a = require(v, pointer, "apt");
+        check_keys(a, apt_pointer, kAptKeys);
+        if (const auto* st = find(a, "stage")) {
+            d.apt.stage = get_string(*st, pointer_to(apt_pointer, "stage"));
+            if (!apt::find_stage(d.apt.stage))
+                fail(pointer_to(apt_pointer, "stage"), "unknown stage " + quote(d.apt.stage) + " (expected one of "
+                                                           + std::string(apt::stage_names()) + ")");
+        }
+        if (const auto* sn = find(a, "serial_number")) {
+            const std::int64_t lo = controller->serial_prefix * 1'000'000LL;
+            d.apt.serial_number = static_cast<std::uint32_t>(get_int(*sn, pointer_to(apt_pointer, "serial_number"), lo,
+                                                                     lo + 999'999, " (the model's serial prefix)"));
+        }
         return d;
     }
 
@@ -371,10 +398,9 @@ private:
         const auto& s = v.get_ref<const std::string&>();
         if (s == "mcs")
             return Protocol::Mcs;
-        // APT devices are parsed by a later release; the name is reserved now.
         if (s == "apt")
-            fail(pointer, "protocol \"apt\" is not supported yet (expected \"mcs\")");
-        fail(pointer, "unknown protocol " + quote(s) + " (expected \"mcs\")");
+            return Protocol::Apt;
+        fail(pointer, "unknown protocol " + quote(s) + " (expected \"mcs\" or \"apt\")");
     }
 
     McsConfig load_mcs(const json& v, const std::string& pointer) const

@@ -54,6 +54,12 @@ struct McsConfig {
     std::vector<McsChannelConfig> channels;        ///< 1..255 channels
 };
 
+/// A single-unit APT motor controller (Thorlabs): its stage.
+struct AptConfig {
+    std::string stage = "MTS50-Z8";   ///< a stage of the catalogue (emulator/apt/catalogue.cpp)
+    std::uint32_t serial_number = 0;  ///< 8 digits with the model's prefix; 0 = prefix × 10^6 + 1
+};
+
 struct DeviceConfig {
     std::string name;                 ///< unique; names the pty symlink and the logger
     Protocol protocol = Protocol::Mcs;
@@ -63,6 +69,7 @@ struct DeviceConfig {
     /// Pace the pty's output at the controller's baud rate (MCS: CB, effective after R).
     bool faithful_timing = false;
     McsConfig mcs;
+    AptConfig apt;
 };
 
 struct RigConfig {

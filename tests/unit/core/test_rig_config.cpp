@@ -44,7 +44,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, faithful_timing, mcs)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, faithful_timing, mcs, apt)";
 
 } // namespace
 
@@ -365,16 +365,26 @@ TEST_CASE("rig config: names are 1..64 characters from A-Z a-z 0-9 _ . -", "[uni
     CHECK(error_of(rig) == "(no error)");
 }
 
-TEST_CASE("rig config: protocol apt is reserved, others unknown", "[unit][config]")
+TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["protocol"] = "apt";
-    CHECK(error_of(rig) ==
-          "rig.json: /devices/0/protocol: "
-          "protocol \"apt\" is not supported yet (expected \"mcs\")");
+    CHECK(error_of(rig) == "rig.json: /devices/0/mcs: an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
+    rig["devices"][0].erase("mcs");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101), got nothing");
+    rig["devices"][0]["model"] = "TDC001";
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
+    rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of MTS50-Z8, MTS25-Z8, Z825B)");
+    rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 27000001}};
+    CHECK(error_of(rig).find("/devices/0/apt/serial_number: expected an integer 83000000..83999999") != std::string::npos);
+    rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 83123456}};
+    const auto ok = rigsim::parse_rig_config(rig.dump(), "rig.json");
+    CHECK(ok.devices[0].protocol == rigsim::Protocol::Apt);
+    CHECK(ok.devices[0].apt.serial_number == 83123456);
     rig["devices"][0]["protocol"] = "MCS";
     CHECK(error_of(rig) ==
-          "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\")");
+          "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\" or \"apt\")");
     rig["devices"][0]["protocol"] = 1;
     CHECK(error_of(rig) == "rig.json: /devices/0/protocol: expected a string, got 1");
 }

@@ -1,0 +1,422 @@
+#include "emulator/apt/apt_device.hpp"
+
+#include "emulator/apt/messages.hpp"
+#include "emulator/apt/wire.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace rigsim::apt {
+
+namespace {
+
+/// The only channel of a single-unit controller: P_MOD_CHAN1.
+constexpr std::uint16_t kChan1 = 0x01;
+
+std::string chan_and_i32(std::int32_t v)
+{
+    std::string d;
+    put_u16(d, kChan1);
+    put_i32(d, v);
+    return d;
+}
+
+std::string velocity_block(const VelocityParams& v)
+{
+    std::string d;
+    put_i32(d, v.min);
+    put_i32(d, v.acceleration);
+    put_i32(d, v.max);
+    return d;
+}
+
+} // namespace
+
+/// One connection: its own framer; frames go to the device, answers come back.
+class AptSession : public Session {
+public:
+    AptSession(AptDevice& device, SendFn send, std::string peer, spdlog::logger& log)
+        : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log)
+    {
+        device_.attach(this);
+    }
+    ~AptSession() override { device_.detach(this); }
+
+    void receive(std::string_view bytes) override
+    {
+        std::size_t dropped = 0;
+        while (!bytes.empty()) {
+            const auto r = framer_.parse(bytes);
+            bytes.remove_prefix(r.consumed);
+            dropped += r.dropped;
+            if (r.status != FrameFramer::Status::Frame)
+                continue;
+            std::string reply;
+            device_.handle(r.frame, peer_, reply);
+            if (!reply.empty())
+                send_(reply);   // one frame, one write
+        }
+        if (dropped > 0)
+            log_.warn("{}: skipped {} byte(s) that start no valid APT message", peer_, dropped);
+        device_.flush();
+    }
+
+    void send(std::string_view frame) { send_(frame); }
+
+private:
+    AptDevice& device_;
+    SendFn send_;
+    std::string peer_;
+    spdlog::logger& log_;
+    FrameFramer framer_;
+};
+
+AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
+    : config_(config), clock_(clock), log_(std::move(log)), model_(*find_controller(config.model)),
+      stage_(*find_stage(config.apt.stage)), channel_(model_, stage_, clock),
+      serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1)
+{
+    clock_.add(this);
+}
+
+AptDevice::~AptDevice()
+{
+    clock_.remove(this);
+}
+
+std::unique_ptr<Session> AptDevice::open_session(SendFn send, std::string peer)
+{
+    return std::make_unique<AptSession>(*this, std::move(send), std::move(peer), *log_);
+}
+
+void AptDevice::detach(AptSession* s)
+{
+    sessions_.erase(std::remove(sessions_.begin(), sessions_.end(), s), sessions_.end());
+}
+
+std::string AptDevice::info_packet() const
+{
+    // HW_GET_INFO: serial long, model char[8], type word, firmware byte[4] (minor, interim,
+    // major, unused), notes char[64], number of channels word: 84 bytes (manual p. 21).
+    std::string d;
+    put_u32(d, serial_);
+    std::string model(config_.model.substr(0, 8));
+    model.resize(8, '\0');
+    d += model;
+    put_u16(d, model_.hw_type);
+    d += std::string{'\x03', '\x00', '\x01', '\x00'};   // firmware 1.0.3
+    std::string notes(model_.notes);
+    notes.resize(64, '\0');
+    d += notes;
+    put_u16(d, 1);
+    return d;
+}
+
+std::string AptDevice::status_packet() const
+{
+    std::string d;
+    put_u16(d, kChan1);
+    put_i32(d, channel_.position());
+    put_i32(d, channel_.encoder());
+    put_u32(d, channel_.status_bits());
+    return d;
+}
+
+std::string AptDevice::dc_status_packet() const
+{
+    std::string d;
+    put_u16(d, kChan1);
+    put_i32(d, channel_.position());
+    put_i16(d, channel_.velocity_word());
+    put_u16(d, 0);   // reserved
+    put_u32(d, channel_.status_bits());
+    return d;
+}
+
+void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply)
+{
+    // A single unit answers as 0x50 and, as the real cubes do, also acts on messages that
+    // clients address to the motherboard (0x11) or bay 0 (0x21).
+    if (f.dest != kGenericUsb && f.dest != kRack && f.dest != kBay0) {
+        log_->warn("{}: {} to 0x{:02x}: no such module, ignored", peer, f.info->name, f.dest);
+        return;
+    }
+    host_ = f.source;
+    auto answer = [&](std::uint16_t id, const std::string& data) { reply += encode_with_data(id, host_, kGenericUsb, data); };
+    auto answer_header = [&](std::uint16_t id, std::uint8_t p1, std::uint8_t p2) {
+        reply += encode_header_only(id, p1, p2, host_, kGenericUsb);
+    };
+    // Channel addressing: header-only messages carry it in param1, others as the first word.
+    const std::uint16_t chan = f.has_data ? get_u16(f.data, 0) : f.param1;
+    auto wrong_channel = [&] {
+        log_->warn("{}: {} for channel {}: a single-channel unit has only channel 1, ignored", peer, f.info->name, chan);
+    };
+    switch (f.id) {
+    // ---- generic ----
+    case MGMSG_MOD_IDENTIFY:
+        ++identify_count_;   // the front panel LED flashes; the back door can read the count
+        log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
+        return;
+    case MGMSG_MOD_SET_CHANENABLESTATE:
+        if (f.param1 != kChan1 || (f.param2 != 1 && f.param2 != 2))
+            return wrong_channel();
+        channel_.set_enabled(f.param2 == 1);
+        return;
+    case MGMSG_MOD_REQ_CHANENABLESTATE:
+        return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, channel_.enabled() ? 1 : 2);
+    case MGMSG_HW_DISCONNECT:
+        log_->info("{}: HW_DISCONNECT", peer);
+        return;
+    case MGMSG_HW_REQ_INFO:
+        return answer(MGMSG_HW_GET_INFO, info_packet());
+    case MGMSG_HW_START_UPDATEMSGS:
+        updates_ = true;
+        updates_since_ack_ = 0;
+        next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
+        return;
+    case MGMSG_HW_STOP_UPDATEMSGS:
+        updates_ = false;
+        next_update_ = kNever;
+        return;
+    case MGMSG_HW_YES_FLASH_PROGRAMMING:
+    case MGMSG_HW_NO_FLASH_PROGRAMMING:
+        return;   // later protocol issues: accepted silently, as the real units do
+    case MGMSG_MOT_ACK_DCSTATUSUPDATE:
+        updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
+        if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now
+            next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
+        return;
+    default:
+        break;
+    }
+    if (chan != kChan1)
+        return wrong_channel();
+    switch (f.id) {
+    // ---- motor parameters: SET stores, REQ answers GET ----
+    case MGMSG_MOT_SET_POSCOUNTER:
+        channel_.set_position(get_i32(f.data, 2));
+        return;
+    case MGMSG_MOT_REQ_POSCOUNTER:
+        return answer(MGMSG_MOT_GET_POSCOUNTER, chan_and_i32(channel_.position()));
+    case MGMSG_MOT_SET_ENCCOUNTER:
+        channel_.set_encoder(get_i32(f.data, 2));
+        return;
+    case MGMSG_MOT_REQ_ENCCOUNTER:
+        return answer(MGMSG_MOT_GET_ENCCOUNTER, chan_and_i32(channel_.encoder()));
+    case MGMSG_MOT_SET_VELPARAMS: {
+        const VelocityParams v{get_i32(f.data, 2), get_i32(f.data, 6), get_i32(f.data, 10)};
+        if (v.acceleration <= 0 || v.max <= 0 || v.min < 0) {
+            log_->warn("{}: MOT_SET_VELPARAMS with acceleration {} and maximum velocity {}: ignored", peer,
+                       v.acceleration, v.max);
+            return;
+        }
+        channel_.velocity = v;
+        return;
+    }
+    case MGMSG_MOT_REQ_VELPARAMS: {
+        std::string d;
+        put_u16(d, kChan1);
+        return answer(MGMSG_MOT_GET_VELPARAMS, d + velocity_block(channel_.velocity));
+    }
+    case MGMSG_MOT_SET_JOGPARAMS: {
+        JogParams j;
+        j.mode = get_u16(f.data, 2);
+        j.step_size = get_i32(f.data, 4);
+        j.velocity = {get_i32(f.data, 8), get_i32(f.data, 12), get_i32(f.data, 16)};
+        j.stop_mode = get_u16(f.data, 20);
+        if ((j.mode != 1 && j.mode != 2) || (j.stop_mode != 1 && j.stop_mode != 2) || j.velocity.max <= 0
+            || j.velocity.acceleration <= 0) {
+            log_->warn("{}: MOT_SET_JOGPARAMS out of range: ignored", peer);
+            return;
+        }
+        channel_.jog = j;
+        return;
+    }
+    case MGMSG_MOT_REQ_JOGPARAMS: {
+        const auto& j = channel_.jog;
+        std::string d;
+        put_u16(d, kChan1);
+        put_u16(d, j.mode);
+        put_i32(d, j.step_size);
+        d += velocity_block(j.velocity);
+        put_u16(d, j.stop_mode);
+        return answer(MGMSG_MOT_GET_JOGPARAMS, d);
+    }
+    case MGMSG_MOT_SET_GENMOVEPARAMS:
+        channel_.backlash = get_i32(f.data, 2);
+        return;
+    case MGMSG_MOT_REQ_GENMOVEPARAMS:
+        return answer(MGMSG_MOT_GET_GENMOVEPARAMS, chan_and_i32(channel_.backlash));
+    case MGMSG_MOT_SET_MOVERELPARAMS:
+        channel_.relative_distance = get_i32(f.data, 2);
+        return;
+    case MGMSG_MOT_REQ_MOVERELPARAMS:
+        return answer(MGMSG_MOT_GET_MOVERELPARAMS, chan_and_i32(channel_.relative_distance));
+    case MGMSG_MOT_SET_MOVEABSPARAMS:
+        channel_.absolute_position = get_i32(f.data, 2);
+        return;
+    case MGMSG_MOT_REQ_MOVEABSPARAMS:
+        return answer(MGMSG_MOT_GET_MOVEABSPARAMS, chan_and_i32(channel_.absolute_position));
+    case MGMSG_MOT_SET_HOMEPARAMS: {
+        HomeParams h{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10)};
+        if ((h.direction != 1 && h.direction != 2) || (h.limit_switch != 1 && h.limit_switch != 4) || h.velocity <= 0
+            || h.offset < 0) {
+            log_->warn("{}: MOT_SET_HOMEPARAMS out of range: ignored", peer);
+            return;
+        }
+        channel_.home_params = h;
+        return;
+    }
+    case MGMSG_MOT_REQ_HOMEPARAMS: {
+        const auto& h = channel_.home_params;
+        std::string d;
+        put_u16(d, kChan1);
+        put_u16(d, h.direction);
+        put_u16(d, h.limit_switch);
+        put_i32(d, h.velocity);
+        put_i32(d, h.offset);
+        return answer(MGMSG_MOT_GET_HOMEPARAMS, d);
+    }
+    case MGMSG_MOT_SET_LIMSWITCHPARAMS: {
+        LimitSwitchParams l{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10),
+                            get_u16(f.data, 14)};
+        channel_.limit_switch = l;
+        return;
+    }
+    case MGMSG_MOT_REQ_LIMSWITCHPARAMS: {
+        const auto& l = channel_.limit_switch;
+        std::string d;
+        put_u16(d, kChan1);
+        put_u16(d, l.cw_hard);
+        put_u16(d, l.ccw_hard);
+        put_i32(d, l.cw_soft);
+        put_i32(d, l.ccw_soft);
+        put_u16(d, l.mode);
+        return answer(MGMSG_MOT_GET_LIMSWITCHPARAMS, d);
+    }
+    case MGMSG_MOT_SET_DCPIDPARAMS:
+        channel_.pid_params.assign(f.data.substr(2));
+        return;
+    case MGMSG_MOT_REQ_DCPIDPARAMS:
+        if (channel_.pid_params.empty())
+            channel_.pid_params = std::string("\x8c\x01\x00\x00\x0e\x01\x00\x00\xa0\x0f\x00\x00\xfc\x12\x00\x00\x0f\x00", 18);
+        return answer(MGMSG_MOT_GET_DCPIDPARAMS, std::string("\x01\x00", 2) + channel_.pid_params);
+    case MGMSG_MOT_SET_AVMODES:
+        channel_.av_modes.assign(f.data.substr(2));
+        return;
+    case MGMSG_MOT_REQ_AVMODES:
+        if (channel_.av_modes.empty())
+            channel_.av_modes = std::string("\x0b\x00", 2);   // LED: ident, limit switch, moving
+        return answer(MGMSG_MOT_GET_AVMODES, std::string("\x01\x00", 2) + channel_.av_modes);
+    case MGMSG_MOT_SET_POTPARAMS:
+        channel_.pot_params.assign(f.data.substr(2));
+        return;
+    case MGMSG_MOT_REQ_POTPARAMS:
+        if (channel_.pot_params.empty())
+            channel_.pot_params.assign(24, '\0');
+        return answer(MGMSG_MOT_GET_POTPARAMS, std::string("\x01\x00", 2) + channel_.pot_params);
+    case MGMSG_MOT_SET_BUTTONPARAMS:
+        channel_.button_params.assign(f.data.substr(2));
+        return;
+    case MGMSG_MOT_REQ_BUTTONPARAMS:
+        if (channel_.button_params.empty())
+            channel_.button_params.assign(14, '\0');
+        return answer(MGMSG_MOT_GET_BUTTONPARAMS, std::string("\x01\x00", 2) + channel_.button_params);
+    case MGMSG_MOT_SET_EEPROMPARAMS:
+        log_->info("{}: MOT_SET_EEPROMPARAMS for message 0x{:04x}: saved", peer, get_u16(f.data, 2));
+        return;
+    // ---- moves ----
+    case MGMSG_MOT_MOVE_HOME:
+        channel_.home();
+        return;
+    case MGMSG_MOT_MOVE_RELATIVE:
+        channel_.move_relative(f.has_data ? get_i32(f.data, 2) : channel_.relative_distance);
+        return;
+    case MGMSG_MOT_MOVE_ABSOLUTE:
+        channel_.move_absolute(f.has_data ? get_i32(f.data, 2) : channel_.absolute_position);
+        return;
+    case MGMSG_MOT_MOVE_JOG:
+        if (f.param2 != 1 && f.param2 != 2)
+            return log_->warn("{}: MOT_MOVE_JOG direction {}: ignored", peer, f.param2);
+        channel_.jog_move(f.param2 == 1);
+        return;
+    case MGMSG_MOT_MOVE_VELOCITY:
+        if (f.param2 != 1 && f.param2 != 2)
+            return log_->warn("{}: MOT_MOVE_VELOCITY direction {}: ignored", peer, f.param2);
+        channel_.move_velocity(f.param2 == 1);
+        return;
+    case MGMSG_MOT_MOVE_STOP:
+        channel_.stop(f.param2 == 1);
+        return;
+    // ---- status ----
+    case MGMSG_MOT_REQ_STATUSUPDATE:
+        return answer(MGMSG_MOT_GET_STATUSUPDATE, status_packet());
+    case MGMSG_MOT_REQ_DCSTATUSUPDATE:
+        return answer(MGMSG_MOT_GET_DCSTATUSUPDATE, dc_status_packet());
+    case MGMSG_MOT_REQ_STATUSBITS: {
+        std::string d;
+        put_u16(d, kChan1);
+        put_u32(d, channel_.status_bits());
+        return answer(MGMSG_MOT_GET_STATUSBITS, d);
+    }
+    case MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS:
+        end_of_move_messages_ = false;
+        return;
+    case MGMSG_MOT_RESUME_ENDOFMOVEMSGS:
+        end_of_move_messages_ = true;
+        return;
+    default:
+        // A message of the table that this controller does not act on (a GET sent by a
+        // host, a rack or brushless message): the real unit ignores it.
+        log_->warn("{}: {} is not a message a {} acts on: ignored", peer, f.info->name, config_.model);
+        return;
+    }
+}
+
+void AptDevice::broadcast(const std::string& frame)
+{
+    for (auto* s : sessions_)
+        s->send(frame);
+}
+
+void AptDevice::flush()
+{
+    for (const auto event : channel_.take_events()) {
+        if (!end_of_move_messages_)
+            continue;
+        switch (event) {
+        case MotorEvent::MoveCompleted:
+            broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, kGenericUsb, dc_status_packet()));
+            break;
+        case MotorEvent::Stopped:
+            broadcast(encode_with_data(MGMSG_MOT_MOVE_STOPPED, host_, kGenericUsb, dc_status_packet()));
+            break;
+        case MotorEvent::Homed:
+            broadcast(encode_header_only(MGMSG_MOT_MOVE_HOMED, kChan1, 0, host_, kGenericUsb));
+            break;
+        }
+    }
+}
+
+Ticks AptDevice::next_change(Ticks now) const
+{
+    const Ticks update = updates_ && updates_since_ack_ < kUpdatesWithoutAck ? std::max(next_update_, now + 1) : kNever;
+    return std::min(update, channel_.next_change(now));
+}
+
+void AptDevice::tick(Ticks now)
+{
+    channel_.tick(now);
+    flush();
+    if (updates_ && now >= next_update_) {
+        next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
+        // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
+        if (updates_since_ack_ < kUpdatesWithoutAck) {
+            ++updates_since_ack_;
+            broadcast(encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, kGenericUsb, dc_status_packet()));
+        }
+    }
+}
+
+} // namespace rigsim::apt

@@ -1,0 +1,44 @@
+#pragma once
+// APT controllers and stages that a rig may name (manual 2.2 serial prefixes, 7.1 scaling).
+
+#include <cstdint>
+#include <string_view>
+
+namespace rigsim::apt {
+
+enum class MotorKind { DcServo, Stepper, Brushless };
+
+/// An APT controller model.
+struct ControllerModel {
+    std::string_view name;          ///< e.g. "TDC001"
+    std::uint32_t serial_prefix;    ///< first two digits of the 8-digit serial number (2.2)
+    std::uint16_t hw_type;          ///< HW_GET_INFO "type" field
+    MotorKind motor;
+    std::string_view notes;         ///< HW_GET_INFO notes
+    /// Velocity/acceleration sample-time scaling of 7.1 (APT units per encoder count/s and
+    /// per count/s²).
+    double velocity_per_count_s;
+    double acceleration_per_count_s2;
+};
+
+/// A stage (actuator) the controller drives.
+struct StageModel {
+    std::string_view name;          ///< e.g. "MTS50-Z8"
+    MotorKind motor;
+    double travel_mm;
+    double counts_per_mm;           ///< encoder counts (DC servo) or microsteps (stepper)
+    double max_velocity_mm_s;       ///< power-up VELPARAMS
+    double acceleration_mm_s2;
+    double home_velocity_mm_s;
+    double home_offset_mm;          ///< back-off distance from the limit switch
+};
+
+/// The controller with this name, or nullptr.
+const ControllerModel* find_controller(std::string_view name);
+/// The stage with this name, or nullptr.
+const StageModel* find_stage(std::string_view name);
+/// Names for error messages ("TDC001, KDC101").
+std::string_view controller_names();
+std::string_view stage_names();
+
+} // namespace rigsim::apt

@@ -1,0 +1,265 @@
+#include "emulator/apt/motor_channel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rigsim::apt {
+
+MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock)
+    : controller_(controller), stage_(stage), clock_(clock)
+{
+    const double cpm = stage.counts_per_mm;
+    velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * controller.velocity_per_count_s));
+    velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * controller.acceleration_per_count_s2));
+    jog.step_size = static_cast<std::int32_t>(std::lround(0.1 * cpm));
+    jog.velocity = velocity;
+    home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * controller.velocity_per_count_s));
+    home_params.offset = static_cast<std::int32_t>(std::lround(stage.home_offset_mm * cpm));
+    // Power-up: the stage stands mid-travel; the counters read 0 there (not homed).
+    state_ = models::AxisState(travel_counts() / 2, 0.0);
+    counter_offset_ = state_[0];
+    encoder_offset_ = state_[0];
+}
+
+double MotorChannel::counts_per_s(std::int32_t apt_velocity) const
+{
+    return std::abs(static_cast<double>(apt_velocity)) / controller_.velocity_per_count_s;
+}
+
+double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
+{
+    return std::abs(static_cast<double>(apt_acceleration)) / controller_.acceleration_per_count_s2;
+}
+
+std::int32_t MotorChannel::position() const
+{
+    return static_cast<std::int32_t>(std::lround(state_[0] - counter_offset_));
+}
+
+void MotorChannel::set_position(std::int32_t counts)
+{
+    counter_offset_ = state_[0] - counts;
+}
+
+std::int32_t MotorChannel::encoder() const
+{
+    return static_cast<std::int32_t>(std::lround(state_[0] - encoder_offset_));
+}
+
+void MotorChannel::set_encoder(std::int32_t counts)
+{
+    encoder_offset_ = state_[0] - counts;
+}
+
+std::int16_t MotorChannel::velocity_word() const
+{
+    // DCSTATUSUPDATE carries the velocity in APT units scaled down to a word.
+    const double apt = state_[1] * controller_.velocity_per_count_s / 65536.0;
+    return static_cast<std::int16_t>(std::clamp(std::lround(apt), -32768L, 32767L));
+}
+
+std::uint32_t MotorChannel::status_bits() const
+{
+    std::uint32_t bits = status::kMotorConnected;
+    if (state_[0] <= 0.5)
+        bits |= status::kReverseHardLimit;
+    if (state_[0] >= travel_counts() - 0.5)
+        bits |= status::kForwardHardLimit;
+    switch (motion_) {
+    case Motion::Idle:
+        bits |= status::kSettled;
+        break;
+    case Motion::Moving:
+    case Motion::Stopping:
+        bits |= state_[1] >= 0 && profile_.target() >= state_[0] ? status::kMovingForward : status::kMovingReverse;
+        break;
+    case Motion::Jogging:
+        bits |= jog_direction_forward_ ? status::kJoggingForward : status::kJoggingReverse;
+        break;
+    case Motion::HomingToLimit:
+    case Motion::HomingBackOff:
+        bits |= status::kHoming;
+        break;
+    }
+    if (homed_)
+        bits |= status::kHomed;
+    if (enabled_)
+        bits |= status::kEnabled;
+    return bits;
+}
+
+void MotorChannel::set_enabled(bool e)
+{
+    if (!e && moving())
+        stop(true);   // a disabled channel does not move (MOD_SET_CHANENABLESTATE)
+    enabled_ = e;
+}
+
+void MotorChannel::start_profile(double target_physical, double v, double a, Motion motion)
+{
+    const Ticks now = clock_.now();
+    sample(now);
+    const double target = std::clamp(target_physical, 0.0, travel_counts());   // hardware limits
+    if (v <= 0) {
+        motion_ = Motion::Idle;
+        return;
+    }
+    profile_ = models::TrapezoidProfile::plan(state_, target, v, a);
+    start_ = now;
+    end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    motion_ = motion;
+    if (end_ <= now)
+        finish(now);
+}
+
+void MotorChannel::move_absolute(std::int32_t counts)
+{
+    if (!enabled_)
+        return;
+    start_profile(counts + counter_offset_, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
+                  Motion::Moving);
+}
+
+void MotorChannel::move_relative(std::int32_t counts)
+{
+    if (!enabled_)
+        return;
+    sample(clock_.now());
+    start_profile(state_[0] + counts, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
+                  Motion::Moving);
+}
+
+void MotorChannel::home()
+{
+    if (!enabled_)
+        return;
+    // Drive to the configured limit switch at the homing velocity (HOMEPARAMS).
+    const bool to_forward = home_params.limit_switch == 4 || home_params.direction == 1;
+    homed_ = false;
+    start_profile(to_forward ? travel_counts() : 0.0, counts_per_s(home_params.velocity),
+                  counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
+}
+
+void MotorChannel::jog_move(bool forward)
+{
+    if (!enabled_)
+        return;
+    jog_direction_forward_ = forward;
+    const double v = counts_per_s(jog.velocity.max);
+    const double a = counts_per_s2(jog.velocity.acceleration);
+    if (jog.mode == 1) {   // continuous: until stopped or at a limit
+        start_profile(forward ? travel_counts() : 0.0, v, a, Motion::Jogging);
+        return;
+    }
+    sample(clock_.now());
+    const double step = forward ? jog.step_size : -jog.step_size;
+    start_profile(state_[0] + step, v, a, Motion::Jogging);
+}
+
+void MotorChannel::move_velocity(bool forward)
+{
+    if (!enabled_)
+        return;
+    start_profile(forward ? travel_counts() : 0.0, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
+                  Motion::Moving);
+}
+
+void MotorChannel::stop(bool immediate)
+{
+    const Ticks now = clock_.now();
+    sample(now);
+    if (motion_ == Motion::Idle) {
+        events_.push_back(MotorEvent::Stopped);   // MOVE_STOPPED for every MOVE_STOP
+        return;
+    }
+    if (immediate || counts_per_s2(velocity.acceleration) <= 0) {
+        state_[1] = 0;
+        motion_ = Motion::Idle;
+        events_.push_back(MotorEvent::Stopped);
+        return;
+    }
+    // Profiled stop: decelerate at the acceleration parameter.
+    const double a = counts_per_s2(velocity.acceleration);
+    const double v = state_[1];
+    const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
+    profile_ = models::TrapezoidProfile::plan(state_, std::clamp(stop_at, 0.0, travel_counts()),
+                                              std::max(std::abs(v), 1.0), a);
+    start_ = now;
+    end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    motion_ = Motion::Stopping;
+    if (end_ <= now)
+        finish(now);
+}
+
+void MotorChannel::sample(Ticks now)
+{
+    if (motion_ == Motion::Idle)
+        return;
+    state_ = profile_.sample(clock_.seconds(now - start_));
+}
+
+void MotorChannel::finish(Ticks now)
+{
+    state_ = models::AxisState(profile_.target(), 0.0);
+    switch (motion_) {
+    case Motion::Idle:
+        return;
+    case Motion::Moving:
+    case Motion::Jogging:
+        motion_ = Motion::Idle;
+        events_.push_back(MotorEvent::MoveCompleted);
+        return;
+    case Motion::Stopping:
+        motion_ = Motion::Idle;
+        events_.push_back(MotorEvent::Stopped);
+        return;
+    case Motion::HomingToLimit: {
+        // At the switch: back off by the offset distance, then zero the counter there.
+        const double back = state_[0] <= 0.5 ? home_params.offset : -home_params.offset;
+        motion_ = Motion::Idle;
+        if (back != 0 && counts_per_s(home_params.velocity) > 0)
+            start_profile(state_[0] + back, counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration),
+                          Motion::HomingBackOff);
+        else
+            complete_homing();
+        return;
+    }
+    case Motion::HomingBackOff:
+        motion_ = Motion::Idle;
+        complete_homing();
+        return;
+    }
+    (void)now;
+}
+
+void MotorChannel::complete_homing()
+{
+    counter_offset_ = state_[0];
+    encoder_offset_ = state_[0];
+    homed_ = true;
+    events_.push_back(MotorEvent::Homed);
+}
+
+std::vector<MotorEvent> MotorChannel::take_events()
+{
+    std::vector<MotorEvent> e;
+    e.swap(events_);
+    return e;
+}
+
+Ticks MotorChannel::next_change(Ticks now) const
+{
+    return motion_ == Motion::Idle ? kNever : now + 1;
+}
+
+void MotorChannel::tick(Ticks now)
+{
+    if (motion_ == Motion::Idle)
+        return;
+    if (now >= end_)
+        finish(now);
+    else
+        sample(now);
+}
+
+} // namespace rigsim::apt

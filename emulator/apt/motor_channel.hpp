@@ -1,0 +1,122 @@
+#pragma once
+// One APT motor channel: parameters (SET/REQ/GET trios), position counters, trapezoidal
+// moves, homing, jogging and the status bits of MOT_GET_DCSTATUSUPDATE. No I/O.
+
+#include "emulator/apt/catalogue.hpp"
+#include "emulator/core/clock.hpp"
+#include "models/trapezoid.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rigsim::apt {
+
+/// Status bits (MOT_GET_STATUSUPDATE / MOT_GET_DCSTATUSUPDATE tables; errata: 0x00000008).
+namespace status {
+inline constexpr std::uint32_t kForwardHardLimit = 0x00000001;
+inline constexpr std::uint32_t kReverseHardLimit = 0x00000002;
+inline constexpr std::uint32_t kMovingForward = 0x00000010;
+inline constexpr std::uint32_t kMovingReverse = 0x00000020;
+inline constexpr std::uint32_t kJoggingForward = 0x00000040;
+inline constexpr std::uint32_t kJoggingReverse = 0x00000080;
+inline constexpr std::uint32_t kMotorConnected = 0x00000100;
+inline constexpr std::uint32_t kHoming = 0x00000200;
+inline constexpr std::uint32_t kHomed = 0x00000400;
+inline constexpr std::uint32_t kSettled = 0x00002000;
+inline constexpr std::uint32_t kEnabled = 0x80000000;
+} // namespace status
+
+/// What a channel reports by itself when a movement ends.
+enum class MotorEvent { MoveCompleted, Homed, Stopped };
+
+struct VelocityParams { std::int32_t min = 0, acceleration = 0, max = 0; };
+struct JogParams {
+    std::uint16_t mode = 2;          ///< 1 continuous, 2 single step
+    std::int32_t step_size = 0;
+    VelocityParams velocity;
+    std::uint16_t stop_mode = 2;     ///< 1 immediate, 2 profiled
+};
+struct HomeParams {
+    std::uint16_t direction = 2;     ///< 1 forward, 2 reverse
+    std::uint16_t limit_switch = 1;  ///< 1 hardware reverse, 4 hardware forward
+    std::int32_t velocity = 0;
+    std::int32_t offset = 0;
+};
+struct LimitSwitchParams {
+    std::uint16_t cw_hard = 2, ccw_hard = 2;    ///< 2: switch makes on contact
+    std::int32_t cw_soft = 0, ccw_soft = 0;
+    std::uint16_t mode = 1;                     ///< 1: ignore software limits
+};
+
+class MotorChannel {
+public:
+    MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock);
+
+    std::int32_t position() const;               ///< position counter (counts)
+    void set_position(std::int32_t counts);
+    std::int32_t encoder() const;
+    void set_encoder(std::int32_t counts);
+    /// Actual velocity for DCSTATUSUPDATE (APT velocity units / 65536 as the manual's word).
+    std::int16_t velocity_word() const;
+    std::uint32_t status_bits() const;
+
+    bool enabled() const { return enabled_; }
+    void set_enabled(bool e);
+
+    VelocityParams velocity;
+    JogParams jog;
+    HomeParams home_params;
+    LimitSwitchParams limit_switch;
+    std::int32_t backlash = 0;
+    std::int32_t relative_distance = 0;
+    std::int32_t absolute_position = 0;
+    /// Parameter blocks that do not change the motion model, kept as sent (DCPIDPARAMS,
+    /// AVMODES, POTPARAMS, BUTTONPARAMS): the data packet after the channel word.
+    std::string pid_params, av_modes, pot_params, button_params;
+
+    void move_absolute(std::int32_t counts);
+    void move_relative(std::int32_t counts);
+    void home();
+    /// MOVE_JOG: one step of the jog step size (single step mode) or until stopped.
+    void jog_move(bool forward);
+    /// MOVE_VELOCITY: run at the velocity parameters until stopped or at a limit.
+    void move_velocity(bool forward);
+    /// MOVE_STOP: 1 immediate, 2 profiled (decelerate).
+    void stop(bool immediate);
+    bool moving() const { return motion_ != Motion::Idle; }
+
+    /// End-of-move events since the last call.
+    std::vector<MotorEvent> take_events();
+
+    Ticks next_change(Ticks now) const;
+    void tick(Ticks now);
+
+private:
+    enum class Motion { Idle, Moving, Jogging, HomingToLimit, HomingBackOff, Stopping };
+
+    double counts_per_s(std::int32_t apt_velocity) const;
+    double counts_per_s2(std::int32_t apt_acceleration) const;
+    double travel_counts() const { return stage_.travel_mm * stage_.counts_per_mm; }
+    void start_profile(double target_physical, double v, double a, Motion motion);
+    void sample(Ticks now);
+    void finish(Ticks now);
+    void complete_homing();
+
+    const ControllerModel& controller_;
+    const StageModel& stage_;
+    const Clock& clock_;
+    bool enabled_ = true;
+    bool homed_ = false;
+    double counter_offset_;          ///< physical counts that read 0 on the position counter
+    double encoder_offset_;
+    models::AxisState state_;        ///< physical position (counts from the reverse limit), velocity
+    models::TrapezoidProfile profile_;
+    Motion motion_ = Motion::Idle;
+    Ticks start_ = 0;
+    Ticks end_ = 0;
+    bool jog_direction_forward_ = true;
+    std::vector<MotorEvent> events_;
+};
+
+} // namespace rigsim::apt

@@ -1,0 +1,203 @@
+// APT DC servo T-Cube/K-Cube: bytes in -> bytes out on a stepped clock (hex transcripts).
+#include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/messages.hpp"
+#include "emulator/apt/wire.hpp"
+
+#include <catch2/catch.hpp>
+#include <spdlog/sinks/null_sink.h>
+
+#include <sstream>
+
+using namespace rigsim;
+using namespace rigsim::apt;
+
+namespace {
+
+DeviceConfig tdc001()
+{
+    DeviceConfig c;
+    c.name = "tdc";
+    c.protocol = Protocol::Apt;
+    c.model = "TDC001";
+    c.apt.stage = "MTS50-Z8";
+    return c;
+}
+
+/// Hex "05 00 00 00 50 01" -> bytes.
+std::string bytes(const std::string& hex)
+{
+    std::istringstream in(hex);
+    std::string out, b;
+    while (in >> b)
+        out.push_back(static_cast<char>(std::stoi(b, nullptr, 16)));
+    return out;
+}
+
+std::string hex(std::string_view s)
+{
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    for (unsigned char c : s) {
+        if (!out.empty())
+            out += ' ';
+        out += kHex[c >> 4];
+        out += kHex[c & 0xf];
+    }
+    return out;
+}
+
+class AptHarness {
+public:
+    explicit AptHarness(const DeviceConfig& config = tdc001())
+        : device_(config, clock_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>())),
+          session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
+    {
+    }
+    /// Hex in; hex of everything sent since the last call out.
+    std::string send(const std::string& hex_in)
+    {
+        session_->receive(bytes(hex_in));
+        auto r = hex(out_);
+        out_.clear();
+        return r;
+    }
+    std::string take()
+    {
+        auto r = hex(out_);
+        out_.clear();
+        return r;
+    }
+    void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
+    AptDevice& device() { return device_; }
+
+private:
+    Clock clock_;
+    AptDevice device_;
+    std::string out_;
+    std::unique_ptr<Session> session_;
+};
+
+std::int32_t position_of(const std::string& reply_hex)
+{
+    const auto b = bytes(reply_hex);
+    REQUIRE(b.size() >= 12);
+    return get_i32(b, 8);
+}
+
+} // namespace
+
+TEST_CASE("HW_REQ_INFO answers the 84-byte info packet of the model", "[device][apt]")
+{
+    AptHarness h;
+    const auto reply = bytes([&] { return h.send("05 00 00 00 50 01"); }());
+    REQUIRE(reply.size() == 90);
+    CHECK(hex(reply.substr(0, 6)) == "06 00 54 00 81 50");
+    CHECK(get_u32(reply, 6) == 83'000'001);                 // prefix 83: TDC001 (manual 2.2)
+    CHECK(reply.substr(10, 8) == std::string("TDC001\0\0", 8));
+    CHECK(get_u16(reply, 88) == 1);                         // one channel
+}
+
+TEST_CASE("a single unit acts on 0x50, 0x11 and 0x21 and ignores other modules", "[device][apt]")
+{
+    AptHarness h;
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");   // REQ_POSCOUNTER
+    CHECK(h.send("11 04 01 00 11 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK(h.send("11 04 01 00 21 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK(h.send("11 04 01 00 22 01") == "");                                      // bay 1: absent
+    CHECK(h.send("11 04 02 00 50 01") == "");                                      // channel 2: absent
+}
+
+TEST_CASE("MOVE_ABSOLUTE runs the trapezoid and reports MOVE_COMPLETED", "[device][apt]")
+{
+    AptHarness h;
+    // VELPARAMS: acceleration 1.5 mm/s² (393), max 2.4 mm/s (1841682) at 34,304 counts/mm.
+    const auto vel = h.send("14 04 01 00 50 01");
+    CHECK(vel == "15 04 0E 00 81 50 01 00 00 00 00 00 89 01 00 00 12 1A 1C 00");
+    // Move to 1 mm: 34304 counts = 00 86 00 00.
+    CHECK(h.send("53 04 06 00 D0 01 01 00 00 86 00 00") == "");
+    h.advance_ms(500);
+    const auto mid = h.send("11 04 01 00 50 01");
+    const auto p = position_of(mid);
+    CHECK(p > 0);
+    CHECK(p < 34'304);
+    CHECK(h.send("29 04 01 00 50 01").substr(0, 35) == "2A 04 06 00 81 50 01 00 10 01 00 80");   // moving forward
+    h.advance_ms(1500);                                      // T = d/v + v/a = 0.42 + 1.6 s
+    const auto done = h.take();
+    REQUIRE(done.size() == 20 * 3 - 1);
+    CHECK(done.substr(0, 17) == "64 04 0E 00 81 50");        // MOVE_COMPLETED with status
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 34'304);
+}
+
+TEST_CASE("MOVE_HOME drives to the reverse limit, backs off, zeroes and sends MOVE_HOMED", "[device][apt]")
+{
+    AptHarness h;
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    h.advance_ms(1000);
+    CHECK((h.device().channel().status_bits() & status::kHoming) != 0);
+    h.advance_ms(30'000);                                    // 25 mm at 1 mm/s, then 0.3 mm back
+    CHECK(h.take() == "44 04 01 00 01 50");
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+    CHECK((h.device().channel().status_bits() & status::kHomed) != 0);
+}
+
+TEST_CASE("MOVE_STOP always answers MOVE_STOPPED, even when still", "[device][apt]")
+{
+    AptHarness h;
+    const auto r = h.send("65 04 01 01 50 01");
+    CHECK(r.substr(0, 17) == "66 04 0E 00 81 50");
+    CHECK(h.send("48 04 06 00 D0 01 01 00 00 86 00 00") == "");   // relative 1 mm
+    h.advance_ms(300);
+    const auto s = h.send("65 04 01 01 50 01");                   // immediate stop
+    CHECK(s.substr(0, 17) == "66 04 0E 00 81 50");
+    h.advance_ms(3000);
+    CHECK(h.take() == "");                                         // no MOVE_COMPLETED after a stop
+}
+
+TEST_CASE("status updates: none before START_UPDATEMSGS, every 100 ms after, 50 without ACK", "[device][apt]")
+{
+    AptHarness h;
+    h.advance_ms(1000);
+    CHECK(h.take() == "");
+    CHECK(h.send("11 00 00 00 50 01") == "");                    // HW_START_UPDATEMSGS
+    h.advance_ms(99);
+    CHECK(h.take() == "");
+    h.advance_ms(1);
+    CHECK(h.take().substr(0, 17) == "91 04 0E 00 81 50");        // MOT_GET_DCSTATUSUPDATE
+    h.advance_ms(4900);                                          // 50 updates in all
+    CHECK(h.take().size() == 49 * 20 * 3 - 1);        // 49 more frames of 20 bytes, as hex
+    h.advance_ms(1000);
+    CHECK(h.take() == "");                                       // no server alive: silent
+    CHECK(h.send("92 04 00 00 50 01") == "");                    // MOT_ACK_DCSTATUSUPDATE
+    h.advance_ms(200);
+    CHECK(h.take().size() == 2 * 20 * 3 - 1);
+    CHECK(h.send("12 00 00 00 50 01") == "");                    // HW_STOP_UPDATEMSGS
+    h.advance_ms(1000);
+    CHECK(h.take() == "");
+}
+
+TEST_CASE("parameters round-trip; out-of-range ones are ignored", "[device][apt]")
+{
+    AptHarness h;
+    CHECK(h.send("13 04 0E 00 D0 01 01 00 00 00 00 00 10 00 00 00 00 10 00 00") == "");
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 10 00 00 00 00 10 00 00");
+    CHECK(h.send("13 04 0E 00 D0 01 01 00 00 00 00 00 00 00 00 00 00 10 00 00") == "");   // zero acceleration
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 10 00 00 00 00 10 00 00");
+    CHECK(h.send("40 04 0E 00 D0 01 01 00 02 00 01 00 00 10 00 00 00 02 00 00") == "");   // HOMEPARAMS
+    CHECK(h.send("41 04 01 00 50 01") == "42 04 0E 00 81 50 01 00 02 00 01 00 00 10 00 00 00 02 00 00");
+    CHECK(h.send("10 04 06 00 D0 01 01 00 40 0D 03 00") == "");   // SET_POSCOUNTER 200000
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 40 0D 03 00");
+    CHECK(h.send("10 02 01 02 50 01") == "");                      // channel disabled
+    CHECK(h.send("11 02 01 00 50 01") == "12 02 01 02 01 50");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 00 00 00 00") == "");   // does not move
+    h.advance_ms(5000);
+    CHECK(h.take() == "");
+    CHECK(h.send("18 00 00 00 50 01") == "");                      // HW_NO_FLASH_PROGRAMMING
+}
+
+TEST_CASE("garbage and unknown messages are skipped without an answer", "[device][apt]")
+{
+    AptHarness h;
+    CHECK(h.send("FF 00 13 37 99 11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK(h.send("99 99 00 00 50 01 11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK(h.send("64 04 0E 00 50 01") == "");                      // a GET sent by a host: ignored
+}
