@@ -119,15 +119,19 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
     CHECK(c1.max_speed_nm_per_s == 1);
 }
 
-TEST_CASE("rig config: config/default.json is one MCS-3D on port 40100", "[unit][config]")
+TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
-    REQUIRE(rig.devices.size() == 1);
+    REQUIRE(rig.devices.size() == 3);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
     CHECK(d.protocol == rigsim::Protocol::Mcs);
     CHECK(d.tcp_port == 40100);
     CHECK(d.mcs.channels.size() == 3);
+    CHECK(rig.devices[1].model == "TDC001");
+    CHECK(rig.devices[1].tcp_port == 40101);
+    CHECK(rig.devices[2].model == "KDC101");
+    CHECK(rig.devices[2].tcp_port == 40102);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
