@@ -164,6 +164,8 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         channel_.set_enabled(f.param2 == 1);
         return;
     case MGMSG_MOD_REQ_CHANENABLESTATE:
+        if (f.param1 != kChan1)
+            return wrong_channel();
         return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, channel_.enabled() ? 1 : 2);
     case MGMSG_HW_DISCONNECT:
         log_->info("{}: HW_DISCONNECT", peer);
@@ -328,6 +330,20 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         return;
     // ---- moves ----
     case MGMSG_MOT_MOVE_HOME:
+    case MGMSG_MOT_MOVE_RELATIVE:
+    case MGMSG_MOT_MOVE_ABSOLUTE:
+    case MGMSG_MOT_MOVE_JOG:
+    case MGMSG_MOT_MOVE_VELOCITY:
+        if (!channel_.enabled()) {
+            log_->warn("{}: {} while channel 1 is disabled: it does not move", peer, f.info->name);
+            return;
+        }
+        break;
+    default:
+        break;
+    }
+    switch (f.id) {
+    case MGMSG_MOT_MOVE_HOME:
         channel_.home();
         return;
     case MGMSG_MOT_MOVE_RELATIVE:
@@ -385,6 +401,12 @@ void AptDevice::flush()
     for (const auto event : channel_.take_events()) {
         if (!end_of_move_messages_)
             continue;
+        // USB "server alive" (p. 80): end-of-move messages count as status update type
+        // messages too, while update messages are on.
+        if (updates_ && updates_since_ack_ >= kUpdatesWithoutAck)
+            continue;
+        if (updates_)
+            ++updates_since_ack_;
         switch (event) {
         case MotorEvent::MoveCompleted:
             broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, kGenericUsb, dc_status_packet()));
