@@ -65,6 +65,12 @@ std::uint32_t MotorChannel::status_bits() const
         bits |= status::kReverseHardLimit;
     if (state_[0] >= travel_counts() - 0.5)
         bits |= status::kForwardHardLimit;
+    if (soft_limits_active()) {
+        if (position() >= limit_switch.cw_soft)
+            bits |= status::kForwardSoftLimit;
+        if (position() <= limit_switch.ccw_soft)
+            bits |= status::kReverseSoftLimit;
+    }
     switch (motion_) {
     case Motion::Idle:
         bits |= status::kSettled;
@@ -112,12 +118,41 @@ void MotorChannel::start_profile(double target_physical, double v, double a, Mot
         finish(now);
 }
 
+bool MotorChannel::soft_limits_active() const
+{
+    const auto mode = limit_switch.mode & 0x7f;
+    return (mode == 2 || mode == 3) && limit_switch.cw_soft > limit_switch.ccw_soft;
+}
+
+double MotorChannel::within_soft_limits(double target_physical) const
+{
+    // LIMSWITCHPARAMS software limits, in position steps (counter units), for modes 2 and 3.
+    if (!soft_limits_active())
+        return target_physical;
+    return std::clamp(target_physical, limit_switch.ccw_soft + counter_offset_, limit_switch.cw_soft + counter_offset_);
+}
+
+void MotorChannel::move_to(double target_physical)
+{
+    sample(clock_.now());
+    target_physical = within_soft_limits(target_physical);
+    // GENMOVEPARAMS backlash: a move in the reverse direction overshoots by the backlash
+    // distance and comes back forward, so that every move ends approaching forward.
+    if (backlash > 0 && target_physical < state_[0] - 0.5) {
+        pending_backlash_target_ = target_physical;
+        start_profile(std::max(target_physical - backlash, 0.0), counts_per_s(velocity.max),
+                      counts_per_s2(velocity.acceleration), Motion::Moving);
+        return;
+    }
+    pending_backlash_target_.reset();
+    start_profile(target_physical, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration), Motion::Moving);
+}
+
 void MotorChannel::move_absolute(std::int32_t counts)
 {
     if (!enabled_)
         return;
-    start_profile(counts + counter_offset_, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
-                  Motion::Moving);
+    move_to(counts + counter_offset_);
 }
 
 void MotorChannel::move_relative(std::int32_t counts)
@@ -125,8 +160,7 @@ void MotorChannel::move_relative(std::int32_t counts)
     if (!enabled_)
         return;
     sample(clock_.now());
-    start_profile(state_[0] + counts, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
-                  Motion::Moving);
+    move_to(state_[0] + counts);
 }
 
 void MotorChannel::home()
@@ -144,6 +178,7 @@ void MotorChannel::jog_move(bool forward)
 {
     if (!enabled_)
         return;
+    pending_backlash_target_.reset();
     jog_direction_forward_ = forward;
     const double v = counts_per_s(jog.velocity.max);
     const double a = counts_per_s2(jog.velocity.acceleration);
@@ -153,7 +188,7 @@ void MotorChannel::jog_move(bool forward)
     }
     sample(clock_.now());
     const double step = forward ? jog.step_size : -jog.step_size;
-    start_profile(state_[0] + step, v, a, Motion::Jogging);
+    start_profile(within_soft_limits(state_[0] + step), v, a, Motion::Jogging);
 }
 
 void MotorChannel::move_velocity(bool forward)
@@ -168,6 +203,7 @@ void MotorChannel::stop(bool immediate)
 {
     const Ticks now = clock_.now();
     sample(now);
+    pending_backlash_target_.reset();
     if (motion_ == Motion::Idle) {
         events_.push_back(MotorEvent::Stopped);   // MOVE_STOPPED for every MOVE_STOP
         return;
@@ -205,6 +241,16 @@ void MotorChannel::finish(Ticks now)
     case Motion::Idle:
         return;
     case Motion::Moving:
+        if (pending_backlash_target_) {   // the backlash leg is done: approach forward
+            const double target = *pending_backlash_target_;
+            pending_backlash_target_.reset();
+            motion_ = Motion::Idle;
+            start_profile(target, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration), Motion::Moving);
+            return;
+        }
+        motion_ = Motion::Idle;
+        events_.push_back(MotorEvent::MoveCompleted);
+        return;
     case Motion::Jogging:
         motion_ = Motion::Idle;
         events_.push_back(MotorEvent::MoveCompleted);

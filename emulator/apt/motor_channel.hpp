@@ -7,6 +7,7 @@
 #include "models/trapezoid.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ namespace rigsim::apt {
 namespace status {
 inline constexpr std::uint32_t kForwardHardLimit = 0x00000001;
 inline constexpr std::uint32_t kReverseHardLimit = 0x00000002;
+inline constexpr std::uint32_t kForwardSoftLimit = 0x00000004;
+inline constexpr std::uint32_t kReverseSoftLimit = 0x00000008;   ///< errata: "80000000x0"
 inline constexpr std::uint32_t kMovingForward = 0x00000010;
 inline constexpr std::uint32_t kMovingReverse = 0x00000020;
 inline constexpr std::uint32_t kJoggingForward = 0x00000040;
@@ -102,6 +105,9 @@ private:
     void sample(Ticks now);
     void finish(Ticks now);
     void complete_homing();
+    bool soft_limits_active() const;
+    double within_soft_limits(double target_physical) const;
+    void move_to(double target_physical);
 
     const ControllerModel& controller_;
     const StageModel& stage_;
@@ -117,6 +123,7 @@ private:
     Ticks end_ = 0;
     bool jog_direction_forward_ = true;
     std::vector<MotorEvent> events_;
+    std::optional<double> pending_backlash_target_;   ///< the forward approach after a backlash overshoot
 };
 
 } // namespace rigsim::apt

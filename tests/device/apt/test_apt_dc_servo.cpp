@@ -201,3 +201,31 @@ TEST_CASE("garbage and unknown messages are skipped without an answer", "[device
     CHECK(h.send("99 99 00 00 50 01 11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
     CHECK(h.send("64 04 0E 00 50 01") == "");                      // a GET sent by a host: ignored
 }
+
+TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS) overshoots reverse moves", "[device][apt]")
+{
+    AptHarness h;
+    // Soft limits -0.5 mm .. +0.5 mm (17152 counts), profiled stop at limit (mode 3).
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 02 00 00 43 00 00 00 BD FF FF 03 00") == "");
+    CHECK(h.send("24 04 01 00 50 01") == "25 04 10 00 81 50 01 00 02 00 02 00 00 43 00 00 00 BD FF FF 03 00");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 00 86 00 00") == "");   // to +1 mm: stops at +0.5 mm
+    h.advance_ms(3000);
+    CHECK(h.take().substr(0, 17) == "64 04 0E 00 81 50");
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 17'152);
+    CHECK((h.device().channel().status_bits() & status::kForwardSoftLimit) != 0);
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 02 00 00 00 00 00 00 00 00 00 01 00") == "");   // ignore
+    // Backlash 0.1 mm: a reverse move goes 0.1 mm past the target and comes back.
+    CHECK(h.send("3A 04 06 00 D0 01 01 00 00 0D 00 00") == "");   // 3328 counts
+    CHECK(h.send("3B 04 01 00 50 01") == "3C 04 06 00 81 50 01 00 00 0D 00 00");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 00 00 00 00") == "");   // back to 0
+    std::int32_t lowest = 17'152;
+    for (int i = 0; i < 300; ++i) {
+        h.advance_ms(10);
+        lowest = std::min(lowest, h.device().channel().position());
+    }
+    CHECK(lowest <= -3'000);                                        // overshot by about the backlash
+    const auto completed = h.take();
+    CHECK(completed.size() == 20 * 3 - 1);                          // one MOVE_COMPLETED, at the end
+    CHECK(completed.substr(0, 17) == "64 04 0E 00 81 50");
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+}
