@@ -184,6 +184,9 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     case MGMSG_HW_YES_FLASH_PROGRAMMING:
     case MGMSG_HW_NO_FLASH_PROGRAMMING:
         return;   // later protocol issues: accepted silently, as the real units do
+    case MGMSG_HUB_REQ_BAYUSED:
+        // p. 24: -0x01 (0xFF) means a standalone T-/K-Cube, off any hub.
+        return answer_header(MGMSG_HUB_GET_BAYUSED, 0xFF, 0);
     case MGMSG_MOT_ACK_DCSTATUSUPDATE:
         updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
         if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now

@@ -194,6 +194,12 @@ TEST_CASE("parameters round-trip; out-of-range ones are ignored", "[device][apt]
     CHECK(h.send("18 00 00 00 50 01") == "");                      // HW_NO_FLASH_PROGRAMMING
 }
 
+TEST_CASE("HUB_REQ_BAYUSED: a standalone cube answers -1", "[device][apt]")
+{
+    AptHarness h;
+    CHECK(h.send("65 00 00 00 50 01") == "66 00 FF 00 01 50");
+}
+
 TEST_CASE("garbage and unknown messages are skipped without an answer", "[device][apt]")
 {
     AptHarness h;
