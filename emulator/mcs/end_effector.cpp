@@ -16,7 +16,7 @@ constexpr std::int32_t kMinVoltage_cv = 100;
 constexpr std::int32_t kMaxVoltage_cv = 22'500;
 constexpr std::int32_t kMinGain_dun_per_v = 1;
 constexpr std::int32_t kMaxGain_dun_per_v = 10'000;
-constexpr std::int32_t kMaxHold_ms = 60'000;   ///< MGFA holdTime "not implemented yet"
+constexpr std::int32_t kMaxHold_ms = 60'000;   ///< MGFA holdTime: accepted, and ignored as the manual says the controller does
 
 bool in_range(std::int32_t value, std::int32_t lo, std::int32_t hi)
 {
