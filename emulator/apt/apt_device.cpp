@@ -74,10 +74,19 @@ private:
 
 AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
     : config_(config), clock_(clock), log_(std::move(log)), model_(*find_controller(config.model)),
-      stage_(*find_stage(config.apt.stage)), channel_(model_, stage_, clock),
       serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1)
 {
+    if (model_.rack)
+        for (const auto& stage : config.apt.bays)
+            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock));
+    else
+        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock));
     clock_.add(this);
+}
+
+std::uint8_t AptDevice::address_of(std::size_t bay) const
+{
+    return model_.rack ? static_cast<std::uint8_t>(kBay0 + bay) : kGenericUsb;
 }
 
 AptDevice::~AptDevice()
@@ -95,62 +104,134 @@ void AptDevice::detach(AptSession* s)
     sessions_.erase(std::remove(sessions_.begin(), sessions_.end(), s), sessions_.end());
 }
 
-std::string AptDevice::info_packet() const
+std::string AptDevice::info_packet(std::optional<std::size_t> bay) const
 {
     // HW_GET_INFO: serial long, model char[8], type word, firmware byte[4] (minor, interim,
     // major, unused), notes char[64], number of channels word: 84 bytes (manual p. 21).
+    // In a rack, the motherboard (type 45) reports its bays; each bay's card (type 44 for a
+    // brushless card) reports one channel and a serial with the card prefix.
     std::string d;
-    put_u32(d, serial_);
+    const bool card = model_.rack && bay;
+    put_u32(d, card ? model_.bay_serial_prefix * 1'000'000 + (serial_ % 1'000'000) * 10 % 1'000'000 + static_cast<std::uint32_t>(*bay)
+                    : serial_);
     std::string model(config_.model.substr(0, 8));
     model.resize(8, '\0');
     d += model;
-    put_u16(d, model_.hw_type);
+    put_u16(d, card ? model_.bay_hw_type : model_.hw_type);
     d += std::string{'\x03', '\x00', '\x01', '\x00'};   // firmware 1.0.3
     std::string notes(model_.notes);
     notes.resize(64, '\0');
     d += notes;
-    put_u16(d, 1);
+    put_u16(d, static_cast<std::uint16_t>(model_.rack && !bay ? channels_.size() : 1));
     return d;
 }
 
-std::string AptDevice::status_packet() const
+std::string AptDevice::status_packet(std::size_t bay) const
 {
+    const auto& ch = *channels_[bay];
     std::string d;
     put_u16(d, kChan1);
-    put_i32(d, channel_.position());
-    put_i32(d, channel_.encoder());
-    put_u32(d, channel_.status_bits());
+    put_i32(d, ch.position());
+    put_i32(d, ch.encoder());
+    put_u32(d, ch.status_bits());
     return d;
 }
 
-std::string AptDevice::dc_status_packet() const
+std::string AptDevice::dc_status_packet(std::size_t bay) const
 {
+    const auto& ch = *channels_[bay];
     std::string d;
     put_u16(d, kChan1);
-    put_i32(d, channel_.position());
-    put_i16(d, channel_.velocity_word());
+    put_i32(d, ch.position());
+    put_i16(d, ch.velocity_word());
     put_u16(d, 0);   // reserved
-    put_u32(d, channel_.status_bits());
+    put_u32(d, ch.status_bits());
     return d;
+}
+
+void AptDevice::start_updates()
+{
+    updates_ = true;
+    updates_since_ack_ = 0;
+    next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
 }
 
 void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply)
 {
-    // A single unit answers as 0x50 and, as the real cubes do, also acts on messages that
-    // clients address to the motherboard (0x11) or bay 0 (0x21).
-    if (f.dest != kGenericUsb && f.dest != kRack && f.dest != kBay0) {
-        log_->warn("{}: {} to 0x{:02x}: no such module, ignored", peer, f.info->name, f.dest);
+    host_ = f.source;
+    if (!model_.rack) {
+        // A single unit answers as 0x50 and, as the real cubes do, also acts on messages
+        // that clients address to the motherboard (0x11) or bay 0 (0x21).
+        if (f.dest != kGenericUsb && f.dest != kRack && f.dest != kBay0) {
+            log_->warn("{}: {} to 0x{:02x}: no such module, ignored", peer, f.info->name, f.dest);
+            return;
+        }
+        return handle_bay(0, f, peer, reply);
+    }
+    if (f.dest == kRack)
+        return handle_motherboard(f, peer, reply);
+    if (f.dest >= kBay0 && f.dest < kBay0 + channels_.size())
+        return handle_bay(f.dest - kBay0, f, peer, reply);
+    log_->warn("{}: {} to 0x{:02x}: no module in that bay, ignored", peer, f.info->name, f.dest);
+}
+
+void AptDevice::handle_motherboard(const Frame& f, std::string_view peer, std::string& reply)
+{
+    auto answer_header = [&](std::uint16_t id, std::uint8_t p1, std::uint8_t p2) {
+        reply += encode_header_only(id, p1, p2, host_, kRack);
+    };
+    switch (f.id) {
+    case MGMSG_HW_REQ_INFO:
+        reply += encode_with_data(MGMSG_HW_GET_INFO, host_, kRack, info_packet(std::nullopt));
+        return;
+    case MGMSG_RACK_REQ_BAYUSED:
+        // p. 23: "Is controller bay #1 (i.e. bay 0) occupied": bays are numbered from 0 here.
+        return answer_header(MGMSG_RACK_GET_BAYUSED, f.param1, f.param1 < channels_.size() ? 0x01 : 0x02);
+    case MGMSG_RACK_REQ_STATUSBITS: {
+        std::string d;
+        put_u32(d, 0);   // digital inputs of the USER IO connector: all low
+        reply += encode_with_data(MGMSG_RACK_GET_STATUSBITS, host_, kRack, d);
         return;
     }
-    host_ = f.source;
-    auto answer = [&](std::uint16_t id, const std::string& data) { reply += encode_with_data(id, host_, kGenericUsb, data); };
+    case MGMSG_MOD_IDENTIFY:
+        ++identify_count_;
+        log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
+        return;
+    case MGMSG_HW_START_UPDATEMSGS:
+        return start_updates();
+    case MGMSG_HW_STOP_UPDATEMSGS:
+        updates_ = false;
+        next_update_ = kNever;
+        return;
+    case MGMSG_HW_DISCONNECT:
+        log_->info("{}: HW_DISCONNECT", peer);
+        return;
+    case MGMSG_HW_YES_FLASH_PROGRAMMING:
+    case MGMSG_HW_NO_FLASH_PROGRAMMING:
+        return;
+    case MGMSG_MOT_ACK_DCSTATUSUPDATE:
+        updates_since_ack_ = 0;
+        if (updates_ && next_update_ <= clock_.now())
+            next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
+        return;
+    default:
+        log_->warn("{}: {} to the motherboard: it acts on no such message, ignored", peer, f.info->name);
+        return;
+    }
+}
+
+void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply)
+{
+    auto& ch = *channels_[bay];
+    const std::uint8_t me = address_of(bay);
+    auto answer = [&](std::uint16_t id, const std::string& data) { reply += encode_with_data(id, host_, me, data); };
     auto answer_header = [&](std::uint16_t id, std::uint8_t p1, std::uint8_t p2) {
-        reply += encode_header_only(id, p1, p2, host_, kGenericUsb);
+        reply += encode_header_only(id, p1, p2, host_, me);
     };
     // Channel addressing: header-only messages carry it in param1, others as the first word.
     const std::uint16_t chan = f.has_data ? get_u16(f.data, 0) : f.param1;
     auto wrong_channel = [&] {
-        log_->warn("{}: {} for channel {}: a single-channel unit has only channel 1, ignored", peer, f.info->name, chan);
+        log_->warn("{}: {} for channel {}: a module has only channel 1, ignored", peer, f.info->name, chan);
     };
     switch (f.id) {
     // ---- generic ----
@@ -161,22 +242,19 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     case MGMSG_MOD_SET_CHANENABLESTATE:
         if (f.param1 != kChan1 || (f.param2 != 1 && f.param2 != 2))
             return wrong_channel();
-        channel_.set_enabled(f.param2 == 1);
+        ch.set_enabled(f.param2 == 1);
         return;
     case MGMSG_MOD_REQ_CHANENABLESTATE:
         if (f.param1 != kChan1)
             return wrong_channel();
-        return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, channel_.enabled() ? 1 : 2);
+        return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, ch.enabled() ? 1 : 2);
     case MGMSG_HW_DISCONNECT:
         log_->info("{}: HW_DISCONNECT", peer);
         return;
     case MGMSG_HW_REQ_INFO:
-        return answer(MGMSG_HW_GET_INFO, info_packet());
+        return answer(MGMSG_HW_GET_INFO, info_packet(model_.rack ? std::optional<std::size_t>(bay) : std::nullopt));
     case MGMSG_HW_START_UPDATEMSGS:
-        updates_ = true;
-        updates_since_ack_ = 0;
-        next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
-        return;
+        return start_updates();
     case MGMSG_HW_STOP_UPDATEMSGS:
         updates_ = false;
         next_update_ = kNever;
@@ -185,6 +263,8 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     case MGMSG_HW_NO_FLASH_PROGRAMMING:
         return;   // later protocol issues: accepted silently, as the real units do
     case MGMSG_HUB_REQ_BAYUSED:
+        if (model_.rack)
+            break;   // a hub question for a cube
         // p. 24: -0x01 (0xFF) means a standalone T-/K-Cube, off any hub.
         return answer_header(MGMSG_HUB_GET_BAYUSED, 0xFF, 0);
     case MGMSG_MOT_ACK_DCSTATUSUPDATE:
@@ -200,15 +280,15 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     switch (f.id) {
     // ---- motor parameters: SET stores, REQ answers GET ----
     case MGMSG_MOT_SET_POSCOUNTER:
-        channel_.set_position(get_i32(f.data, 2));
+        ch.set_position(get_i32(f.data, 2));
         return;
     case MGMSG_MOT_REQ_POSCOUNTER:
-        return answer(MGMSG_MOT_GET_POSCOUNTER, chan_and_i32(channel_.position()));
+        return answer(MGMSG_MOT_GET_POSCOUNTER, chan_and_i32(ch.position()));
     case MGMSG_MOT_SET_ENCCOUNTER:
-        channel_.set_encoder(get_i32(f.data, 2));
+        ch.set_encoder(get_i32(f.data, 2));
         return;
     case MGMSG_MOT_REQ_ENCCOUNTER:
-        return answer(MGMSG_MOT_GET_ENCCOUNTER, chan_and_i32(channel_.encoder()));
+        return answer(MGMSG_MOT_GET_ENCCOUNTER, chan_and_i32(ch.encoder()));
     case MGMSG_MOT_SET_VELPARAMS: {
         const VelocityParams v{get_i32(f.data, 2), get_i32(f.data, 6), get_i32(f.data, 10)};
         if (v.acceleration <= 0 || v.max <= 0 || v.min < 0) {
@@ -216,13 +296,13 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
                        v.acceleration, v.max);
             return;
         }
-        channel_.velocity = v;
+        ch.velocity = v;
         return;
     }
     case MGMSG_MOT_REQ_VELPARAMS: {
         std::string d;
         put_u16(d, kChan1);
-        return answer(MGMSG_MOT_GET_VELPARAMS, d + velocity_block(channel_.velocity));
+        return answer(MGMSG_MOT_GET_VELPARAMS, d + velocity_block(ch.velocity));
     }
     case MGMSG_MOT_SET_JOGPARAMS: {
         JogParams j;
@@ -235,11 +315,11 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
             log_->warn("{}: MOT_SET_JOGPARAMS out of range: ignored", peer);
             return;
         }
-        channel_.jog = j;
+        ch.jog = j;
         return;
     }
     case MGMSG_MOT_REQ_JOGPARAMS: {
-        const auto& j = channel_.jog;
+        const auto& j = ch.jog;
         std::string d;
         put_u16(d, kChan1);
         put_u16(d, j.mode);
@@ -249,20 +329,20 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         return answer(MGMSG_MOT_GET_JOGPARAMS, d);
     }
     case MGMSG_MOT_SET_GENMOVEPARAMS:
-        channel_.backlash = get_i32(f.data, 2);
+        ch.backlash = get_i32(f.data, 2);
         return;
     case MGMSG_MOT_REQ_GENMOVEPARAMS:
-        return answer(MGMSG_MOT_GET_GENMOVEPARAMS, chan_and_i32(channel_.backlash));
+        return answer(MGMSG_MOT_GET_GENMOVEPARAMS, chan_and_i32(ch.backlash));
     case MGMSG_MOT_SET_MOVERELPARAMS:
-        channel_.relative_distance = get_i32(f.data, 2);
+        ch.relative_distance = get_i32(f.data, 2);
         return;
     case MGMSG_MOT_REQ_MOVERELPARAMS:
-        return answer(MGMSG_MOT_GET_MOVERELPARAMS, chan_and_i32(channel_.relative_distance));
+        return answer(MGMSG_MOT_GET_MOVERELPARAMS, chan_and_i32(ch.relative_distance));
     case MGMSG_MOT_SET_MOVEABSPARAMS:
-        channel_.absolute_position = get_i32(f.data, 2);
+        ch.absolute_position = get_i32(f.data, 2);
         return;
     case MGMSG_MOT_REQ_MOVEABSPARAMS:
-        return answer(MGMSG_MOT_GET_MOVEABSPARAMS, chan_and_i32(channel_.absolute_position));
+        return answer(MGMSG_MOT_GET_MOVEABSPARAMS, chan_and_i32(ch.absolute_position));
     case MGMSG_MOT_SET_HOMEPARAMS: {
         HomeParams h{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10)};
         if ((h.direction != 1 && h.direction != 2) || (h.limit_switch != 1 && h.limit_switch != 4) || h.velocity <= 0
@@ -270,11 +350,11 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
             log_->warn("{}: MOT_SET_HOMEPARAMS out of range: ignored", peer);
             return;
         }
-        channel_.home_params = h;
+        ch.home_params = h;
         return;
     }
     case MGMSG_MOT_REQ_HOMEPARAMS: {
-        const auto& h = channel_.home_params;
+        const auto& h = ch.home_params;
         std::string d;
         put_u16(d, kChan1);
         put_u16(d, h.direction);
@@ -286,11 +366,11 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     case MGMSG_MOT_SET_LIMSWITCHPARAMS: {
         LimitSwitchParams l{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10),
                             get_u16(f.data, 14)};
-        channel_.limit_switch = l;
+        ch.limit_switch = l;
         return;
     }
     case MGMSG_MOT_REQ_LIMSWITCHPARAMS: {
-        const auto& l = channel_.limit_switch;
+        const auto& l = ch.limit_switch;
         std::string d;
         put_u16(d, kChan1);
         put_u16(d, l.cw_hard);
@@ -301,33 +381,33 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         return answer(MGMSG_MOT_GET_LIMSWITCHPARAMS, d);
     }
     case MGMSG_MOT_SET_DCPIDPARAMS:
-        channel_.pid_params.assign(f.data.substr(2));
+        ch.pid_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_DCPIDPARAMS:
-        if (channel_.pid_params.empty())
-            channel_.pid_params = std::string("\x8c\x01\x00\x00\x0e\x01\x00\x00\xa0\x0f\x00\x00\xfc\x12\x00\x00\x0f\x00", 18);
-        return answer(MGMSG_MOT_GET_DCPIDPARAMS, std::string("\x01\x00", 2) + channel_.pid_params);
+        if (ch.pid_params.empty())
+            ch.pid_params = std::string("\x8c\x01\x00\x00\x0e\x01\x00\x00\xa0\x0f\x00\x00\xfc\x12\x00\x00\x0f\x00", 18);
+        return answer(MGMSG_MOT_GET_DCPIDPARAMS, std::string("\x01\x00", 2) + ch.pid_params);
     case MGMSG_MOT_SET_AVMODES:
-        channel_.av_modes.assign(f.data.substr(2));
+        ch.av_modes.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_AVMODES:
-        if (channel_.av_modes.empty())
-            channel_.av_modes = std::string("\x0b\x00", 2);   // LED: ident, limit switch, moving
-        return answer(MGMSG_MOT_GET_AVMODES, std::string("\x01\x00", 2) + channel_.av_modes);
+        if (ch.av_modes.empty())
+            ch.av_modes = std::string("\x0b\x00", 2);   // LED: ident, limit switch, moving
+        return answer(MGMSG_MOT_GET_AVMODES, std::string("\x01\x00", 2) + ch.av_modes);
     case MGMSG_MOT_SET_POTPARAMS:
-        channel_.pot_params.assign(f.data.substr(2));
+        ch.pot_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_POTPARAMS:
-        if (channel_.pot_params.empty())
-            channel_.pot_params.assign(24, '\0');
-        return answer(MGMSG_MOT_GET_POTPARAMS, std::string("\x01\x00", 2) + channel_.pot_params);
+        if (ch.pot_params.empty())
+            ch.pot_params.assign(24, '\0');
+        return answer(MGMSG_MOT_GET_POTPARAMS, std::string("\x01\x00", 2) + ch.pot_params);
     case MGMSG_MOT_SET_BUTTONPARAMS:
-        channel_.button_params.assign(f.data.substr(2));
+        ch.button_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_BUTTONPARAMS:
-        if (channel_.button_params.empty())
-            channel_.button_params.assign(14, '\0');
-        return answer(MGMSG_MOT_GET_BUTTONPARAMS, std::string("\x01\x00", 2) + channel_.button_params);
+        if (ch.button_params.empty())
+            ch.button_params.assign(14, '\0');
+        return answer(MGMSG_MOT_GET_BUTTONPARAMS, std::string("\x01\x00", 2) + ch.button_params);
     case MGMSG_MOT_SET_EEPROMPARAMS:
         log_->info("{}: MOT_SET_EEPROMPARAMS for message 0x{:04x}: saved", peer, get_u16(f.data, 2));
         return;
@@ -337,7 +417,7 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     case MGMSG_MOT_MOVE_ABSOLUTE:
     case MGMSG_MOT_MOVE_JOG:
     case MGMSG_MOT_MOVE_VELOCITY:
-        if (!channel_.enabled()) {
+        if (!ch.enabled()) {
             log_->warn("{}: {} while channel 1 is disabled: it does not move", peer, f.info->name);
             return;
         }
@@ -347,36 +427,36 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
     }
     switch (f.id) {
     case MGMSG_MOT_MOVE_HOME:
-        channel_.home();
+        ch.home();
         return;
     case MGMSG_MOT_MOVE_RELATIVE:
-        channel_.move_relative(f.has_data ? get_i32(f.data, 2) : channel_.relative_distance);
+        ch.move_relative(f.has_data ? get_i32(f.data, 2) : ch.relative_distance);
         return;
     case MGMSG_MOT_MOVE_ABSOLUTE:
-        channel_.move_absolute(f.has_data ? get_i32(f.data, 2) : channel_.absolute_position);
+        ch.move_absolute(f.has_data ? get_i32(f.data, 2) : ch.absolute_position);
         return;
     case MGMSG_MOT_MOVE_JOG:
         if (f.param2 != 1 && f.param2 != 2)
             return log_->warn("{}: MOT_MOVE_JOG direction {}: ignored", peer, f.param2);
-        channel_.jog_move(f.param2 == 1);
+        ch.jog_move(f.param2 == 1);
         return;
     case MGMSG_MOT_MOVE_VELOCITY:
         if (f.param2 != 1 && f.param2 != 2)
             return log_->warn("{}: MOT_MOVE_VELOCITY direction {}: ignored", peer, f.param2);
-        channel_.move_velocity(f.param2 == 1);
+        ch.move_velocity(f.param2 == 1);
         return;
     case MGMSG_MOT_MOVE_STOP:
-        channel_.stop(f.param2 == 1);
+        ch.stop(f.param2 == 1);
         return;
     // ---- status ----
     case MGMSG_MOT_REQ_STATUSUPDATE:
-        return answer(MGMSG_MOT_GET_STATUSUPDATE, status_packet());
+        return answer(MGMSG_MOT_GET_STATUSUPDATE, status_packet(bay));
     case MGMSG_MOT_REQ_DCSTATUSUPDATE:
-        return answer(MGMSG_MOT_GET_DCSTATUSUPDATE, dc_status_packet());
+        return answer(MGMSG_MOT_GET_DCSTATUSUPDATE, dc_status_packet(bay));
     case MGMSG_MOT_REQ_STATUSBITS: {
         std::string d;
         put_u16(d, kChan1);
-        put_u32(d, channel_.status_bits());
+        put_u32(d, ch.status_bits());
         return answer(MGMSG_MOT_GET_STATUSBITS, d);
     }
     case MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS:
@@ -401,45 +481,52 @@ void AptDevice::broadcast(const std::string& frame)
 
 void AptDevice::flush()
 {
-    for (const auto event : channel_.take_events()) {
-        if (!end_of_move_messages_)
-            continue;
-        // USB "server alive" (p. 80): end-of-move messages count as status update type
-        // messages too, while update messages are on.
-        if (updates_ && updates_since_ack_ >= kUpdatesWithoutAck)
-            continue;
-        if (updates_)
-            ++updates_since_ack_;
-        switch (event) {
-        case MotorEvent::MoveCompleted:
-            broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, kGenericUsb, dc_status_packet()));
-            break;
-        case MotorEvent::Stopped:
-            broadcast(encode_with_data(MGMSG_MOT_MOVE_STOPPED, host_, kGenericUsb, dc_status_packet()));
-            break;
-        case MotorEvent::Homed:
-            broadcast(encode_header_only(MGMSG_MOT_MOVE_HOMED, kChan1, 0, host_, kGenericUsb));
-            break;
+    for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
+        const std::uint8_t me = address_of(bay);
+        for (const auto event : channels_[bay]->take_events()) {
+            if (!end_of_move_messages_)
+                continue;
+            // USB "server alive" (p. 80): end-of-move messages count as status update type
+            // messages too, while update messages are on.
+            if (updates_ && updates_since_ack_ >= kUpdatesWithoutAck)
+                continue;
+            if (updates_)
+                ++updates_since_ack_;
+            switch (event) {
+            case MotorEvent::MoveCompleted:
+                broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, me, dc_status_packet(bay)));
+                break;
+            case MotorEvent::Stopped:
+                broadcast(encode_with_data(MGMSG_MOT_MOVE_STOPPED, host_, me, dc_status_packet(bay)));
+                break;
+            case MotorEvent::Homed:
+                broadcast(encode_header_only(MGMSG_MOT_MOVE_HOMED, kChan1, 0, host_, me));
+                break;
+            }
         }
     }
 }
 
 Ticks AptDevice::next_change(Ticks now) const
 {
-    const Ticks update = updates_ && updates_since_ack_ < kUpdatesWithoutAck ? std::max(next_update_, now + 1) : kNever;
-    return std::min(update, channel_.next_change(now));
+    Ticks next = updates_ && updates_since_ack_ < kUpdatesWithoutAck ? std::max(next_update_, now + 1) : kNever;
+    for (const auto& ch : channels_)
+        next = std::min(next, ch->next_change(now));
+    return next;
 }
 
 void AptDevice::tick(Ticks now)
 {
-    channel_.tick(now);
+    for (auto& ch : channels_)
+        ch->tick(now);
     flush();
     if (updates_ && now >= next_update_) {
         next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
         if (updates_since_ack_ < kUpdatesWithoutAck) {
             ++updates_since_ack_;
-            broadcast(encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, kGenericUsb, dc_status_packet()));
+            for (std::size_t bay = 0; bay < channels_.size(); ++bay)
+                broadcast(encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, address_of(bay), dc_status_packet(bay)));
         }
     }
 }

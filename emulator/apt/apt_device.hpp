@@ -1,7 +1,8 @@
 #pragma once
-// A single-unit APT motor controller (T-Cube/K-Cube DC servo) as a rig device: a framer per
-// connection, one handler function per message of the manual, the motor channel, and the
-// status updates it sends by itself (manual section 5 (c)).
+// An APT motor controller as a rig device: a single unit (T-Cube/K-Cube, answering as 0x50)
+// or a card-slot system (motherboard at 0x11, bays at 0x21 + n). A framer per connection, a
+// handler for every message of the manual, one motor channel per bay, and the status updates
+// the unit sends by itself (manual sections 4 and 5 (c)).
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/frame_framer.hpp"
@@ -12,6 +13,7 @@
 #include <spdlog/logger.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,7 +39,9 @@ public:
     /// Handle one frame from a connection; answers go to `reply`.
     void handle(const Frame& frame, std::string_view peer, std::string& reply);
 
-    MotorChannel& channel() { return channel_; }
+    /// The motor channel of a single unit, or of bay `bay` of a rack.
+    MotorChannel& channel(std::size_t bay = 0) { return *channels_.at(bay); }
+    std::size_t bay_count() const { return channels_.size(); }
     std::uint32_t serial_number() const { return serial_; }
     int identify_count() const { return identify_count_; }
 
@@ -51,17 +55,21 @@ public:
     void flush();
 
 private:
-    std::string info_packet() const;
-    std::string status_packet() const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
-    std::string dc_status_packet() const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout
+    /// The module address a bay answers from: 0x50 for a single unit, 0x21 + bay in a rack.
+    std::uint8_t address_of(std::size_t bay) const;
+    void handle_motherboard(const Frame& f, std::string_view peer, std::string& reply);
+    void handle_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
+    std::string info_packet(std::optional<std::size_t> bay) const;
+    std::string status_packet(std::size_t bay) const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
+    std::string dc_status_packet(std::size_t bay) const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout
+    void start_updates();
     void broadcast(const std::string& frame);
 
     DeviceConfig config_;
     Clock& clock_;
     std::shared_ptr<spdlog::logger> log_;
     const ControllerModel& model_;
-    const StageModel& stage_;
-    MotorChannel channel_;
+    std::vector<std::unique_ptr<MotorChannel>> channels_;
     std::uint32_t serial_;
     std::vector<AptSession*> sessions_;
     bool updates_ = false;                  ///< after HW_START_UPDATEMSGS

@@ -12,18 +12,25 @@ constexpr double kDcT = 2048.0 / 6e6;
 constexpr double kDcVelocity = kDcT * 65536.0;
 constexpr double kDcAcceleration = kDcT * kDcT * 65536.0;
 
-constexpr std::array<ControllerModel, 2> kControllers{{
+constexpr std::array<ControllerModel, 3> kControllers{{
     // 2.2: "83xxxxxx DC servo driver T-Cube TDC001"; Thorlabs' K-Cube DC servo: 27xxxxxx.
     {"TDC001", 83, 31, MotorKind::DcServo, "APT DC Motor Controller", kDcVelocity, kDcAcceleration},
     {"KDC101", 27, 31, MotorKind::DcServo, "Brushed Motor Controller", kDcVelocity, kDcAcceleration},
+    // 2.2: "73xxxxxx Brushless DC motherboard BBD102/BBD103", "94xxxxxx Brushless DC motor
+    // card"; HW_GET_INFO types 45 (motherboard) and 44 (brushless card). Scaling: 7.1.
+    {"BBD203", 73, 45, MotorKind::Brushless, "Brushless DC Motor Controller", 134'218.0 / 20'000.0,
+     13.7439 / 20'000.0, true, 3, 44, 94},
 }};
 
 // Z8 actuators: 512-count encoder, 67.49:1 gearbox, 1 mm lead screw: 34,304 counts per mm
 // (34,555 in some documents; Thorlabs' APT software uses 34,304).
-constexpr std::array<StageModel, 3> kStages{{
+constexpr std::array<StageModel, 5> kStages{{
     {"MTS50-Z8", MotorKind::DcServo, 50.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"MTS25-Z8", MotorKind::DcServo, 25.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"Z825B", MotorKind::DcServo, 25.0, 34'304.0, 2.6, 4.0, 1.0, 0.3},
+    // MLS203 (7.1): 20,000 counts/mm; X 110 mm, Y 75 mm of travel.
+    {"MLS203-X", MotorKind::Brushless, 110.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439},
+    {"MLS203-Y", MotorKind::Brushless, 75.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439},
 }};
 
 } // namespace
@@ -46,12 +53,12 @@ const StageModel* find_stage(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101";
+    return "TDC001, KDC101, BBD203";
 }
 
 std::string_view stage_names()
 {
-    return "MTS50-Z8, MTS25-Z8, Z825B";
+    return "MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y";
 }
 
 } // namespace rigsim::apt

@@ -19,6 +19,11 @@ struct ControllerModel {
     /// per count/s²).
     double velocity_per_count_s;
     double acceleration_per_count_s2;
+    /// Card-slot (rack) system: a motherboard at 0x11 and bays at 0x21 + n (section 4).
+    bool rack = false;
+    int max_bays = 1;
+    std::uint16_t bay_hw_type = 0;  ///< HW_GET_INFO type of a bay's card
+    std::uint32_t bay_serial_prefix = 0;
 };
 
 /// A stage (actuator) the controller drives.
@@ -31,6 +36,10 @@ struct StageModel {
     double acceleration_mm_s2;
     double home_velocity_mm_s;
     double home_offset_mm;          ///< back-off distance from the limit switch
+    /// Velocity/acceleration scaling of the stage itself when the manual gives it per mm
+    /// (7.1, MLS203 with BBDxxx); 0: derived from the controller's per-count factors.
+    double velocity_per_mm_s = 0;
+    double acceleration_per_mm_s2 = 0;
 };
 
 /// The controller with this name, or nullptr.

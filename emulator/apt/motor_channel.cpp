@@ -9,11 +9,11 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
     : controller_(controller), stage_(stage), clock_(clock)
 {
     const double cpm = stage.counts_per_mm;
-    velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * controller.velocity_per_count_s));
-    velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * controller.acceleration_per_count_s2));
+    velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
+    velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * acceleration_factor()));
     jog.step_size = static_cast<std::int32_t>(std::lround(0.1 * cpm));
     jog.velocity = velocity;
-    home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * controller.velocity_per_count_s));
+    home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * velocity_factor()));
     home_params.offset = static_cast<std::int32_t>(std::lround(stage.home_offset_mm * cpm));
     // Power-up: the stage stands mid-travel; the counters read 0 there (not homed).
     state_ = models::AxisState(travel_counts() / 2, 0.0);
@@ -21,14 +21,25 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
     encoder_offset_ = state_[0];
 }
 
+double MotorChannel::velocity_factor() const
+{
+    return stage_.velocity_per_mm_s > 0 ? stage_.velocity_per_mm_s / stage_.counts_per_mm : controller_.velocity_per_count_s;
+}
+
+double MotorChannel::acceleration_factor() const
+{
+    return stage_.acceleration_per_mm_s2 > 0 ? stage_.acceleration_per_mm_s2 / stage_.counts_per_mm
+                                             : controller_.acceleration_per_count_s2;
+}
+
 double MotorChannel::counts_per_s(std::int32_t apt_velocity) const
 {
-    return std::abs(static_cast<double>(apt_velocity)) / controller_.velocity_per_count_s;
+    return std::abs(static_cast<double>(apt_velocity)) / velocity_factor();
 }
 
 double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
 {
-    return std::abs(static_cast<double>(apt_acceleration)) / controller_.acceleration_per_count_s2;
+    return std::abs(static_cast<double>(apt_acceleration)) / acceleration_factor();
 }
 
 std::int32_t MotorChannel::position() const
@@ -53,9 +64,9 @@ void MotorChannel::set_encoder(std::int32_t counts)
 
 std::int16_t MotorChannel::velocity_word() const
 {
-    // DCSTATUSUPDATE carries the velocity in APT units scaled down to a word.
-    const double apt = state_[1] * controller_.velocity_per_count_s / 65536.0;
-    return static_cast<std::int16_t>(std::clamp(std::lround(apt), -32768L, 32767L));
+    // DCSTATUSUPDATE (p. 79): "Scaling is 204.8 per mm/sec".
+    const double word = state_[1] / stage_.counts_per_mm * 204.8;
+    return static_cast<std::int16_t>(std::clamp(std::lround(word), -32768L, 32767L));
 }
 
 std::uint32_t MotorChannel::status_bits() const

@@ -98,6 +98,9 @@ public:
 private:
     enum class Motion { Idle, Moving, Jogging, HomingToLimit, HomingBackOff, Stopping };
 
+    /// APT velocity units per count/s and acceleration units per count/s² (7.1).
+    double velocity_factor() const;
+    double acceleration_factor() const;
     double counts_per_s(std::int32_t apt_velocity) const;
     double counts_per_s2(std::int32_t apt_acceleration) const;
     double travel_counts() const { return stage_.travel_mm * stage_.counts_per_mm; }

@@ -32,7 +32,7 @@ constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
 constexpr std::array<std::string_view, 8> kDeviceKeys{
     "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs", "apt"};
-constexpr std::array<std::string_view, 2> kAptKeys{"stage", "serial_number"};
+constexpr std::array<std::string_view, 3> kAptKeys{"stage", "bays", "serial_number"};
 constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
 constexpr std::array<std::string_view, 16> kChannelKeys{
     "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
@@ -352,12 +352,33 @@ private:
                                                   + "), got " + (find(v, "model") ? quote(d.model) : std::string("nothing")));
         const auto apt_pointer = pointer_to(pointer, "apt");
         const auto& a = require(v, pointer, "apt");
+        if (!a.is_object())
+            fail(apt_pointer, "expected an object, got " + describe(a));
         check_keys(a, apt_pointer, kAptKeys);
         if (const auto* st = find(a, "stage")) {
             d.apt.stage = get_string(*st, pointer_to(apt_pointer, "stage"));
             if (!apt::find_stage(d.apt.stage))
                 fail(pointer_to(apt_pointer, "stage"), "unknown stage " + quote(d.apt.stage) + " (expected one of "
                                                            + std::string(apt::stage_names()) + ")");
+        }
+        if (controller->rack) {
+            if (find(a, "stage"))
+                fail(pointer_to(apt_pointer, "stage"), "a rack controller names a stage per bay in \"bays\"");
+            const auto bays_pointer = pointer_to(apt_pointer, "bays");
+            const auto& bays = require(a, apt_pointer, "bays");
+            const auto max = static_cast<std::size_t>(controller->max_bays);
+            if (!bays.is_array() || bays.empty() || bays.size() > max)
+                fail(bays_pointer, "expected an array of 1.." + std::to_string(max) + " stages, got " + describe(bays));
+            for (std::size_t i = 0; i < bays.size(); ++i) {
+                const auto bay_pointer = pointer_to(bays_pointer, i);
+                auto stage = get_string(bays[i], bay_pointer);
+                if (!apt::find_stage(stage))
+                    fail(bay_pointer, "unknown stage " + quote(stage) + " (expected one of "
+                                          + std::string(apt::stage_names()) + ")");
+                d.apt.bays.push_back(std::move(stage));
+            }
+        } else if (find(a, "bays")) {
+            fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + d.model + " names one \"stage\"");
         }
         if (const auto* sn = find(a, "serial_number")) {
             const std::int64_t lo = controller->serial_prefix * 1'000'000LL;

@@ -54,9 +54,11 @@ struct McsConfig {
     std::vector<McsChannelConfig> channels;        ///< 1..255 channels
 };
 
-/// A single-unit APT motor controller (Thorlabs): its stage.
+/// An APT motor controller (Thorlabs): its stage, or for a card-slot (rack) controller the
+/// stage of each occupied bay.
 struct AptConfig {
     std::string stage = "MTS50-Z8";   ///< a stage of the catalogue (emulator/apt/catalogue.cpp)
+    std::vector<std::string> bays;    ///< rack controllers: the stage in bay 0, 1, ...
     std::uint32_t serial_number = 0;  ///< 8 digits with the model's prefix; 0 = prefix × 10^6 + 1
 };
 

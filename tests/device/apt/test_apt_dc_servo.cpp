@@ -235,3 +235,40 @@ TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS
     CHECK(completed.substr(0, 17) == "64 04 0E 00 81 50");
     CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
 }
+
+TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the bay", "[device][apt][rack]")
+{
+    DeviceConfig c;
+    c.name = "bbd";
+    c.protocol = Protocol::Apt;
+    c.model = "BBD203";
+    c.apt.bays = {"MLS203-X", "MLS203-Y"};
+    AptHarness h(c);
+    // The motherboard: its info (type 45, 2 bays) and which bays are used (p. 23: from 0).
+    const auto info = bytes(h.send("05 00 00 00 11 01"));
+    REQUIRE(info.size() == 90);
+    CHECK(hex(info.substr(0, 6)) == "06 00 54 00 81 11");
+    CHECK(get_u32(info, 6) == 73'000'001);
+    CHECK(get_u16(info, 18) == 45);
+    CHECK(get_u16(info, 88) == 2);
+    CHECK(h.send("60 00 00 00 11 01") == "61 00 00 01 01 11");
+    CHECK(h.send("60 00 01 00 11 01") == "61 00 01 01 01 11");
+    CHECK(h.send("60 00 02 00 11 01") == "61 00 02 02 01 11");    // bay 2 empty
+    // A bay's card: type 44, one channel, its own address as the source.
+    const auto card = bytes(h.send("05 00 00 00 22 01"));
+    REQUIRE(card.size() == 90);
+    CHECK(hex(card.substr(0, 6)) == "06 00 54 00 81 22");
+    CHECK(get_u16(card, 18) == 44);
+    // The manual's VELPARAMS example for MLS203 bay 2 (p. 30): accel 10 mm/s², 99 mm/s.
+    CHECK(h.send("13 04 0E 00 A2 01 01 00 00 00 00 00 89 00 00 00 9E C0 CA 00") == "");
+    CHECK(h.send("14 04 01 00 22 01") == "15 04 0E 00 81 22 01 00 00 00 00 00 89 00 00 00 9E C0 CA 00");
+    // The manual's MOVE_RELATIVE example: bay 2 by 10 mm (200,000 counts).
+    CHECK(h.send("48 04 06 00 A2 01 01 00 40 0D 03 00") == "");
+    h.advance_ms(20'000);
+    const auto done = h.take();
+    CHECK(done.substr(0, 17) == "64 04 0E 00 81 22");
+    CHECK(position_of(h.send("11 04 01 00 22 01")) == 200'000);
+    CHECK(position_of(h.send("11 04 01 00 21 01")) == 0);        // bay 0 did not move
+    CHECK(h.send("11 04 01 00 23 01") == "");                      // absent bay: ignored
+    CHECK(h.send("11 04 01 00 50 01") == "");                      // not a single unit
+}
