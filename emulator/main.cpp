@@ -40,6 +40,9 @@ TCP sockets. Without --config, runs the built-in default rig (config/default.jso
                          0.001..1000)
   --tick-hz N            physics tick rate in Hz, overriding the config's tick_hz
                          (1..100000; default 1000)
+  --state-file FILE      keep what devices save in non-volatile memory (APT
+                         MOT_SET_EEPROMPARAMS) in FILE across restarts; without it, saves
+                         last until the daemon exits
   --log-level LEVEL      trace, debug, info, warn, error, critical or off (default info);
   --log-level NAME=LEVEL   the level of one logger: a device name, or rigsimd
                          (may be repeated)
@@ -141,7 +144,11 @@ std::optional<Options> parse_args(int argc, char** argv)
                 throw UsageError{"--bind: expected an IP address, got \"" + v + "\""};
         } else if (arg == "--time-scale")
             o.rig.time_scale = parse_double(arg, value(), 0.001, 1000);
-        else if (arg == "--tick-hz")
+        else if (arg == "--state-file") {
+            o.rig.state_file = value();
+            if (o.rig.state_file.empty())
+                throw UsageError{"--state-file: expected a file name, got \"\""};
+        } else if (arg == "--tick-hz")
             o.tick_hz = parse_uint(arg, value(), 1, 100000);
         else if (arg == "--log-level") {
             if (auto err = rigsim::apply_log_level(value(), o.rig.log_levels))

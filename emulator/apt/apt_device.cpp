@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace rigsim::apt {
 
@@ -72,16 +73,101 @@ private:
     FrameFramer framer_;
 };
 
-AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
+AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
+                     StateStore* store)
     : config_(config), clock_(clock), log_(std::move(log)), model_(*find_controller(config.model)),
-      serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1)
+      serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1),
+      store_(store)
 {
     if (model_.rack)
         for (const auto& stage : config.apt.bays)
             channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock));
     else
         channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock));
+    restore_from_eeprom();
     clock_.add(this);
+}
+
+namespace {
+
+/// State file key of a saved SET message: "bay0/0x0413".
+std::string eeprom_key(std::size_t bay, std::uint16_t id)
+{
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string k = "bay" + std::to_string(bay) + "/0x";
+    for (int shift = 12; shift >= 0; shift -= 4)
+        k += kHex[(id >> shift) & 0xf];
+    return k;
+}
+
+std::string to_hex(std::string_view data)
+{
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    for (unsigned char c : data) {
+        out += kHex[c >> 4];
+        out += kHex[c & 0xf];
+    }
+    return out;
+}
+
+std::optional<std::string> from_hex(const std::string& hex)
+{
+    if (hex.size() % 2 != 0)
+        return std::nullopt;
+    std::string out;
+    for (std::size_t i = 0; i < hex.size(); i += 2) {
+        const auto v = std::stoi(hex.substr(i, 2), nullptr, 16);
+        out.push_back(static_cast<char>(v));
+    }
+    return out;
+}
+
+} // namespace
+
+void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer)
+{
+    const auto it = last_set_.find({bay, id});
+    if (it == last_set_.end()) {
+        log_->warn("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: no such parameters were set, nothing saved", peer, id);
+        return;
+    }
+    if (!store_) {
+        log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: kept until the daemon exits (no --state-file)", peer, id);
+        return;
+    }
+    try {
+        store_->set(config_.name, eeprom_key(bay, id), to_hex(it->second));
+        log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: saved", peer, id);
+    } catch (const std::exception& e) {
+        log_->error("{}: MOT_SET_EEPROMPARAMS: cannot save: {}", peer, e.what());
+    }
+}
+
+void AptDevice::restore_from_eeprom()
+{
+    if (!store_)
+        return;
+    for (const auto& [key, value] : store_->device_state(config_.name).items()) {
+        std::size_t bay = 0;
+        unsigned id = 0;
+        if (std::sscanf(key.c_str(), "bay%zu/0x%x", &bay, &id) != 2 || bay >= channels_.size() || !value.is_string())
+            continue;
+        const auto data = from_hex(value.get<std::string>());
+        const auto* info = find_message(static_cast<std::uint16_t>(id));
+        if (!data || !info || data->size() < 2)
+            continue;
+        Frame f;
+        f.id = static_cast<std::uint16_t>(id);
+        f.dest = address_of(bay);
+        f.source = kHost;
+        f.has_data = true;
+        f.data = *data;
+        f.info = info;
+        std::string ignored;
+        handle_bay(bay, f, "state file", ignored);
+        log_->info("restored 0x{:04x} of bay {} from the state file", id, bay);
+    }
 }
 
 std::uint8_t AptDevice::address_of(std::size_t bay) const
@@ -224,6 +310,8 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
 {
     auto& ch = *channels_[bay];
     const std::uint8_t me = address_of(bay);
+    if (f.has_data && f.info->name.find("_SET_") != std::string_view::npos)
+        last_set_[{bay, f.id}] = std::string(f.data);   // what MOT_SET_EEPROMPARAMS can save
     auto answer = [&](std::uint16_t id, const std::string& data) { reply += encode_with_data(id, host_, me, data); };
     auto answer_header = [&](std::uint16_t id, std::uint8_t p1, std::uint8_t p2) {
         reply += encode_header_only(id, p1, p2, host_, me);
@@ -409,8 +497,7 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
             ch.button_params.assign(14, '\0');
         return answer(MGMSG_MOT_GET_BUTTONPARAMS, std::string("\x01\x00", 2) + ch.button_params);
     case MGMSG_MOT_SET_EEPROMPARAMS:
-        log_->info("{}: MOT_SET_EEPROMPARAMS for message 0x{:04x}: saved", peer, get_u16(f.data, 2));
-        return;
+        return save_to_eeprom(bay, get_u16(f.data, 2), peer);
     // ---- moves ----
     case MGMSG_MOT_MOVE_HOME:
     case MGMSG_MOT_MOVE_RELATIVE:

@@ -9,9 +9,11 @@
 #include "emulator/apt/motor_channel.hpp"
 #include "emulator/core/clock.hpp"
 #include "emulator/core/device.hpp"
+#include "emulator/core/state_store.hpp"
 
 #include <spdlog/logger.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,7 +30,9 @@ public:
     /// USB units stop their update messages after 50 without MOT_ACK_DCSTATUSUPDATE.
     static constexpr int kUpdatesWithoutAck = 50;
 
-    AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log);
+    /// `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
+    AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
+              StateStore* store = nullptr);
     ~AptDevice() override;
     AptDevice(const AptDevice&) = delete;
     AptDevice& operator=(const AptDevice&) = delete;
@@ -63,6 +67,10 @@ private:
     std::string status_packet(std::size_t bay) const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
     std::string dc_status_packet(std::size_t bay) const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout
     void start_updates();
+    /// MOT_SET_EEPROMPARAMS: save the last SET of message `id` on bay `bay`.
+    void save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer);
+    /// Replay what the state file holds for this device (power-up from non-volatile memory).
+    void restore_from_eeprom();
     void broadcast(const std::string& frame);
 
     DeviceConfig config_;
@@ -78,6 +86,8 @@ private:
     bool end_of_move_messages_ = true;      ///< MOT_SUSPEND/RESUME_ENDOFMOVEMSGS
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
+    StateStore* store_;
+    std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;   ///< (bay, SET id) -> data
 };
 
 } // namespace rigsim::apt

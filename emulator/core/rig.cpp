@@ -51,13 +51,13 @@ private:
 };
 
 std::unique_ptr<Device> make_device(const DeviceConfig& config, Clock& clock,
-                                    std::shared_ptr<spdlog::logger> log)
+                                    std::shared_ptr<spdlog::logger> log, StateStore& store)
 {
     switch (config.protocol) {
     case Protocol::Mcs:
         return std::make_unique<mcs::McsDevice>(config, clock, std::move(log));
     case Protocol::Apt:
-        return std::make_unique<apt::AptDevice>(config, clock, std::move(log));
+        return std::make_unique<apt::AptDevice>(config, clock, std::move(log), &store);
     }
     throw ConfigError("device \"" + config.name + "\": unknown protocol");
 }
@@ -72,12 +72,13 @@ struct Rig::Entry {
 };
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
-    : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale)
+    : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale),
+      store_(options.state_file.empty() ? std::make_unique<StateStore>() : std::make_unique<StateStore>(options.state_file))
 {
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
-        e->device = make_device(dc, clock_, log);
+        e->device = make_device(dc, clock_, log, *store_);
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
         e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log);

@@ -5,6 +5,7 @@
 #include "emulator/core/device.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
+#include "emulator/core/state_store.hpp"
 #include "emulator/core/ticker.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
@@ -24,6 +25,7 @@ struct RigOptions {
     boost::asio::ip::address bind = boost::asio::ip::make_address("127.0.0.1");
     double time_scale = 1.0;
     LogLevels log_levels;
+    std::string state_file;                 ///< --state-file; empty: non-volatile saves last the run
 };
 
 /// Where a client reaches one device.
@@ -55,6 +57,7 @@ private:
 
     Clock clock_;
     Ticker ticker_;
+    std::unique_ptr<StateStore> store_;
     std::vector<std::unique_ptr<Entry>> entries_;
     std::vector<DeviceEndpoints> endpoints_;
 };

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <poll.h>
+#include <csignal>
 #include <unistd.h>
 
 #include <cstdint>
@@ -167,4 +168,32 @@ TEST_CASE("APT over the pty: info, home, move, jog, status updates", "[e2e][apt]
     Daemon daemon(options);
     PtyClient c(daemon.endpoint("tdc001").pty);
     session(c);
+}
+
+TEST_CASE("APT: what MOT_SET_EEPROMPARAMS saves survives a daemon restart (--state-file)", "[e2e][apt]")
+{
+    TempDir state_dir;
+    const auto state = state_dir.file("state.json");
+    Daemon::Options options;
+    options.extra_args = {"--state-file", state};
+    {
+        Daemon daemon(options);
+        TcpClient c(daemon.endpoint("kdc101"));
+        // VELPARAMS: acceleration 16, max 4096 (APT units); then save them.
+        c.send(with_data(0x0413, std::string("\x01\x00\x00\x00\x00\x00\x10\x00\x00\x00\x00\x10\x00\x00", 14)));
+        c.send(with_data(0x04B9, std::string("\x01\x00\x13\x04", 4)));
+        c.send(header(0x0414, 1, 0));
+        auto vel = wait_for(c.fd(), 0x0415);
+        REQUIRE(vel);
+        CHECK(get32(vel->data, 10) == 4096);
+        REQUIRE(wait_until([&] { return read_file(state).has_value(); }, 5000ms));
+        REQUIRE(daemon.stop(SIGTERM) == std::optional<int>(0));
+    }
+    Daemon daemon(options);
+    TcpClient c(daemon.endpoint("kdc101"));
+    c.send(header(0x0414, 1, 0));
+    auto vel = wait_for(c.fd(), 0x0415);
+    REQUIRE(vel);
+    CHECK(get32(vel->data, 6) == 16);
+    CHECK(get32(vel->data, 10) == 4096);
 }

@@ -6,7 +6,10 @@
 #include <catch2/catch.hpp>
 #include <spdlog/sinks/null_sink.h>
 
+#include <cstdio>
 #include <sstream>
+#include <unistd.h>
+#include <stdlib.h>
 
 using namespace rigsim;
 using namespace rigsim::apt;
@@ -271,4 +274,33 @@ TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the 
     CHECK(position_of(h.send("11 04 01 00 21 01")) == 0);        // bay 0 did not move
     CHECK(h.send("11 04 01 00 23 01") == "");                      // absent bay: ignored
     CHECK(h.send("11 04 01 00 50 01") == "");                      // not a single unit
+}
+
+TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device restores it", "[device][apt][eeprom]")
+{
+    char dir_template[] = "/tmp/rigsim-eeprom-XXXXXX";
+    REQUIRE(::mkdtemp(dir_template));
+    const std::string path = std::string(dir_template) + "/state.json";
+    {
+        StateStore store(path);
+        Clock clock;
+        AptDevice device(tdc001(), clock, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &store);
+        std::string out;
+        auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
+        session->receive(bytes("13 04 0E 00 D0 01 01 00 00 00 00 00 10 00 00 00 00 10 00 00"));   // VELPARAMS
+        session->receive(bytes("3A 04 06 00 D0 01 01 00 00 0D 00 00"));                           // backlash
+        session->receive(bytes("B9 04 04 00 D0 01 01 00 13 04"));                                 // save VELPARAMS only
+    }
+    StateStore reloaded(path);                                     // the daemon restarts
+    Clock clock;
+    AptDevice device(tdc001(), clock, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &reloaded);
+    std::string out;
+    auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
+    session->receive(bytes("14 04 01 00 50 01"));
+    CHECK(hex(out) == "15 04 0E 00 81 50 01 00 00 00 00 00 10 00 00 00 00 10 00 00");
+    out.clear();
+    session->receive(bytes("3B 04 01 00 50 01"));                  // backlash was not saved
+    CHECK(hex(out) == "3C 04 06 00 81 50 01 00 00 00 00 00");
+    std::remove(path.c_str());
+    ::rmdir(dir_template);
 }
