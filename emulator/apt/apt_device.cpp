@@ -144,6 +144,66 @@ void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_vi
     }
 }
 
+std::string AptDevice::stage_axis_block(std::size_t bay) const
+{
+    // p. 75: stage ID word (MLS203 X 0x10, Y 0x11), axis ID word, part number char[16],
+    // serial dword, counts per unit dword, min/max position long, max acceleration,
+    // deceleration and velocity long, reserved to 72 bytes after the channel word.
+    const auto& stage = channels_[bay]->stage();
+    std::string d;
+    put_u16(d, stage.name == "MLS203-Y" ? 0x11 : 0x10);
+    put_u16(d, 0);
+    std::string part(stage.name);
+    part.resize(16, '\0');
+    d += part;
+    put_u32(d, serial_ % 1'000'000 * 10 + static_cast<std::uint32_t>(bay));
+    put_u32(d, static_cast<std::uint32_t>(stage.counts_per_mm));
+    put_i32(d, channels_[bay]->min_position());
+    put_i32(d, channels_[bay]->max_position());
+    put_i32(d, channels_[bay]->velocity.acceleration);
+    put_i32(d, channels_[bay]->velocity.acceleration);
+    put_i32(d, channels_[bay]->velocity.max);
+    d.resize(72, '\0');
+    return d;
+}
+
+bool AptDevice::handle_pmd(std::size_t bay, const Frame& f, std::string& reply)
+{
+    static constexpr std::uint16_t kSets[] = {
+        MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS,
+        MGMSG_MOT_SET_PMDTRACKSETTLEPARAMS, MGMSG_MOT_SET_PMDPROFILEMODEPARAMS,
+        MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, MGMSG_MOT_SET_PMDSTAGEAXISPARAMS};
+    // Each trio is SET, REQ = SET + 1, GET = SET + 2.
+    for (const auto set : kSets) {
+        if (f.id == set) {
+            if (set == MGMSG_MOT_SET_PMDSTAGEAXISPARAMS) {
+                // "can only be used to increase the Minimum position value and decrease the
+                // Maximum position value": the travel narrows, nothing else changes.
+                channels_[bay]->narrow_travel(get_i32(f.data, 28), get_i32(f.data, 32));
+                return true;
+            }
+            pmd_blocks_[{bay, set}] = std::string(f.data.substr(2));
+            return true;
+        }
+        if (f.id == set + 1) {
+            const auto* get = find_message(static_cast<std::uint16_t>(set + 2));
+            std::string d;
+            put_u16(d, kChan1);
+            if (set == MGMSG_MOT_SET_PMDSTAGEAXISPARAMS) {
+                d += stage_axis_block(bay);
+            } else {
+                const auto it = pmd_blocks_.find({bay, set});
+                std::string block = it != pmd_blocks_.end() ? it->second : std::string();
+                block.resize(static_cast<std::size_t>(get->data_length) - 2, '\0');
+                d += block;
+            }
+            reply += encode_with_data(get->id, host_, address_of(bay), d);
+            return true;
+        }
+    }
+    return false;
+}
+
 void AptDevice::restore_from_eeprom()
 {
     if (!store_)
@@ -553,6 +613,8 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         end_of_move_messages_ = true;
         return;
     default:
+        if (model_.motor == MotorKind::Brushless && handle_pmd(bay, f, reply))
+            return;
         // A message of the table that this controller does not act on (a GET sent by a
         // host, a rack or brushless message): the real unit ignores it.
         log_->warn("{}: {} is not a message a {} acts on: ignored", peer, f.info->name, config_.model);

@@ -67,6 +67,11 @@ private:
     std::string status_packet(std::size_t bay) const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
     std::string dc_status_packet(std::size_t bay) const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout
     void start_updates();
+    /// Brushless (PMD) parameter trios of a bay: SET stores, REQ answers GET (manual p. 61-76).
+    /// Returns false if `f` is not one of them.
+    bool handle_pmd(std::size_t bay, const Frame& f, std::string& reply);
+    /// MOT_GET_PMDSTAGEAXISPARAMS of a bay's stage (p. 75), without the channel word.
+    std::string stage_axis_block(std::size_t bay) const;
     /// MOT_SET_EEPROMPARAMS: save the last SET of message `id` on bay `bay`.
     void save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer);
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
@@ -87,6 +92,7 @@ private:
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     StateStore* store_;
+    std::map<std::pair<std::size_t, std::uint16_t>, std::string> pmd_blocks_;   ///< (bay, SET id) -> data after the channel word
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;   ///< (bay, SET id) -> data
 };
 

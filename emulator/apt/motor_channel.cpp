@@ -6,7 +6,7 @@
 namespace rigsim::apt {
 
 MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock)
-    : controller_(controller), stage_(stage), clock_(clock)
+    : controller_(controller), stage_(stage), clock_(clock), travel_max_(stage.travel_mm * stage.counts_per_mm)
 {
     const double cpm = stage.counts_per_mm;
     velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
@@ -42,6 +42,26 @@ double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
     return std::abs(static_cast<double>(apt_acceleration)) / acceleration_factor();
 }
 
+std::int32_t MotorChannel::min_position() const
+{
+    return static_cast<std::int32_t>(std::lround(travel_min_ - counter_offset_));
+}
+
+std::int32_t MotorChannel::max_position() const
+{
+    return static_cast<std::int32_t>(std::lround(travel_max_ - counter_offset_));
+}
+
+void MotorChannel::narrow_travel(std::int32_t min_position, std::int32_t max_position)
+{
+    const double lo = min_position + counter_offset_;
+    const double hi = max_position + counter_offset_;
+    if (lo < hi) {
+        travel_min_ = std::max(travel_min_, lo);
+        travel_max_ = std::min(travel_max_, hi);
+    }
+}
+
 std::int32_t MotorChannel::position() const
 {
     return static_cast<std::int32_t>(std::lround(state_[0] - counter_offset_));
@@ -72,7 +92,7 @@ std::int16_t MotorChannel::velocity_word() const
 std::uint32_t MotorChannel::status_bits() const
 {
     std::uint32_t bits = status::kMotorConnected;
-    if (state_[0] <= 0.5)
+    if (state_[0] <= travel_min_ + 0.5)
         bits |= status::kReverseHardLimit;
     if (state_[0] >= travel_counts() - 0.5)
         bits |= status::kForwardHardLimit;
@@ -116,7 +136,7 @@ void MotorChannel::start_profile(double target_physical, double v, double a, Mot
 {
     const Ticks now = clock_.now();
     sample(now);
-    const double target = std::clamp(target_physical, 0.0, travel_counts());   // hardware limits
+    const double target = std::clamp(target_physical, travel_min_, travel_counts());   // hardware limits
     if (v <= 0) {
         motion_ = Motion::Idle;
         return;
@@ -151,7 +171,7 @@ void MotorChannel::move_to(double target_physical)
     // distance and comes back forward, so that every move ends approaching forward.
     if (backlash > 0 && target_physical < state_[0] - 0.5) {
         pending_backlash_target_ = target_physical;
-        start_profile(std::max(target_physical - backlash, 0.0), counts_per_s(velocity.max),
+        start_profile(std::max(target_physical - backlash, travel_min_), counts_per_s(velocity.max),
                       counts_per_s2(velocity.acceleration), Motion::Moving);
         return;
     }
@@ -181,7 +201,7 @@ void MotorChannel::home()
     // Drive to the configured limit switch at the homing velocity (HOMEPARAMS).
     const bool to_forward = home_params.limit_switch == 4 || home_params.direction == 1;
     homed_ = false;
-    start_profile(to_forward ? travel_counts() : 0.0, counts_per_s(home_params.velocity),
+    start_profile(to_forward ? travel_counts() : travel_min_, counts_per_s(home_params.velocity),
                   counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
 }
 
@@ -194,7 +214,7 @@ void MotorChannel::jog_move(bool forward)
     const double v = counts_per_s(jog.velocity.max);
     const double a = counts_per_s2(jog.velocity.acceleration);
     if (jog.mode == 1) {   // continuous: until stopped or at a limit
-        start_profile(forward ? travel_counts() : 0.0, v, a, Motion::Jogging);
+        start_profile(forward ? travel_counts() : travel_min_, v, a, Motion::Jogging);
         return;
     }
     sample(clock_.now());
@@ -206,7 +226,7 @@ void MotorChannel::move_velocity(bool forward)
 {
     if (!enabled_)
         return;
-    start_profile(forward ? travel_counts() : 0.0, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
+    start_profile(forward ? travel_counts() : travel_min_, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
                   Motion::Moving);
 }
 
@@ -229,7 +249,7 @@ void MotorChannel::stop(bool immediate)
     const double a = counts_per_s2(velocity.acceleration);
     const double v = state_[1];
     const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
-    profile_ = models::TrapezoidProfile::plan(state_, std::clamp(stop_at, 0.0, travel_counts()),
+    profile_ = models::TrapezoidProfile::plan(state_, std::clamp(stop_at, travel_min_, travel_counts()),
                                               std::max(std::abs(v), 1.0), a);
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
@@ -272,7 +292,7 @@ void MotorChannel::finish(Ticks now)
         return;
     case Motion::HomingToLimit: {
         // At the switch: back off by the offset distance, then zero the counter there.
-        const double back = state_[0] <= 0.5 ? home_params.offset : -home_params.offset;
+        const double back = state_[0] <= travel_min_ + 0.5 ? home_params.offset : -home_params.offset;
         motion_ = Motion::Idle;
         if (back != 0 && counts_per_s(home_params.velocity) > 0)
             start_profile(state_[0] + back, counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration),

@@ -65,6 +65,12 @@ public:
     std::uint32_t status_bits() const;
 
     bool enabled() const { return enabled_; }
+    const StageModel& stage() const { return stage_; }
+    /// Travel limits in position counter units (MOT_GET_PMDSTAGEAXISPARAMS Min/MaxPos).
+    std::int32_t min_position() const;
+    std::int32_t max_position() const;
+    /// MOT_SET_PMDSTAGEAXISPARAMS may only raise the minimum and lower the maximum.
+    void narrow_travel(std::int32_t min_position, std::int32_t max_position);
     void set_enabled(bool e);
 
     VelocityParams velocity;
@@ -103,7 +109,7 @@ private:
     double acceleration_factor() const;
     double counts_per_s(std::int32_t apt_velocity) const;
     double counts_per_s2(std::int32_t apt_acceleration) const;
-    double travel_counts() const { return stage_.travel_mm * stage_.counts_per_mm; }
+    double travel_counts() const { return travel_max_; }
     void start_profile(double target_physical, double v, double a, Motion motion);
     void sample(Ticks now);
     void finish(Ticks now);
@@ -116,6 +122,8 @@ private:
     const StageModel& stage_;
     const Clock& clock_;
     bool enabled_ = true;
+    double travel_min_ = 0;          ///< physical counts; PMDSTAGEAXISPARAMS may narrow them
+    double travel_max_;
     bool homed_ = false;
     double counter_offset_;          ///< physical counts that read 0 on the position counter
     double encoder_offset_;

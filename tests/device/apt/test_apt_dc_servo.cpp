@@ -304,3 +304,38 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device re
     std::remove(path.c_str());
     ::rmdir(dir_template);
 }
+
+TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "[device][apt][rack]")
+{
+    DeviceConfig c;
+    c.name = "bbd";
+    c.protocol = Protocol::Apt;
+    c.model = "BBD203";
+    c.apt.bays = {"MLS203-X", "MLS203-Y"};
+    AptHarness h(c);
+    // PMDPROFILEMODEPARAMS (0x04E3/E4/E5): zeros until set, then what was set.
+    const auto before = bytes(h.send("E4 04 01 00 21 01"));
+    REQUIRE(before.size() >= 6);
+    CHECK(hex(before.substr(0, 6)) == "E5 04 0C 00 81 21");
+    CHECK(before.substr(8) == std::string(10, '\0'));
+    CHECK(h.send("E3 04 0C 00 A1 01 01 00 01 00 10 00 00 00 20 00 00 00") == "");
+    CHECK(h.send("E4 04 01 00 21 01") == "E5 04 0C 00 81 21 01 00 01 00 10 00 00 00 20 00 00 00");
+    CHECK(h.send("E4 04 01 00 22 01").substr(24) == "00 00 00 00 00 00 00 00 00 00");   // bay 1 unchanged
+    // PMDSTAGEAXISPARAMS: the stage of bay 1, MLS203-Y: 20,000 counts per mm, 75 mm.
+    const auto axis = bytes(h.send("F1 04 01 00 22 01"));
+    REQUIRE(axis.size() == 80);
+    CHECK(get_u16(axis, 8) == 0x11);
+    CHECK(axis.substr(12, 8) == "MLS203-Y");
+    CHECK(get_u32(axis, 32) == 20'000);
+    CHECK(get_i32(axis, 40) - get_i32(axis, 36) == 75 * 20'000);
+    // SET may only narrow the travel: max position -> +1 mm above the counter's zero.
+    std::string set = axis.substr(6);
+    std::string frame = encode_with_data(MGMSG_MOT_SET_PMDSTAGEAXISPARAMS, 0x22, 0x01, set);
+    const auto narrowed_max = get_i32(axis, 36) + 20'000;   // min + 1 mm
+    frame[6 + 32] = static_cast<char>(narrowed_max & 0xff);
+    frame[6 + 33] = static_cast<char>((narrowed_max >> 8) & 0xff);
+    frame[6 + 34] = static_cast<char>((narrowed_max >> 16) & 0xff);
+    frame[6 + 35] = static_cast<char>((narrowed_max >> 24) & 0xff);
+    CHECK(h.send(hex(frame)) == "");
+    CHECK(get_i32(bytes(h.send("F1 04 01 00 22 01")), 40) == narrowed_max);
+}
