@@ -529,9 +529,13 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         return answer(MGMSG_MOT_GET_LIMSWITCHPARAMS, d);
     }
     case MGMSG_MOT_SET_DCPIDPARAMS:
+        if (model_.motor == MotorKind::Stepper)
+            break;
         ch.pid_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_DCPIDPARAMS:
+        if (model_.motor == MotorKind::Stepper)
+            break;
         if (ch.pid_params.empty())
             ch.pid_params = std::string("\x8c\x01\x00\x00\x0e\x01\x00\x00\xa0\x0f\x00\x00\xfc\x12\x00\x00\x0f\x00", 18);
         return answer(MGMSG_MOT_GET_DCPIDPARAMS, std::string("\x01\x00", 2) + ch.pid_params);
@@ -599,6 +603,10 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_REQ_STATUSUPDATE:
         return answer(MGMSG_MOT_GET_STATUSUPDATE, status_packet(bay));
     case MGMSG_MOT_REQ_DCSTATUSUPDATE:
+        if (model_.motor == MotorKind::Stepper) {   // a DC message: a stepper controller ignores it
+            log_->warn("{}: {} is not a message a {} acts on: ignored", peer, f.info->name, config_.model);
+            return;
+        }
         return answer(MGMSG_MOT_GET_DCSTATUSUPDATE, dc_status_packet(bay));
     case MGMSG_MOT_REQ_STATUSBITS: {
         std::string d;
@@ -641,12 +649,14 @@ void AptDevice::flush()
                 continue;
             if (updates_)
                 ++updates_since_ack_;
+            // MOVE_COMPLETED/STOPPED carry MOTSTATUS (steppers) or MOTDCSTATUS (p. 44).
+            const auto status = model_.motor == MotorKind::Stepper ? status_packet(bay) : dc_status_packet(bay);
             switch (event) {
             case MotorEvent::MoveCompleted:
-                broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, me, dc_status_packet(bay)));
+                broadcast(encode_with_data(MGMSG_MOT_MOVE_COMPLETED, host_, me, status));
                 break;
             case MotorEvent::Stopped:
-                broadcast(encode_with_data(MGMSG_MOT_MOVE_STOPPED, host_, me, dc_status_packet(bay)));
+                broadcast(encode_with_data(MGMSG_MOT_MOVE_STOPPED, host_, me, status));
                 break;
             case MotorEvent::Homed:
                 broadcast(encode_header_only(MGMSG_MOT_MOVE_HOMED, kChan1, 0, host_, me));
@@ -675,7 +685,9 @@ void AptDevice::tick(Ticks now)
         if (updates_since_ack_ < kUpdatesWithoutAck) {
             ++updates_since_ack_;
             for (std::size_t bay = 0; bay < channels_.size(); ++bay)
-                broadcast(encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, address_of(bay), dc_status_packet(bay)));
+                broadcast(model_.motor == MotorKind::Stepper
+                              ? encode_with_data(MGMSG_MOT_GET_STATUSUPDATE, host_, address_of(bay), status_packet(bay))
+                              : encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, address_of(bay), dc_status_packet(bay)));
         }
     }
 }

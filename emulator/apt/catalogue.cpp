@@ -12,7 +12,12 @@ constexpr double kDcT = 2048.0 / 6e6;
 constexpr double kDcVelocity = kDcT * 65536.0;
 constexpr double kDcAcceleration = kDcT * kDcT * 65536.0;
 
-constexpr std::array<ControllerModel, 3> kControllers{{
+// Stepper controllers: VELPARAMS are "in encoder counts/sec ... For stepper controllers the
+// position steps are in micro-steps" (p. 29), i.e. microsteps/s and microsteps/s².
+constexpr std::array<ControllerModel, 5> kControllers{{
+    // 2.2: "80xxxxxx Stepper Driver T-Cube TST001"; Thorlabs' K-Cube stepper: 26xxxxxx.
+    {"TST001", 80, 31, MotorKind::Stepper, "APT Stepper Motor Controller", 1.0, 1.0},
+    {"KST101", 26, 31, MotorKind::Stepper, "Stepper Motor Controller", 1.0, 1.0},
     // 2.2: "83xxxxxx DC servo driver T-Cube TDC001"; Thorlabs' K-Cube DC servo: 27xxxxxx.
     {"TDC001", 83, 31, MotorKind::DcServo, "APT DC Motor Controller", kDcVelocity, kDcAcceleration},
     {"KDC101", 27, 31, MotorKind::DcServo, "Brushed Motor Controller", kDcVelocity, kDcAcceleration},
@@ -24,7 +29,11 @@ constexpr std::array<ControllerModel, 3> kControllers{{
 
 // Z8 actuators: 512-count encoder, 67.49:1 gearbox, 1 mm lead screw: 34,304 counts per mm
 // (34,555 in some documents; Thorlabs' APT software uses 34,304).
-constexpr std::array<StageModel, 5> kStages{{
+constexpr std::array<StageModel, 7> kStages{{
+    // Stepper actuators: 25,600 microsteps per mm ("In the APT Stepper Motor controllers the
+    // encoder resolution is 25,600 counts per mm", p. 77).
+    {"DRV001", MotorKind::Stepper, 13.0, 25'600.0, 2.0, 4.0, 1.0, 0.5},
+    {"ZST225B", MotorKind::Stepper, 25.0, 25'600.0, 2.0, 4.0, 1.0, 0.5},
     {"MTS50-Z8", MotorKind::DcServo, 50.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"MTS25-Z8", MotorKind::DcServo, 25.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"Z825B", MotorKind::DcServo, 25.0, 34'304.0, 2.6, 4.0, 1.0, 0.3},
@@ -53,12 +62,12 @@ const StageModel* find_stage(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, BBD203";
+    return "TDC001, KDC101, TST001, KST101, BBD203";
 }
 
 std::string_view stage_names()
 {
-    return "MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y";
+    return "DRV001, ZST225B, MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y";
 }
 
 } // namespace rigsim::apt

@@ -339,3 +339,28 @@ TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "
     CHECK(h.send(hex(frame)) == "");
     CHECK(get_i32(bytes(h.send("F1 04 01 00 22 01")), 40) == narrowed_max);
 }
+
+TEST_CASE("stepper cubes: microsteps, MOT_GET_STATUSUPDATE, no DC messages", "[device][apt][stepper]")
+{
+    DeviceConfig c;
+    c.name = "tst";
+    c.protocol = Protocol::Apt;
+    c.model = "KST101";
+    c.apt.stage = "ZST225B";
+    AptHarness h(c);
+    const auto info = bytes(h.send("05 00 00 00 50 01"));
+    REQUIRE(info.size() == 90);
+    CHECK(get_u32(info, 6) == 26'000'001);
+    // VELPARAMS in microsteps/s (p. 29): 2 mm/s = 51200, 4 mm/s² = 102400.
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 00 90 01 00 00 C8 00 00");
+    CHECK(h.send("48 04 06 00 D0 01 01 00 00 64 00 00") == "");   // 25600 microsteps = 1 mm
+    h.advance_ms(2000);
+    const auto done = h.take();
+    CHECK(done.substr(0, 17) == "64 04 0E 00 81 50");
+    CHECK(get_i32(bytes(done), 8) == 25'600);                      // MOTSTATUS: position
+    CHECK(get_i32(bytes(done), 12) == 25'600);                     // ... and encoder count
+    CHECK(h.send("11 00 00 00 50 01") == "");                      // updates: MOT_GET_STATUSUPDATE
+    h.advance_ms(100);
+    CHECK(h.take().substr(0, 17) == "81 04 0E 00 81 50");
+    CHECK(h.send("90 04 01 00 50 01") == "");                      // REQ_DCSTATUSUPDATE: ignored
+}

@@ -122,7 +122,7 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
 TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
-    REQUIRE(rig.devices.size() == 4);
+    REQUIRE(rig.devices.size() == 6);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
     CHECK(d.protocol == rigsim::Protocol::Mcs);
@@ -132,8 +132,10 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     CHECK(rig.devices[1].tcp_port == 40101);
     CHECK(rig.devices[2].model == "KDC101");
     CHECK(rig.devices[2].tcp_port == 40102);
-    CHECK(rig.devices[3].model == "BBD203");
-    CHECK(rig.devices[3].apt.bays.size() == 2);
+    CHECK(rig.devices[3].model == "TST001");
+    CHECK(rig.devices[4].model == "KST101");
+    CHECK(rig.devices[5].model == "BBD203");
+    CHECK(rig.devices[5].apt.bays.size() == 2);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
@@ -377,11 +379,11 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     rig["devices"][0]["protocol"] = "apt";
     CHECK(error_of(rig) == "rig.json: /devices/0/mcs: an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
     rig["devices"][0].erase("mcs");
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, BBD203), got nothing");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BBD203), got nothing");
     rig["devices"][0]["model"] = "TDC001";
     CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
     rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
-    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y)");
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of DRV001, ZST225B, MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y)");
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 27000001}};
     CHECK(error_of(rig).find("/devices/0/apt/serial_number: expected an integer 83000000..83999999") != std::string::npos);
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 83123456}};
