@@ -29,7 +29,7 @@ constexpr std::array<ControllerModel, 5> kControllers{{
 
 // Z8 actuators: 512-count encoder, 67.49:1 gearbox, 1 mm lead screw: 34,304 counts per mm
 // (34,555 in some documents; Thorlabs' APT software uses 34,304).
-constexpr std::array<StageModel, 7> kStages{{
+constexpr std::array<StageModel, 8> kStages{{
     // Stepper actuators: 25,600 microsteps per mm ("In the APT Stepper Motor controllers the
     // encoder resolution is 25,600 counts per mm", p. 77).
     {"DRV001", MotorKind::Stepper, 13.0, 25'600.0, 2.0, 4.0, 1.0, 0.5},
@@ -37,6 +37,7 @@ constexpr std::array<StageModel, 7> kStages{{
     {"MTS50-Z8", MotorKind::DcServo, 50.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"MTS25-Z8", MotorKind::DcServo, 25.0, 34'304.0, 2.4, 1.5, 1.0, 0.3},
     {"Z825B", MotorKind::DcServo, 25.0, 34'304.0, 2.6, 4.0, 1.0, 0.3},
+    {"Z812B", MotorKind::DcServo, 12.0, 34'304.0, 2.6, 4.0, 1.0, 0.3},
     // MLS203 (7.1): 20,000 counts/mm; X 110 mm, Y 75 mm of travel.
     {"MLS203-X", MotorKind::Brushless, 110.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439},
     {"MLS203-Y", MotorKind::Brushless, 75.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439},
@@ -67,7 +68,7 @@ std::string_view controller_names()
 
 std::string_view stage_names()
 {
-    return "DRV001, ZST225B, MTS50-Z8, MTS25-Z8, Z825B, MLS203-X, MLS203-Y";
+    return "DRV001, ZST225B, MTS50-Z8, MTS25-Z8, Z825B, Z812B, MLS203-X, MLS203-Y";
 }
 
 } // namespace rigsim::apt
