@@ -14,7 +14,7 @@ constexpr double kDcAcceleration = kDcT * kDcT * 65536.0;
 
 // Stepper controllers: VELPARAMS are "in encoder counts/sec ... For stepper controllers the
 // position steps are in micro-steps" (p. 29), i.e. microsteps/s and microsteps/s².
-constexpr std::array<ControllerModel, 5> kControllers{{
+constexpr std::array<ControllerModel, 6> kControllers{{
     // 2.2: "80xxxxxx Stepper Driver T-Cube TST001"; Thorlabs' K-Cube stepper: 26xxxxxx.
     {"TST001", 80, 31, MotorKind::Stepper, "APT Stepper Motor Controller", 1.0, 1.0},
     {"KST101", 26, 31, MotorKind::Stepper, "Stepper Motor Controller", 1.0, 1.0},
@@ -23,6 +23,9 @@ constexpr std::array<ControllerModel, 5> kControllers{{
     {"KDC101", 27, 31, MotorKind::DcServo, "Brushed Motor Controller", kDcVelocity, kDcAcceleration},
     // 2.2: "73xxxxxx Brushless DC motherboard BBD102/BBD103", "94xxxxxx Brushless DC motor
     // card"; HW_GET_INFO types 45 (motherboard) and 44 (brushless card). Scaling: 7.1.
+    // 2.2: "70xxxxxx Three channel card slot stepper driver BSC103"; its successor BSC203 keeps
+    // the card-slot scheme. The manual names no HW type for stepper cards: 45 for both.
+    {"BSC203", 70, 45, MotorKind::Stepper, "Stepper Motor Controller", 1.0, 1.0, true, 3, 45, 70},
     {"BBD203", 73, 45, MotorKind::Brushless, "Brushless DC Motor Controller", 134'218.0 / 20'000.0,
      13.7439 / 20'000.0, true, 3, 44, 94},
 }};
@@ -63,7 +66,7 @@ const StageModel* find_stage(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, TST001, KST101, BBD203";
+    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203";
 }
 
 std::string_view stage_names()

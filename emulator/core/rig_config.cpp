@@ -357,9 +357,12 @@ private:
         check_keys(a, apt_pointer, kAptKeys);
         if (const auto* st = find(a, "stage")) {
             d.apt.stage = get_string(*st, pointer_to(apt_pointer, "stage"));
-            if (!apt::find_stage(d.apt.stage))
+            const auto* model = apt::find_stage(d.apt.stage);
+            if (!model)
                 fail(pointer_to(apt_pointer, "stage"), "unknown stage " + quote(d.apt.stage) + " (expected one of "
                                                            + std::string(apt::stage_names()) + ")");
+            if (model->motor != controller->motor)
+                fail(pointer_to(apt_pointer, "stage"), "stage " + quote(d.apt.stage) + " has another kind of motor than a " + d.model);
         }
         if (controller->rack) {
             if (find(a, "stage"))
@@ -372,13 +375,19 @@ private:
             for (std::size_t i = 0; i < bays.size(); ++i) {
                 const auto bay_pointer = pointer_to(bays_pointer, i);
                 auto stage = get_string(bays[i], bay_pointer);
-                if (!apt::find_stage(stage))
+                const auto* model = apt::find_stage(stage);
+                if (!model)
                     fail(bay_pointer, "unknown stage " + quote(stage) + " (expected one of "
                                           + std::string(apt::stage_names()) + ")");
+                if (model->motor != controller->motor)
+                    fail(bay_pointer, "stage " + quote(stage) + " has another kind of motor than a " + d.model);
                 d.apt.bays.push_back(std::move(stage));
             }
         } else if (find(a, "bays")) {
             fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + d.model + " names one \"stage\"");
+        } else if (!find(a, "stage") && apt::find_stage(d.apt.stage)->motor != controller->motor) {
+            fail(pointer_to(apt_pointer, "stage"), "required key missing (the default " + d.apt.stage
+                                                       + " is not a stage for a " + d.model + ")");
         }
         if (const auto* sn = find(a, "serial_number")) {
             const std::int64_t lo = controller->serial_prefix * 1'000'000LL;

@@ -364,3 +364,26 @@ TEST_CASE("stepper cubes: microsteps, MOT_GET_STATUSUPDATE, no DC messages", "[d
     CHECK(h.take().substr(0, 17) == "81 04 0E 00 81 50");
     CHECK(h.send("90 04 01 00 50 01") == "");                      // REQ_DCSTATUSUPDATE: ignored
 }
+
+TEST_CASE("a BSC203 stepper rack: three bays, MOTSTATUS from each bay", "[device][apt][rack][stepper]")
+{
+    DeviceConfig c;
+    c.name = "bsc";
+    c.protocol = Protocol::Apt;
+    c.model = "BSC203";
+    c.apt.bays = {"DRV001", "DRV001", "ZST225B"};
+    AptHarness h(c);
+    CHECK(get_u16(bytes(h.send("05 00 00 00 11 01")), 88) == 3);
+    CHECK(h.send("60 00 02 00 11 01") == "61 00 02 01 01 11");
+    CHECK(h.send("48 04 06 00 A3 01 01 00 00 64 00 00") == "");     // bay 2 by 1 mm (25600 microsteps)
+    h.advance_ms(2000);
+    const auto done = h.take();
+    CHECK(done.substr(0, 17) == "64 04 0E 00 81 23");
+    CHECK(get_i32(bytes(done), 12) == 25'600);
+    CHECK(h.send("11 00 00 00 11 01") == "");                       // updates from every bay
+    h.advance_ms(100);
+    const auto updates = h.take();
+    CHECK(updates.size() == 3 * 20 * 3 - 1);
+    CHECK(updates.find("81 04 0E 00 81 21") != std::string::npos);
+    CHECK(updates.find("81 04 0E 00 81 23") != std::string::npos);
+}

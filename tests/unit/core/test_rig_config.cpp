@@ -122,7 +122,7 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
 TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
-    REQUIRE(rig.devices.size() == 6);
+    REQUIRE(rig.devices.size() == 7);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
     CHECK(d.protocol == rigsim::Protocol::Mcs);
@@ -134,8 +134,10 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     CHECK(rig.devices[2].tcp_port == 40102);
     CHECK(rig.devices[3].model == "TST001");
     CHECK(rig.devices[4].model == "KST101");
-    CHECK(rig.devices[5].model == "BBD203");
-    CHECK(rig.devices[5].apt.bays.size() == 2);
+    CHECK(rig.devices[5].model == "BSC203");
+    CHECK(rig.devices[5].apt.bays.size() == 3);
+    CHECK(rig.devices[6].model == "BBD203");
+    CHECK(rig.devices[6].apt.bays.size() == 2);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
@@ -379,7 +381,7 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     rig["devices"][0]["protocol"] = "apt";
     CHECK(error_of(rig) == "rig.json: /devices/0/mcs: an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
     rig["devices"][0].erase("mcs");
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BBD203), got nothing");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BSC203, BBD203), got nothing");
     rig["devices"][0]["model"] = "TDC001";
     CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
     rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
@@ -397,6 +399,14 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     CHECK(error_of(rig).find("/devices/0/apt/bays: expected an array of 1..3 stages") != std::string::npos);
     rig["devices"][0]["apt"] = {{"bays", {"MLS203-X", "MLS203-Y"}}};
     CHECK(rigsim::parse_rig_config(rig.dump(), "rig.json").devices[0].apt.bays.size() == 2);
+    rig["devices"][0]["model"] = "TST001";
+    rig["devices"][0]["apt"] = json::object();
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: required key missing (the default MTS50-Z8 is not a stage for a TST001)");
+    rig["devices"][0]["apt"] = {{"stage", "Z825B"}};
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: stage \"Z825B\" has another kind of motor than a TST001");
+    rig["devices"][0]["model"] = "BSC203";
+    rig["devices"][0]["apt"] = {{"bays", {"DRV001", "MLS203-X"}}};
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/bays/1: stage \"MLS203-X\" has another kind of motor than a BSC203");
     rig["devices"][0]["protocol"] = "MCS";
     CHECK(error_of(rig) ==
           "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\" or \"apt\")");
