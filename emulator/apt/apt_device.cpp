@@ -339,30 +339,40 @@ void AptDevice::handle_motherboard(const Frame& f, std::string_view peer, std::s
         reply += encode_with_data(MGMSG_RACK_GET_STATUSBITS, host_, kRack, d);
         return;
     }
-    case MGMSG_MOD_IDENTIFY:
-        ++identify_count_;
-        log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
+    default:
+        if (!handle_system(f, peer))
+            log_->warn("{}: {} to the motherboard: it acts on no such message, ignored", peer, f.info->name);
         return;
+    }
+}
+
+bool AptDevice::handle_system(const Frame& f, std::string_view peer)
+{
+    switch (f.id) {
+    case MGMSG_MOD_IDENTIFY:
+        ++identify_count_;   // the front panel LED flashes; the back door can read the count
+        log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
+        return true;
+    case MGMSG_HW_DISCONNECT:
+        log_->info("{}: HW_DISCONNECT", peer);
+        return true;
     case MGMSG_HW_START_UPDATEMSGS:
-        return start_updates();
+        start_updates();
+        return true;
     case MGMSG_HW_STOP_UPDATEMSGS:
         updates_ = false;
         next_update_ = kNever;
-        return;
-    case MGMSG_HW_DISCONNECT:
-        log_->info("{}: HW_DISCONNECT", peer);
-        return;
+        return true;
     case MGMSG_HW_YES_FLASH_PROGRAMMING:
     case MGMSG_HW_NO_FLASH_PROGRAMMING:
-        return;
+        return true;   // later protocol issues: accepted silently, as the real units do
     case MGMSG_MOT_ACK_DCSTATUSUPDATE:
-        updates_since_ack_ = 0;
-        if (updates_ && next_update_ <= clock_.now())
+        updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
+        if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now
             next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
-        return;
+        return true;
     default:
-        log_->warn("{}: {} to the motherboard: it acts on no such message, ignored", peer, f.info->name);
-        return;
+        return false;
     }
 }
 
@@ -381,12 +391,10 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     auto wrong_channel = [&] {
         log_->warn("{}: {} for channel {}: a module has only channel 1, ignored", peer, f.info->name, chan);
     };
+    if (handle_system(f, peer))
+        return;
     switch (f.id) {
     // ---- generic ----
-    case MGMSG_MOD_IDENTIFY:
-        ++identify_count_;   // the front panel LED flashes; the back door can read the count
-        log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
-        return;
     case MGMSG_MOD_SET_CHANENABLESTATE:
         if (f.param1 != kChan1 || (f.param2 != 1 && f.param2 != 2))
             return wrong_channel();
@@ -396,30 +404,13 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         if (f.param1 != kChan1)
             return wrong_channel();
         return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, ch.enabled() ? 1 : 2);
-    case MGMSG_HW_DISCONNECT:
-        log_->info("{}: HW_DISCONNECT", peer);
-        return;
     case MGMSG_HW_REQ_INFO:
         return answer(MGMSG_HW_GET_INFO, info_packet(model_.rack ? std::optional<std::size_t>(bay) : std::nullopt));
-    case MGMSG_HW_START_UPDATEMSGS:
-        return start_updates();
-    case MGMSG_HW_STOP_UPDATEMSGS:
-        updates_ = false;
-        next_update_ = kNever;
-        return;
-    case MGMSG_HW_YES_FLASH_PROGRAMMING:
-    case MGMSG_HW_NO_FLASH_PROGRAMMING:
-        return;   // later protocol issues: accepted silently, as the real units do
     case MGMSG_HUB_REQ_BAYUSED:
         if (model_.rack)
             break;   // a hub question for a cube
         // p. 24: -0x01 (0xFF) means a standalone T-/K-Cube, off any hub.
         return answer_header(MGMSG_HUB_GET_BAYUSED, 0xFF, 0);
-    case MGMSG_MOT_ACK_DCSTATUSUPDATE:
-        updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
-        if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now
-            next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
-        return;
     default:
         break;
     }

@@ -61,6 +61,9 @@ public:
 private:
     /// The module address a bay answers from: 0x50 for a single unit, 0x21 + bay in a rack.
     std::uint8_t address_of(std::size_t bay) const;
+    /// Module-wide messages a motherboard and a bay (or single unit) handle alike: identify,
+    /// disconnect, update messages, server alive, flash programming. False if `f` is another.
+    bool handle_system(const Frame& f, std::string_view peer);
     void handle_motherboard(const Frame& f, std::string_view peer, std::string& reply);
     void handle_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
     std::string info_packet(std::optional<std::size_t> bay) const;

@@ -113,7 +113,7 @@ bool wait_until(const std::function<bool()>& pred, Millis timeout)
         if (SteadyClock::now() >= deadline)
             return false;
         // Not a fixed delay: a short poll period between checks of the predicate.
-        std::this_thread::sleep_for(kPollPeriod);
+        std::this_thread::sleep_for(kPollPeriod);   // poll: re-check until the deadline
     }
 }
 
