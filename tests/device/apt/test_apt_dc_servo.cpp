@@ -1,93 +1,13 @@
 // APT DC servo T-Cube/K-Cube: bytes in -> bytes out on a stepped clock (hex transcripts).
-#include "emulator/apt/apt_device.hpp"
-#include "emulator/apt/messages.hpp"
-#include "emulator/apt/wire.hpp"
-
-#include <catch2/catch.hpp>
-#include <spdlog/sinks/null_sink.h>
+#include "apt_harness.hpp"
 
 #include <cstdio>
-#include <sstream>
 #include <unistd.h>
 #include <stdlib.h>
 
 using namespace rigsim;
 using namespace rigsim::apt;
-
-namespace {
-
-DeviceConfig tdc001()
-{
-    DeviceConfig c;
-    c.name = "tdc";
-    c.protocol = Protocol::Apt;
-    c.model = "TDC001";
-    c.apt.stage = "MTS50-Z8";
-    return c;
-}
-
-/// Hex "05 00 00 00 50 01" -> bytes.
-std::string bytes(const std::string& hex)
-{
-    std::istringstream in(hex);
-    std::string out, b;
-    while (in >> b)
-        out.push_back(static_cast<char>(std::stoi(b, nullptr, 16)));
-    return out;
-}
-
-std::string hex(std::string_view s)
-{
-    static constexpr char kHex[] = "0123456789ABCDEF";
-    std::string out;
-    for (unsigned char c : s) {
-        if (!out.empty())
-            out += ' ';
-        out += kHex[c >> 4];
-        out += kHex[c & 0xf];
-    }
-    return out;
-}
-
-class AptHarness {
-public:
-    explicit AptHarness(const DeviceConfig& config = tdc001())
-        : device_(config, clock_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>())),
-          session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
-    {
-    }
-    /// Hex in; hex of everything sent since the last call out.
-    std::string send(const std::string& hex_in)
-    {
-        session_->receive(bytes(hex_in));
-        auto r = hex(out_);
-        out_.clear();
-        return r;
-    }
-    std::string take()
-    {
-        auto r = hex(out_);
-        out_.clear();
-        return r;
-    }
-    void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
-    AptDevice& device() { return device_; }
-
-private:
-    Clock clock_;
-    AptDevice device_;
-    std::string out_;
-    std::unique_ptr<Session> session_;
-};
-
-std::int32_t position_of(const std::string& reply_hex)
-{
-    const auto b = bytes(reply_hex);
-    REQUIRE(b.size() >= 12);
-    return get_i32(b, 8);
-}
-
-} // namespace
+using namespace rigsim::test;
 
 TEST_CASE("HW_REQ_INFO answers the 84-byte info packet of the model", "[device][apt]")
 {

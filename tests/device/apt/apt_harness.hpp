@@ -1,0 +1,95 @@
+#pragma once
+// Device-test harness for APT controllers: framer + handler + motor channels on a stepped
+// clock, bytes as hex. No sockets, no sleeps:
+//   AptHarness h;  h.send("43 04 01 00 50 01");  h.advance_ms(2000);  h.take();
+
+#include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/messages.hpp"
+#include "emulator/apt/wire.hpp"
+#include "emulator/core/clock.hpp"
+#include "emulator/core/rig_config.hpp"
+
+#include <catch2/catch.hpp>
+#include <spdlog/sinks/null_sink.h>
+
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace rigsim::test {
+
+using namespace rigsim::apt;
+
+
+inline DeviceConfig tdc001()
+{
+    DeviceConfig c;
+    c.name = "tdc";
+    c.protocol = Protocol::Apt;
+    c.model = "TDC001";
+    c.apt.stage = "MTS50-Z8";
+    return c;
+}
+
+/// Hex "05 00 00 00 50 01" -> bytes.
+inline std::string bytes(const std::string& hex)
+{
+    std::istringstream in(hex);
+    std::string out, b;
+    while (in >> b)
+        out.push_back(static_cast<char>(std::stoi(b, nullptr, 16)));
+    return out;
+}
+
+inline std::string hex(std::string_view s)
+{
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    for (unsigned char c : s) {
+        if (!out.empty())
+            out += ' ';
+        out += kHex[c >> 4];
+        out += kHex[c & 0xf];
+    }
+    return out;
+}
+
+class AptHarness {
+public:
+    explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr)
+        : device_(config, clock_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store),
+          session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
+    {
+    }
+    /// Hex in; hex of everything sent since the last call out.
+    std::string send(const std::string& hex_in)
+    {
+        session_->receive(bytes(hex_in));
+        auto r = hex(out_);
+        out_.clear();
+        return r;
+    }
+    std::string take()
+    {
+        auto r = hex(out_);
+        out_.clear();
+        return r;
+    }
+    void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
+    AptDevice& device() { return device_; }
+
+private:
+    Clock clock_;
+    AptDevice device_;
+    std::string out_;
+    std::unique_ptr<Session> session_;
+};
+
+inline std::int32_t position_of(const std::string& reply_hex)
+{
+    const auto b = bytes(reply_hex);
+    REQUIRE(b.size() >= 12);
+    return get_i32(b, 8);
+}
+
+} // namespace rigsim::test
