@@ -9,12 +9,85 @@ AxisState integrate(const AxisState& s, double a, double t)
     return AxisState{s[0] + s[1] * t + 0.5 * a * t * t, s[1] + a * t};
 }
 
-void TrapezoidProfile::append(double duration, const AxisState& start, double acceleration)
+AxisState integrate(const AxisState& s, double a, double j, double t)
+{
+    return AxisState{s[0] + s[1] * t + 0.5 * a * t * t + j * t * t * t / 6, s[1] + a * t + 0.5 * j * t * t};
+}
+
+void TrapezoidProfile::append(double duration, const AxisState& start, double acceleration, double jerk)
 {
     if (duration <= 0)
         return;
     const double t0 = segments_.empty() ? 0.0 : segments_.back().t0 + segments_.back().duration;
-    segments_.push_back(Segment{t0, duration, start, acceleration});
+    segments_.push_back(Segment{t0, duration, start, acceleration, jerk});
+}
+
+namespace {
+
+/// Reaching speed `v` from rest with jerk `j` and acceleration at most `a`: the jerk time,
+/// the constant-acceleration time, the peak acceleration, and the distance covered.
+struct Ramp {
+    double t_jerk, t_const, a_peak, distance;
+};
+
+Ramp s_ramp(double v, double a, double j)
+{
+    Ramp r{};
+    if (v * j >= a * a) {   // the acceleration limit is reached
+        r.t_jerk = a / j;
+        r.t_const = v / a - a / j;
+        r.a_peak = a;
+    } else {
+        r.t_jerk = std::sqrt(v / j);
+        r.t_const = 0;
+        r.a_peak = j * r.t_jerk;
+    }
+    // The ramp is symmetric about its midpoint in time: the mean speed is v / 2.
+    r.distance = v * (2 * r.t_jerk + r.t_const) / 2;
+    return r;
+}
+
+} // namespace
+
+TrapezoidProfile TrapezoidProfile::plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
+                                                double j_max)
+{
+    if (a_max <= 0 || j_max <= 0 || from[1] != 0 || v_max <= 0)
+        return plan(from, target, v_max, a_max);
+    TrapezoidProfile p;
+    p.target_ = target;
+    const double d = target - from[0];
+    if (d == 0)
+        return p;
+    const double dir = std::copysign(1.0, d);
+    const double x = std::abs(d);
+    double v = v_max;
+    Ramp r = s_ramp(v, a_max, j_max);
+    if (2 * r.distance > x) {   // no cruise at v_max: find the peak speed that just fits
+        double lo = 0, hi = v_max;
+        for (int i = 0; i < 100; ++i) {
+            const double mid = (lo + hi) / 2;
+            (2 * s_ramp(mid, a_max, j_max).distance > x ? hi : lo) = mid;
+        }
+        v = lo;
+        r = s_ramp(v, a_max, j_max);
+    }
+    const double cruise = v > 0 ? (x - 2 * r.distance) / v : 0;
+    // Seven stretches: jerk up, hold, jerk down, cruise, and the mirror image to rest.
+    const struct {
+        double duration, jerk;
+    } plan[] = {{r.t_jerk, j_max},  {r.t_const, 0}, {r.t_jerk, -j_max}, {cruise, 0},
+                {r.t_jerk, -j_max}, {r.t_const, 0}, {r.t_jerk, j_max}};
+    AxisState s = from;
+    double a = 0;
+    for (const auto& stretch : plan) {
+        if (stretch.duration <= 0)
+            continue;
+        p.append(stretch.duration, s, dir * a, dir * stretch.jerk);
+        s = integrate(s, dir * a, dir * stretch.jerk, stretch.duration);
+        a += stretch.jerk * stretch.duration;
+    }
+    return p;
 }
 
 TrapezoidProfile TrapezoidProfile::plan(const AxisState& from, double target, double v_max,
@@ -99,7 +172,7 @@ AxisState TrapezoidProfile::sample(double t) const
             break;
         seg = &s;
     }
-    return integrate(seg->start, seg->acceleration, std::max(0.0, t - seg->t0));
+    return integrate(seg->start, seg->acceleration, seg->jerk, std::max(0.0, t - seg->t0));
 }
 
 } // namespace rigsim::models

@@ -1,5 +1,5 @@
 #pragma once
-// Trapezoidal (bang-coast-bang) point-to-point motion in one axis.
+// Trapezoidal (bang-coast-bang) and jerk-limited S-curve point-to-point motion in one axis.
 //
 // A profile is planned once, from the axis state (position, velocity) at the moment a
 // move is commanded, as a list of constant-acceleration segments; it is then sampled at
@@ -15,12 +15,13 @@ namespace rigsim::models {
 /// (position, velocity)
 using AxisState = Eigen::Vector2d;
 
-/// One constant-acceleration stretch of a profile.
+/// One constant-jerk stretch of a profile (jerk 0: constant acceleration).
 struct Segment {
     double t0 = 0;         ///< start, seconds since the profile was planned
     double duration = 0;   ///< seconds
     AxisState start;       ///< state at t0
-    double acceleration = 0;
+    double acceleration = 0;   ///< at t0
+    double jerk = 0;
 };
 
 class TrapezoidProfile {
@@ -29,6 +30,11 @@ public:
     /// acceleration (the axis jumps to v_max). A start velocity pointing away from the
     /// target, or too fast to stop in time, is first braked to rest.
     static TrapezoidProfile plan(const AxisState& from, double target, double v_max, double a_max);
+    /// Plan a jerk-limited (S-curve) move: acceleration ramps from 0 to at most `a_max` at
+    /// `j_max` and back, the same in reverse to stop at the target (seven segments, fewer
+    /// for short moves). From a moving start, or with `a_max` or `j_max` <= 0, this is plan().
+    static TrapezoidProfile plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
+                                         double j_max);
 
     /// State at `t` seconds after planning; the target at rest from duration() on.
     AxisState sample(double t) const;
@@ -37,7 +43,7 @@ public:
     const std::vector<Segment>& segments() const { return segments_; }
 
 private:
-    void append(double duration, const AxisState& start, double acceleration);
+    void append(double duration, const AxisState& start, double acceleration, double jerk = 0);
     void plan_from(AxisState from, double v_max, double a_max);
 
     std::vector<Segment> segments_;
@@ -46,5 +52,7 @@ private:
 
 /// State after `t` seconds of constant acceleration `a` from `s`.
 AxisState integrate(const AxisState& s, double a, double t);
+/// State after `t` seconds from `s` with acceleration `a` at the start and constant jerk `j`.
+AxisState integrate(const AxisState& s, double a, double j, double t);
 
 } // namespace rigsim::models

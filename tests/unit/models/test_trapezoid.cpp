@@ -70,3 +70,53 @@ TEST_CASE("position is continuous along a profile", "[unit][models]")
         prev = s;
     }
 }
+
+TEST_CASE("an S-curve move takes d/v + v/a + a/j and ends at rest on the target", "[unit][models]")
+{
+    // a reached (v j >= a^2): each ramp lasts v/a + a/j; cruise makes up the rest.
+    const double v = 10, a = 20, j = 1000, d = 100;
+    const auto p = TrapezoidProfile::plan_s_curve(AxisState(5, 0), 5 + d, v, a, j);
+    CHECK(p.duration() == Approx(d / v + v / a + a / j));
+    CHECK(p.segments().size() == 7);
+    CHECK(p.sample(p.duration())[0] == 5 + d);
+    CHECK(p.sample(p.duration() * 0.999999)[0] == Approx(5 + d));
+    CHECK(p.sample(p.duration() * 0.999999)[1] == Approx(0).margin(1e-3));
+    CHECK(p.sample(p.duration() / 2)[1] == Approx(v));
+    // Jerk ramps the acceleration: after one jerk time it has just reached a.
+    CHECK(p.sample(a / j)[1] == Approx(0.5 * j * (a / j) * (a / j)));
+}
+
+TEST_CASE("an S-curve limits acceleration and jerk and never runs backwards", "[unit][models]")
+{
+    const double v = 3, a = 8, j = 40;
+    for (const double d : {-50.0, -0.2, 0.05, 1.0, 30.0}) {
+        const auto p = TrapezoidProfile::plan_s_curve(AxisState(0, 0), d, v, a, j);
+        const double dt = p.duration() / 20000;
+        double prev_v = 0, prev_a = 0, prev_x = 0;
+        for (double t = dt; t <= p.duration(); t += dt) {
+            const auto s = p.sample(t);
+            const double acc = (s[1] - prev_v) / dt;
+            CHECK(std::abs(s[1]) <= v * (1 + 1e-9));
+            CHECK(std::abs(acc) <= a * 1.001 + 1e-9);
+            if (t > 2 * dt)
+                CHECK(std::abs(acc - prev_a) <= j * dt * 1.01 + 1e-9);
+            CHECK(std::copysign(1.0, d) * (s[0] - prev_x) >= -1e-12);
+            prev_v = s[1];
+            prev_a = acc;
+            prev_x = s[0];
+        }
+        CHECK(p.sample(p.duration())[0] == d);
+    }
+}
+
+TEST_CASE("an S-curve short move peaks below top speed and is slower than a trapezoid", "[unit][models]")
+{
+    const auto s = TrapezoidProfile::plan_s_curve(AxisState(0, 0), 0.5, 10, 20, 1000);
+    const auto t = TrapezoidProfile::plan(AxisState(0, 0), 0.5, 10, 20);
+    CHECK(s.sample(s.duration() / 2)[1] < 10);
+    CHECK(s.sample(s.duration() / 2)[0] == Approx(0.25));
+    CHECK(s.duration() > t.duration());
+    // From a moving start the plan falls back to the trapezoid.
+    const auto m = TrapezoidProfile::plan_s_curve(AxisState(0, 1), 5, 10, 20, 1000);
+    CHECK(m.duration() == Approx(TrapezoidProfile::plan(AxisState(0, 1), 5, 10, 20).duration()));
+}
