@@ -84,6 +84,7 @@ AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<s
             channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock));
     else
         channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock));
+    last_move_.assign(channels_.size(), 0);
     restore_from_eeprom();
     clock_.add(this);
 }
@@ -146,12 +147,12 @@ void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_vi
 
 std::string AptDevice::stage_axis_block(std::size_t bay) const
 {
-    // p. 75: stage ID word (MLS203 X 0x10, Y 0x11), axis ID word, part number char[16],
+    // p. 75: stage ID word (MLS203 X 0x10, Y 0x11; 0 for stages the manual does not list), axis ID word, part number char[16],
     // serial dword, counts per unit dword, min/max position long, max acceleration,
     // deceleration and velocity long, reserved to 72 bytes after the channel word.
     const auto& stage = channels_[bay]->stage();
     std::string d;
-    put_u16(d, stage.name == "MLS203-Y" ? 0x11 : 0x10);
+    put_u16(d, stage.pmd_stage_id);
     put_u16(d, 0);
     std::string part(stage.name);
     part.resize(16, '\0');
@@ -181,6 +182,16 @@ bool AptDevice::handle_pmd(std::size_t bay, const Frame& f, std::string& reply)
                 // Maximum position value": the travel narrows, nothing else changes.
                 channels_[bay]->narrow_travel(get_i32(f.data, 28), get_i32(f.data, 32));
                 return true;
+            }
+            if (set == MGMSG_MOT_SET_PMDPROFILEMODEPARAMS) {
+                // p. 69: mode 0 trapezoidal, 2 S-curve; jerk in PMD jerk units (7.1).
+                const auto mode = get_u16(f.data, 2);
+                if (mode != 0 && mode != 2) {
+                    log_->warn("MOT_SET_PMDPROFILEMODEPARAMS mode {} (0 trapezoidal, 2 S-curve): ignored", mode);
+                    return true;
+                }
+                channels_[bay]->profile_mode = mode;
+                channels_[bay]->jerk = get_u32(f.data, 4);
             }
             pmd_blocks_[{bay, set}] = std::string(f.data.substr(2));
             return true;
@@ -366,6 +377,12 @@ bool AptDevice::handle_system(const Frame& f, std::string_view peer)
     case MGMSG_HW_YES_FLASH_PROGRAMMING:
     case MGMSG_HW_NO_FLASH_PROGRAMMING:
         return true;   // later protocol issues: accepted silently, as the real units do
+    case MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS:   // p. 82-83: header only, params 0: the whole unit
+        end_of_move_messages_ = false;
+        return true;
+    case MGMSG_MOT_RESUME_ENDOFMOVEMSGS:
+        end_of_move_messages_ = true;
+        return true;
     case MGMSG_MOT_ACK_DCSTATUSUPDATE:
         updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
         if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now
@@ -569,6 +586,17 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     }
     switch (f.id) {
     case MGMSG_MOT_MOVE_HOME:
+    case MGMSG_MOT_MOVE_RELATIVE:
+    case MGMSG_MOT_MOVE_ABSOLUTE:
+    case MGMSG_MOT_MOVE_JOG:
+    case MGMSG_MOT_MOVE_VELOCITY:
+        last_move_[bay] = f.id;
+        break;
+    default:
+        break;
+    }
+    switch (f.id) {
+    case MGMSG_MOT_MOVE_HOME:
         ch.home();
         return;
     case MGMSG_MOT_MOVE_RELATIVE:
@@ -605,12 +633,6 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         put_u32(d, ch.status_bits());
         return answer(MGMSG_MOT_GET_STATUSBITS, d);
     }
-    case MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS:
-        end_of_move_messages_ = false;
-        return;
-    case MGMSG_MOT_RESUME_ENDOFMOVEMSGS:
-        end_of_move_messages_ = true;
-        return;
     default:
         if (model_.motor == MotorKind::Brushless && handle_pmd(bay, f, reply))
             return;
@@ -625,6 +647,25 @@ void AptDevice::broadcast(const std::string& frame)
 {
     for (auto* s : sessions_)
         s->send(frame);
+}
+
+std::string AptDevice::fault_report(std::size_t bay) const
+{
+    // The only fault rigsim models: the motor stalled against an end stop (a move past an
+    // ignored limit switch), which trips its current limit (DC servo: status bit 0x01000000)
+    // or the position error limit (brushless: motion error, bit 0x00004000).
+    if (model_.rich_fault_reports) {
+        // Later protocol issues: MsgIdent word (what caused it), Code word, Notes char[64].
+        std::string d;
+        put_u16(d, last_move_[bay]);
+        put_u16(d, kFaultCodeStalled);
+        std::string notes = "Motor stalled at the end of travel: current limit reached";
+        notes.resize(64, '\0');
+        d += notes;
+        return encode_with_data(MGMSG_HW_RICHRESPONSE, host_, address_of(bay), d);
+    }
+    // p. 19: header only; in a card-slot system the motherboard sends it ("TX 80, 00, 00, 00, 01, 11").
+    return encode_header_only(MGMSG_HW_RESPONSE, 0, 0, host_, model_.rack ? kRack : address_of(bay));
 }
 
 void AptDevice::flush()
@@ -651,6 +692,9 @@ void AptDevice::flush()
                 break;
             case MotorEvent::Homed:
                 broadcast(encode_header_only(MGMSG_MOT_MOVE_HOMED, kChan1, 0, host_, me));
+                break;
+            case MotorEvent::Fault:
+                broadcast(fault_report(bay));
                 break;
             }
         }

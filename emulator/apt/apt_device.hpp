@@ -29,6 +29,8 @@ public:
     static constexpr std::int64_t kUpdatePeriod_ms = 100;
     /// USB units stop their update messages after 50 without MOT_ACK_DCSTATUSUPDATE.
     static constexpr int kUpdatesWithoutAck = 50;
+    /// HW_RICHRESPONSE code of rigsim's one modelled fault (Thorlabs publishes no code list).
+    static constexpr std::uint16_t kFaultCodeStalled = 0x0001;
 
     /// `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
     AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
@@ -80,6 +82,8 @@ private:
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
     void restore_from_eeprom();
     void broadcast(const std::string& frame);
+    /// HW_RESPONSE or HW_RICHRESPONSE for a fault of bay `bay` (p. 19).
+    std::string fault_report(std::size_t bay) const;
 
     DeviceConfig config_;
     Clock& clock_;
@@ -97,6 +101,7 @@ private:
     StateStore* store_;
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> pmd_blocks_;   ///< (bay, SET id) -> data after the channel word
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;   ///< (bay, SET id) -> data
+    std::vector<std::uint16_t> last_move_;  ///< per bay: the message that started its last move
 };
 
 } // namespace rigsim::apt

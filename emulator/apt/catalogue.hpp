@@ -24,6 +24,11 @@ struct ControllerModel {
     int max_bays = 1;
     std::uint16_t bay_hw_type = 0;  ///< HW_GET_INFO type of a bay's card
     std::uint32_t bay_serial_prefix = 0;
+    /// S-curve jerk scaling (7.1, PMD "jerk" units per encoder count/s³); 0: no profile modes.
+    double jerk_per_count_s3 = 0;
+    /// Faults go out as HW_RICHRESPONSE (K-Cubes, Thorlabs' later units) rather than the
+    /// manual's HW_RESPONSE (p. 19).
+    bool rich_fault_reports = false;
 };
 
 /// A stage (actuator) the controller drives.
@@ -40,6 +45,11 @@ struct StageModel {
     /// (7.1, MLS203 with BBDxxx); 0: derived from the controller's per-count factors.
     double velocity_per_mm_s = 0;
     double acceleration_per_mm_s2 = 0;
+    /// A rotation stage turns without end: no travel limits, a home switch once per turn
+    /// (at 0 of the physical angle). Its unit is the degree where a linear stage's is the mm.
+    bool rotary = false;
+    /// MOT_GET_PMDSTAGEAXISPARAMS stage ID (p. 75 names 0x10/0x11 for MLS203 X/Y only).
+    std::uint16_t pmd_stage_id = 0;
 };
 
 /// The controller with this name, or nullptr.

@@ -5,9 +5,20 @@
 
 namespace rigsim::apt {
 
+namespace {
+
+/// A rotation stage's "travel": far enough for any client, near enough for the 32-bit counter.
+constexpr double kRotaryTravelCounts = 1 << 30;
+
+} // namespace
+
 MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock)
     : controller_(controller), stage_(stage), clock_(clock), travel_max_(stage.travel_mm * stage.counts_per_mm)
 {
+    if (stage.rotary) {
+        travel_min_ = -kRotaryTravelCounts;
+        travel_max_ = kRotaryTravelCounts;
+    }
     const double cpm = stage.counts_per_mm;
     velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
     velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * acceleration_factor()));
@@ -15,8 +26,9 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
     jog.velocity = velocity;
     home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * velocity_factor()));
     home_params.offset = static_cast<std::int32_t>(std::lround(stage.home_offset_mm * cpm));
-    // Power-up: the stage stands mid-travel; the counters read 0 there (not homed).
-    state_ = models::AxisState(travel_counts() / 2, 0.0);
+    // Power-up: the stage stands mid-travel (a rotation stage half a turn from its home
+    // switch); the counters read 0 there (not homed).
+    state_ = models::AxisState(stage.travel_mm * stage.counts_per_mm / 2, 0.0);
     counter_offset_ = state_[0];
     encoder_offset_ = state_[0];
 }
@@ -91,10 +103,10 @@ std::int16_t MotorChannel::velocity_word() const
 
 std::uint32_t MotorChannel::status_bits() const
 {
-    std::uint32_t bits = status::kMotorConnected;
-    if (state_[0] <= travel_min_ + 0.5)
+    std::uint32_t bits = status::kMotorConnected | fault_bits_;
+    if (!stage_.rotary && state_[0] <= travel_min_ + 0.5 && (limit_switch.ccw_hard & 0x7f) != 1)
         bits |= status::kReverseHardLimit;
-    if (state_[0] >= travel_counts() - 0.5)
+    if (!stage_.rotary && state_[0] >= travel_counts() - 0.5 && (limit_switch.cw_hard & 0x7f) != 1)
         bits |= status::kForwardHardLimit;
     if (soft_limits_active()) {
         if (position() >= limit_switch.cw_soft)
@@ -132,16 +144,51 @@ void MotorChannel::set_enabled(bool e)
     enabled_ = e;
 }
 
+bool MotorChannel::switch_stops(bool forward, bool homing) const
+{
+    // p. 39: 1 ignores the switch (or there is none); 4 and 5 serve homing only.
+    const auto mode = (forward ? limit_switch.cw_hard : limit_switch.ccw_hard) & 0x7f;
+    return homing ? mode != 1 : mode == 2 || mode == 3 || mode == 6;
+}
+
+double MotorChannel::run_target(bool forward, bool homing) const
+{
+    if (stage_.rotary)
+        return forward ? travel_max_ : travel_min_;
+    const double beyond = travel_max_ - travel_min_;
+    if (forward)
+        return switch_stops(true, homing) ? travel_max_ : travel_max_ + beyond;
+    return switch_stops(false, homing) ? travel_min_ : travel_min_ - beyond;
+}
+
+double MotorChannel::next_home_switch(bool forward) const
+{
+    const double turn = 360.0 * stage_.counts_per_mm;
+    return forward ? std::ceil((state_[0] + 0.5) / turn) * turn : std::floor((state_[0] - 0.5) / turn) * turn;
+}
+
 void MotorChannel::start_profile(double target_physical, double v, double a, Motion motion)
 {
     const Ticks now = clock_.now();
     sample(now);
-    const double target = std::clamp(target_physical, travel_min_, travel_counts());   // hardware limits
+    fault_bits_ = 0;   // a new move clears a stall
+    // Hardware limits: the switch ahead stops the axis at the end of travel; an ignored one
+    // lets it run into the end stop.
+    double target = std::clamp(target_physical, travel_min_, travel_counts());
+    crash_ = false;
+    if (target != target_physical && !stage_.rotary
+        && !switch_stops(target_physical > travel_counts(), motion == Motion::HomingToLimit)) {
+        target = target_physical;
+        crash_ = true;
+    }
     if (v <= 0) {
         motion_ = Motion::Idle;
         return;
     }
-    profile_ = models::TrapezoidProfile::plan(state_, target, v, a);
+    // S-curve when MOT_SET_PMDPROFILEMODEPARAMS asks for it (p. 69); jerk scaling of 7.1.
+    const double j = controller_.jerk_per_count_s3 > 0 ? jerk / controller_.jerk_per_count_s3 : 0;
+    profile_ = profile_mode == 2 && j > 0 ? models::TrapezoidProfile::plan_s_curve(state_, target, v, a, j)
+                                          : models::TrapezoidProfile::plan(state_, target, v, a);
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motion_ = motion;
@@ -171,7 +218,7 @@ void MotorChannel::move_to(double target_physical)
     // distance and comes back forward, so that every move ends approaching forward.
     if (backlash > 0 && target_physical < state_[0] - 0.5) {
         pending_backlash_target_ = target_physical;
-        start_profile(std::max(target_physical - backlash, travel_min_), counts_per_s(velocity.max),
+        start_profile(target_physical - backlash, counts_per_s(velocity.max),
                       counts_per_s2(velocity.acceleration), Motion::Moving);
         return;
     }
@@ -198,11 +245,14 @@ void MotorChannel::home()
 {
     if (!enabled_)
         return;
-    // Drive to the configured limit switch at the homing velocity (HOMEPARAMS).
+    // Drive to the configured limit switch at the homing velocity (HOMEPARAMS); a rotation
+    // stage to its home switch, met once per turn.
     const bool to_forward = home_params.limit_switch == 4 || home_params.direction == 1;
     homed_ = false;
-    start_profile(to_forward ? travel_counts() : travel_min_, counts_per_s(home_params.velocity),
-                  counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
+    homing_forward_ = to_forward;
+    sample(clock_.now());
+    start_profile(stage_.rotary ? next_home_switch(to_forward) : run_target(to_forward, true),
+                  counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
 }
 
 void MotorChannel::jog_move(bool forward)
@@ -214,7 +264,7 @@ void MotorChannel::jog_move(bool forward)
     const double v = counts_per_s(jog.velocity.max);
     const double a = counts_per_s2(jog.velocity.acceleration);
     if (jog.mode == 1) {   // continuous: until stopped or at a limit
-        start_profile(forward ? travel_counts() : travel_min_, v, a, Motion::Jogging);
+        start_profile(run_target(forward, false), v, a, Motion::Jogging);
         return;
     }
     sample(clock_.now());
@@ -226,7 +276,7 @@ void MotorChannel::move_velocity(bool forward)
 {
     if (!enabled_)
         return;
-    start_profile(forward ? travel_counts() : travel_min_, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
+    start_profile(run_target(forward, false), counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
                   Motion::Moving);
 }
 
@@ -249,7 +299,8 @@ void MotorChannel::stop(bool immediate)
     const double a = counts_per_s2(velocity.acceleration);
     const double v = state_[1];
     const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
-    profile_ = models::TrapezoidProfile::plan(state_, std::clamp(stop_at, travel_min_, travel_counts()),
+    // Running into an end stop, the axis meets it before it can stop (crash_ stays set).
+    profile_ = models::TrapezoidProfile::plan(state_, crash_ ? stop_at : std::clamp(stop_at, travel_min_, travel_counts()),
                                               std::max(std::abs(v), 1.0), a);
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
@@ -263,11 +314,48 @@ void MotorChannel::sample(Ticks now)
     if (motion_ == Motion::Idle)
         return;
     state_ = profile_.sample(clock_.seconds(now - start_));
+    if (crash_ && controller_.motor != MotorKind::Stepper) {
+        if (state_[0] > travel_max_)
+            hit_end_stop(travel_max_);
+        else if (state_[0] < travel_min_)
+            hit_end_stop(travel_min_);
+    }
+}
+
+void MotorChannel::hit_end_stop(double end)
+{
+    crash_ = false;
+    pending_backlash_target_.reset();
+    if (controller_.motor == MotorKind::Stepper) {
+        // Open loop: the motor keeps stepping against the stop; the counters count the
+        // microsteps the carriage did not make.
+        const double lost = state_[0] - end;
+        counter_offset_ -= lost;
+        encoder_offset_ -= lost;
+        state_ = models::AxisState(end, 0.0);
+        return;
+    }
+    // The motor stalls against the stop: its current limit (DC servo) or the position error
+    // limit (brushless, PMDPOSITIONLOOPPARAMS) trips, and the controller stops the axis.
+    state_ = models::AxisState(end, 0.0);
+    motion_ = Motion::Idle;
+    fault_bits_ = controller_.motor == MotorKind::Brushless ? status::kMotionError : status::kCurrentLimit;
+    events_.push_back(MotorEvent::Fault);
+    events_.push_back(MotorEvent::Stopped);
 }
 
 void MotorChannel::finish(Ticks now)
 {
-    state_ = models::AxisState(profile_.target(), 0.0);
+    if (crash_ && (profile_.target() > travel_max_ || profile_.target() < travel_min_)) {
+        const double end = profile_.target() > travel_max_ ? travel_max_ : travel_min_;
+        if (controller_.motor != MotorKind::Stepper)
+            return hit_end_stop(end);
+        state_ = models::AxisState(profile_.target(), 0.0);
+        hit_end_stop(end);   // the counters keep the lost microsteps; the move ends as planned
+    } else {
+        state_ = models::AxisState(profile_.target(), 0.0);
+    }
+    crash_ = false;
     switch (motion_) {
     case Motion::Idle:
         return;
@@ -292,7 +380,7 @@ void MotorChannel::finish(Ticks now)
         return;
     case Motion::HomingToLimit: {
         // At the switch: back off by the offset distance, then zero the counter there.
-        const double back = state_[0] <= travel_min_ + 0.5 ? home_params.offset : -home_params.offset;
+        const double back = homing_forward_ ? -home_params.offset : home_params.offset;
         motion_ = Motion::Idle;
         if (back != 0 && counts_per_s(home_params.velocity) > 0)
             start_profile(state_[0] + back, counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration),

@@ -27,11 +27,15 @@ inline constexpr std::uint32_t kMotorConnected = 0x00000100;
 inline constexpr std::uint32_t kHoming = 0x00000200;
 inline constexpr std::uint32_t kHomed = 0x00000400;
 inline constexpr std::uint32_t kSettled = 0x00002000;
+inline constexpr std::uint32_t kMotionError = 0x00004000;    ///< excessive position error (p. 79)
+inline constexpr std::uint32_t kCurrentLimit = 0x01000000;   ///< motor current limit reached (p. 79)
 inline constexpr std::uint32_t kEnabled = 0x80000000;
 } // namespace status
 
-/// What a channel reports by itself when a movement ends.
-enum class MotorEvent { MoveCompleted, Homed, Stopped };
+/// What a channel reports by itself when a movement ends. A Fault (the carriage ran into its
+/// mechanical end stop with the limit switch ignored: the motor stalls) precedes the Stopped
+/// of the move it ended.
+enum class MotorEvent { MoveCompleted, Homed, Stopped, Fault };
 
 struct VelocityParams { std::int32_t min = 0, acceleration = 0, max = 0; };
 struct JogParams {
@@ -47,7 +51,9 @@ struct HomeParams {
     std::int32_t offset = 0;
 };
 struct LimitSwitchParams {
-    std::uint16_t cw_hard = 2, ccw_hard = 2;    ///< 2: switch makes on contact
+    /// 1 ignore (or no switch), 2/3 makes/breaks on contact, 4/5 the same for homing only,
+    /// 6 index mark (PMD); the upper bit (0x80) marks swapped switches. CW is forward.
+    std::uint16_t cw_hard = 2, ccw_hard = 2;
     std::int32_t cw_soft = 0, ccw_soft = 0;
     std::uint16_t mode = 1;                     ///< 1: ignore software limits
 };
@@ -78,6 +84,9 @@ public:
     HomeParams home_params;
     LimitSwitchParams limit_switch;
     std::int32_t backlash = 0;
+    /// MOT_SET_PMDPROFILEMODEPARAMS: 0 trapezoidal, 2 S-curve with `jerk` (PMD jerk units).
+    std::uint16_t profile_mode = 0;
+    std::uint32_t jerk = 0;
     std::int32_t relative_distance = 0;
     std::int32_t absolute_position = 0;
     /// Parameter blocks that do not change the motion model, kept as sent (DCPIDPARAMS,
@@ -110,7 +119,17 @@ private:
     double counts_per_s(std::int32_t apt_velocity) const;
     double counts_per_s2(std::int32_t apt_acceleration) const;
     double travel_counts() const { return travel_max_; }
+    /// Whether the hardware limit switch ahead stops the axis (LIMSWITCHPARAMS hard modes).
+    bool switch_stops(bool forward, bool homing) const;
+    /// Where a run toward one end (velocity move, continuous jog, homing) is planned to: the
+    /// end, or past it into the end stop when the switch there does not stop the axis.
+    double run_target(bool forward, bool homing) const;
+    /// The home switch of a rotation stage ahead of the carriage (once per turn).
+    double next_home_switch(bool forward) const;
     void start_profile(double target_physical, double v, double a, Motion motion);
+    /// The carriage met its end stop at `end`: DC and brushless motors stall (a fault), a
+    /// stepper keeps counting the microsteps it loses.
+    void hit_end_stop(double end);
     void sample(Ticks now);
     void finish(Ticks now);
     void complete_homing();
@@ -133,6 +152,9 @@ private:
     Ticks start_ = 0;
     Ticks end_ = 0;
     bool jog_direction_forward_ = true;
+    bool homing_forward_ = false;
+    bool crash_ = false;             ///< the move runs past an end whose switch does not stop it
+    std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
     std::vector<MotorEvent> events_;
     std::optional<double> pending_backlash_target_;   ///< the forward approach after a backlash overshoot
 };

@@ -238,8 +238,8 @@ TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "
     REQUIRE(before.size() >= 6);
     CHECK(hex(before.substr(0, 6)) == "E5 04 0C 00 81 21");
     CHECK(before.substr(8) == std::string(10, '\0'));
-    CHECK(h.send("E3 04 0C 00 A1 01 01 00 01 00 10 00 00 00 20 00 00 00") == "");
-    CHECK(h.send("E4 04 01 00 21 01") == "E5 04 0C 00 81 21 01 00 01 00 10 00 00 00 20 00 00 00");
+    CHECK(h.send("E3 04 0C 00 A1 01 01 00 02 00 10 00 00 00 20 00 00 00") == "");
+    CHECK(h.send("E4 04 01 00 21 01") == "E5 04 0C 00 81 21 01 00 02 00 10 00 00 00 20 00 00 00");
     CHECK(h.send("E4 04 01 00 22 01").substr(24) == "00 00 00 00 00 00 00 00 00 00");   // bay 1 unchanged
     // PMDSTAGEAXISPARAMS: the stage of bay 1, MLS203-Y: 20,000 counts per mm, 75 mm.
     const auto axis = bytes(h.send("F1 04 01 00 22 01"));

@@ -1,0 +1,247 @@
+// APT: the rest of the stage catalogue (PRM1-Z8 rotation, DRV014, DDSM100), S-curve profiles
+// (MOT_SET_PMDPROFILEMODEPARAMS) and the fault the emulator models (a motor stalled against
+// its end stop: HW_RESPONSE / HW_RICHRESPONSE), bytes in -> bytes out on a stepped clock.
+#include "apt_harness.hpp"
+
+#include <cmath>
+#include <vector>
+
+using namespace rigsim;
+using namespace rigsim::apt;
+using namespace rigsim::test;
+
+namespace {
+
+DeviceConfig cube(const char* model, const char* stage)
+{
+    DeviceConfig c;
+    c.name = "cube";
+    c.protocol = Protocol::Apt;
+    c.model = model;
+    c.apt.stage = stage;
+    return c;
+}
+
+DeviceConfig bbd203(std::vector<std::string> bays)
+{
+    DeviceConfig c;
+    c.name = "bbd";
+    c.protocol = Protocol::Apt;
+    c.model = "BBD203";
+    c.apt.bays = std::move(bays);
+    return c;
+}
+
+/// The frames of a reply stream (hex in, hex per frame out), split by their headers.
+std::vector<std::string> frames(const std::string& reply_hex)
+{
+    const auto b = bytes(reply_hex);
+    std::vector<std::string> out;
+    std::size_t i = 0;
+    while (i + 6 <= b.size()) {
+        const bool data = (static_cast<unsigned char>(b[i + 4]) & 0x80) != 0;
+        const std::size_t n = 6 + (data ? get_u16(b, i + 2) : 0);
+        out.push_back(hex(b.substr(i, n)));
+        i += n;
+    }
+    REQUIRE(i == b.size());
+    return out;
+}
+
+std::string le32(std::int32_t v)
+{
+    std::string d;
+    put_i32(d, v);
+    return hex(d);
+}
+
+/// MOVE_STOPPED / MOVE_COMPLETED / status update: the status dword (data offset 10).
+std::uint32_t status_of(const std::string& frame_hex)
+{
+    return get_u32(bytes(frame_hex), 16);
+}
+
+// SET_LIMSWITCHPARAMS: CW (forward) switch ignored, CCW makes on contact, no soft limits.
+constexpr const char* kIgnoreForwardSwitch = "23 04 10 00 D0 01 01 00 01 00 02 00 00 00 00 00 00 00 00 00 01 00";
+
+} // namespace
+
+TEST_CASE("a move past an ignored limit switch stalls the DC motor: KDC101 sends HW_RICHRESPONSE", "[device][apt][fault]")
+{
+    AptHarness h(cube("KDC101", "Z825B"));   // 25 mm: the counter reads 0 mid-travel, the end is +428,800
+    CHECK(h.send(kIgnoreForwardSwitch) == "");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(500'000)) == "");
+    h.advance_ms(10'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 2);
+    // HW_RICHRESPONSE: MsgIdent 0x0453 (the MOVE_ABSOLUTE), code 1, notes char[64].
+    const auto rich = bytes(out[0]);
+    REQUIRE(rich.size() == 74);
+    CHECK(hex(rich.substr(0, 10)) == "81 00 44 00 81 50 53 04 01 00");
+    CHECK(rich.substr(10, 13) == "Motor stalled");
+    CHECK(rich.back() == '\0');
+    // MOVE_STOPPED at the end stop: current limit reached, no limit switch bit.
+    CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 50 01 00 " + le32(428'800));
+    CHECK(status_of(out[1]) == (status::kMotorConnected | status::kCurrentLimit | status::kSettled | status::kEnabled));
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 " + le32(428'800));
+    // The next move clears the stall bit.
+    CHECK(h.send("48 04 06 00 D0 01 01 00 " + le32(-34'304)) == "");
+    h.advance_ms(3'000);
+    const auto done = frames(h.take());
+    REQUIRE(done.size() == 1);
+    CHECK(done[0].substr(0, 17) == "64 04 0E 00 81 50");
+    CHECK((status_of(done[0]) & status::kCurrentLimit) == 0);
+}
+
+TEST_CASE("TDC001 reports the stall with the manual's HW_RESPONSE; SUSPEND_ENDOFMOVEMSGS silences it", "[device][apt][fault]")
+{
+    AptHarness h;   // TDC001 + MTS50-Z8: the end is +857,600 counts away
+    CHECK(h.send(kIgnoreForwardSwitch) == "");
+    CHECK(h.send("57 04 01 01 50 01") == "");   // MOVE_VELOCITY forward
+    h.advance_ms(30'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 2);
+    CHECK(out[0] == "80 00 00 00 01 50");
+    CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 50 01 00 " + le32(857'600));
+    CHECK((status_of(out[1]) & status::kCurrentLimit) != 0);
+
+    CHECK(h.send("6B 04 00 00 50 01") == "");   // SUSPEND: no error messages either (p. 82)
+    CHECK(h.send("57 04 01 01 50 01") == "");
+    h.advance_ms(1'000);
+    CHECK(h.take() == "");
+    CHECK((h.device().channel().status_bits() & status::kCurrentLimit) != 0);
+    CHECK(h.send("6C 04 00 00 50 01") == "");   // RESUME: they come again
+    CHECK(h.send("57 04 01 01 50 01") == "");
+    h.advance_ms(1'000);
+    const auto again = frames(h.take());
+    REQUIRE(again.size() == 2);
+    CHECK(again[0] == "80 00 00 00 01 50");
+    CHECK(again[1].substr(0, 17) == "66 04 0E 00 81 50");
+}
+
+TEST_CASE("with its limit switch making contact the axis stops at the switch without a fault", "[device][apt][fault]")
+{
+    AptHarness h;
+    CHECK(h.send("57 04 01 01 50 01") == "");
+    h.advance_ms(30'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(857'600));
+    CHECK((status_of(out[0]) & status::kForwardHardLimit) != 0);
+    CHECK((status_of(out[0]) & status::kCurrentLimit) == 0);
+}
+
+TEST_CASE("a BBD203 bay that runs into its end stop: motion error, HW_RESPONSE from the motherboard", "[device][apt][fault][rack]")
+{
+    AptHarness h(bbd203({"MLS203-X", "MLS203-Y"}));
+    CHECK(h.send("23 04 10 00 A2 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // bay 1: CCW ignored
+    CHECK(h.send("57 04 01 02 22 01") == "");   // MOVE_VELOCITY reverse, bay 1 (Y, 75 mm)
+    h.advance_ms(3'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 2);
+    CHECK(out[0] == "80 00 00 00 01 11");   // p. 19: "TX 80, 00, 00, 00, 01, 11"
+    CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 22 01 00 " + le32(-750'000));
+    CHECK((status_of(out[1]) & status::kMotionError) != 0);
+    CHECK((status_of(out[1]) & status::kReverseHardLimit) == 0);   // the switch is ignored
+    // The other bay is untouched.
+    CHECK(h.send("11 04 01 00 21 01") == "12 04 06 00 81 21 01 00 00 00 00 00");
+}
+
+TEST_CASE("a stepper against its end stop loses steps: the counter counts them, no fault", "[device][apt][fault][stepper]")
+{
+    AptHarness h(cube("KST101", "DRV014"));   // 50 mm at 25,600 microsteps/mm: the end is +640,000
+    CHECK(h.send(kIgnoreForwardSwitch) == "");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(700'000)) == "");
+    h.advance_ms(20'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(700'000));   // MOVE_COMPLETED
+    // The carriage stands at the end stop; back 640,000 microsteps by the counter is
+    // 60,000 short of where the counter says it started.
+    CHECK(h.send("48 04 06 00 D0 01 01 00 " + le32(-700'000)) == "");
+    h.advance_ms(40'000);
+    h.take();
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK(h.device().channel().min_position() == -640'000 + 60'000);
+}
+
+TEST_CASE("PRM1-Z8 turns without end and homes on its switch once per turn", "[device][apt][stage]")
+{
+    AptHarness h(cube("KDC101", "PRM1-Z8"));
+    constexpr double kCountsPerDeg = 1'919.6418;
+    // VELPARAMS: 10 deg/s and 10 deg/s² in the DC servo scaling.
+    const auto vel = bytes(h.send("14 04 01 00 50 01"));
+    CHECK(get_i32(vel, 16) == std::lround(10 * kCountsPerDeg * 2048.0 / 6e6 * 65536));
+    // Two turns forward: no limit on the way.
+    const auto two_turns = static_cast<std::int32_t>(std::lround(720 * kCountsPerDeg));
+    CHECK(h.send("48 04 06 00 D0 01 01 00 " + le32(two_turns)) == "");
+    h.advance_ms(80'000);
+    const auto moved = frames(h.take());
+    REQUIRE(moved.size() == 1);
+    CHECK(moved[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(two_turns));
+    CHECK((status_of(moved[0]) & (status::kForwardHardLimit | status::kReverseHardLimit)) == 0);
+    // Home (reverse): power-up stood half a turn past a switch, and two turns on it is half
+    // a turn past the next one: 180 degrees back to it, 4 degrees forward, the counter reads 0.
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    h.advance_ms(15'000);
+    CHECK(h.take() == "");   // 18 s at 10 deg/s: still homing
+    h.advance_ms(10'000);
+    CHECK(h.take() == "44 04 01 00 01 50");
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    CHECK((h.device().channel().status_bits() & status::kHomed) != 0);
+}
+
+TEST_CASE("DRV014 and DDSM100: travel, encoder resolution and power-up velocities", "[device][apt][stage]")
+{
+    AptHarness kst(cube("KST101", "DRV014"));
+    CHECK(kst.device().channel().max_position() == 640'000);
+    CHECK(kst.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 00 90 01 00 00 C8 00 00");
+
+    AptHarness bbd(bbd203({"DDSM100"}));
+    // 500 mm/s and 5,000 mm/s² at 2,000 counts/mm in the PMD scaling of 7.1 (per count).
+    const auto vel = bytes(bbd.send("14 04 01 00 21 01"));
+    CHECK(get_i32(vel, 16) == 6'710'900);
+    CHECK(get_i32(vel, 12) == 6'872);
+    const auto axis = bytes(bbd.send("F1 04 01 00 21 01"));   // REQ_PMDSTAGEAXISPARAMS
+    REQUIRE(axis.size() == 80);
+    CHECK(get_u16(axis, 8) == 0);                               // no stage ID in the manual
+    CHECK(axis.substr(12, 7) == "DDSM100");
+    CHECK(get_u32(axis, 32) == 2'000);
+    CHECK(get_i32(axis, 40) - get_i32(axis, 36) == 200'000);
+}
+
+TEST_CASE("PMDPROFILEMODEPARAMS S-curve: the move takes a/j longer than the trapezoid", "[device][apt][scurve][rack]")
+{
+    AptHarness h(bbd203({"MLS203-X", "MLS203-X"}));
+    // p. 69's example: S-curve, jerk 10,000 mm/s³ (922337), for bay 1 only.
+    CHECK(h.send("E3 04 0C 00 A2 01 01 00 02 00 E1 12 0E 00 00 00 00 00") == "");
+    CHECK(h.send("E4 04 01 00 22 01") == "E5 04 0C 00 81 22 01 00 02 00 E1 12 0E 00 00 00 00 00");
+    CHECK(h.send("E3 04 0C 00 A1 01 01 00 01 00 E1 12 0E 00 00 00 00 00") == "");   // mode 1: none
+    CHECK(h.send("E4 04 01 00 21 01") == "E5 04 0C 00 81 21 01 00 00 00 00 00 00 00 00 00 00 00");
+    // 50 mm at 100 mm/s and 500 mm/s²: trapezoid 0.5 + 0.2 = 0.7 s; S-curve + a/j = 0.05 s.
+    CHECK(h.send("48 04 06 00 A1 01 01 00 " + le32(1'000'000)) == "");
+    CHECK(h.send("48 04 06 00 A2 01 01 00 " + le32(1'000'000)) == "");
+    h.advance_ms(701);
+    auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 17) == "64 04 0E 00 81 21");
+    h.advance_ms(740 - 701);
+    CHECK(h.take() == "");
+    h.advance_ms(12);
+    out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 35) == "64 04 0E 00 81 22 01 00 " + le32(1'000'000));
+}
+
+TEST_CASE("S-curve ramps start gently: after 20 ms the S-curve axis trails the trapezoid", "[device][apt][scurve][rack]")
+{
+    AptHarness h(bbd203({"MLS203-X", "MLS203-X"}));
+    CHECK(h.send("E3 04 0C 00 A2 01 01 00 02 00 E1 12 0E 00 00 00 00 00") == "");
+    CHECK(h.send("48 04 06 00 A1 01 01 00 " + le32(1'000'000)) == "");
+    CHECK(h.send("48 04 06 00 A2 01 01 00 " + le32(1'000'000)) == "");
+    h.advance_ms(20);
+    // Trapezoid: a t²/2 = 500 × 0.02² / 2 mm = 0.1 mm = 2,000 counts.
+    // S-curve: j t³/6 = 10,000 × 0.02³ / 6 mm = 0.01333 mm = 267 counts.
+    CHECK(h.device().channel(0).position() == 2'000);
+    CHECK(h.device().channel(1).position() == Approx(267).margin(1));
+}
