@@ -22,7 +22,12 @@ TEST_CASE("cli: --check-config accepts valid rigs", "[e2e][cli]")
 {
     const std::string file = GENERATE(std::string(RIGSIM_SOURCE_DIR "/config/default.json"),
                                       fixture("two_channel_rig.json"),
-                                      fixture("long_travel_rig.json"));
+                                      fixture("long_travel_rig.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/three_axis_stack.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/rotary_stage.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/gripper.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/open_loop_bench.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/apt_stages.json"));
     const auto r = run_rigsimd({"--check-config", file});
     INFO(file << "\nstdout: " << r.out << "\nstderr: " << r.err);
     REQUIRE(r.exited);
