@@ -2,6 +2,8 @@
 
 #include "unique_fd.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
@@ -39,29 +41,6 @@ std::optional<std::string> read_file(const std::string& path)
     return text.str();
 }
 
-/// The string value following `"key"` and a ':', from the first occurrence of the key.
-std::optional<std::string> string_value(const std::string& json, const std::string& key)
-{
-    const std::string quoted = "\"" + key + "\"";
-    auto pos = json.find(quoted);
-    if (pos == std::string::npos)
-        return std::nullopt;
-    pos = json.find_first_not_of(" \t\r\n", pos + quoted.size());
-    if (pos == std::string::npos || json[pos] != ':')
-        return std::nullopt;
-    pos = json.find_first_not_of(" \t\r\n", pos + 1);
-    if (pos == std::string::npos || json[pos] != '"')
-        return std::nullopt;
-    const auto end = json.find('"', pos + 1);
-    if (end == std::string::npos)
-        return std::nullopt;
-    // Paths and host:port strings need no JSON escapes; one would mean a bad parse.
-    std::string value = json.substr(pos + 1, end - pos - 1);
-    if (value.find('\\') != std::string::npos)
-        return std::nullopt;
-    return value;
-}
-
 std::string describe_status(int status)
 {
     if (WIFEXITED(status))
@@ -74,22 +53,47 @@ std::string describe_status(int status)
 
 }  // namespace
 
-std::optional<Endpoints> parse_endpoints(const std::string& json)
+std::vector<DeviceEndpoints> parse_endpoints(const std::string& json)
 {
-    const auto tcp = string_value(json, "tcp");
-    const auto pty = string_value(json, "pty");
-    if (!tcp || !pty)
-        return std::nullopt;
-    const auto colon = tcp->rfind(':');
-    if (colon == std::string::npos || colon == 0)
-        return std::nullopt;
-    const std::string port_text = tcp->substr(colon + 1);
-    char* end = nullptr;
-    errno = 0;
-    const long port = std::strtol(port_text.c_str(), &end, 10);
-    if (port_text.empty() || *end != '\0' || errno != 0 || port <= 0 || port > 65535)
-        return std::nullopt;
-    return Endpoints{tcp->substr(0, colon), static_cast<std::uint16_t>(port), *pty};
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(json);
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(std::string{"not JSON: "} + e.what());
+    }
+    const auto devices = doc.find("devices");
+    if (devices == doc.end() || !devices->is_array())
+        throw std::runtime_error("no \"devices\" array");
+    std::vector<DeviceEndpoints> result;
+    for (std::size_t i = 0; i < devices->size(); ++i) {
+        const auto& device = (*devices)[i];
+        const auto pointer = "/devices/" + std::to_string(i);
+        const auto text = [&](const char* key) {
+            const auto it = device.find(key);
+            if (it == device.end() || !it->is_string())
+                throw std::runtime_error(pointer + "/" + key + ": expected a string");
+            return it->get<std::string>();
+        };
+        DeviceEndpoints e;
+        e.name = text("name");
+        e.protocol = text("protocol");
+        e.model = text("model");
+        e.pty_path = text("pty");
+        const std::string tcp = text("tcp");
+        const auto colon = tcp.rfind(':');
+        const std::string port_text = colon == std::string::npos ? "" : tcp.substr(colon + 1);
+        char* end = nullptr;
+        errno = 0;
+        const long port = std::strtol(port_text.c_str(), &end, 10);
+        if (colon == std::string::npos || colon == 0 || port_text.empty() || *end != '\0' ||
+            errno != 0 || port <= 0 || port > 65535)
+            throw std::runtime_error(pointer + "/tcp: expected \"HOST:PORT\", not \"" + tcp +
+                                     "\"");
+        e.tcp_host = tcp.substr(0, colon);
+        e.tcp_port = static_cast<std::uint16_t>(port);
+        result.push_back(std::move(e));
+    }
+    return result;
 }
 
 DaemonProcess::DaemonProcess(const std::string& path, std::optional<int> cpu,
@@ -151,6 +155,8 @@ void DaemonProcess::start(const std::string& path, std::optional<int> cpu,
         const int null = ::open("/dev/null", O_RDONLY);
         if (null >= 0)
             ::dup2(null, STDIN_FILENO);
+        // The daemon lists its endpoints on stdout: keep the benchmark's stdout for figures.
+        ::dup2(STDERR_FILENO, STDOUT_FILENO);
         ::execv(argv[0], argv.data());
         const char message[] = "rigsim_bench: exec of the daemon failed\n";
         [[maybe_unused]] auto ignored = ::write(STDERR_FILENO, message, sizeof message - 1);
@@ -165,18 +171,32 @@ void DaemonProcess::start(const std::string& path, std::optional<int> cpu,
                                      ") before writing " + endpoints_file);
         // The daemon writes the file atomically: once it exists it is complete.
         if (const auto text = read_file(endpoints_file)) {
-            if (auto endpoints = parse_endpoints(*text)) {
-                endpoints_ = *endpoints;
-                return;
+            try {
+                devices_ = parse_endpoints(*text);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error(endpoints_file + ": " + e.what() + "\n" + *text);
             }
-            throw std::runtime_error("no \"tcp\" and \"pty\" endpoint in " + endpoints_file +
-                                     ": " + *text);
+            return;
         }
         if (SteadyClock::now() > deadline)
             throw std::runtime_error("daemon " + path + " wrote no " + endpoints_file +
                                      " within " + std::to_string(timeout.count()) + " ms");
         std::this_thread::sleep_for(kPollInterval);
     }
+}
+
+const DeviceEndpoints& DaemonProcess::device(const std::string& name,
+                                             const std::string& protocol) const
+{
+    for (const auto& d : devices_) {
+        if (d.name != name)
+            continue;
+        if (d.protocol != protocol)
+            throw std::runtime_error("device \"" + name + "\" speaks " + d.protocol + ", not " +
+                                     protocol);
+        return d;
+    }
+    throw std::runtime_error("the rig has no device \"" + name + "\"");
 }
 
 DaemonProcess::~DaemonProcess()

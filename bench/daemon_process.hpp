@@ -6,18 +6,24 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rigsim::bench {
 
-/// Where the first device of the rig listens, from the endpoints file.
-struct Endpoints {
+/// Where one device of the rig listens, from the endpoints file.
+struct DeviceEndpoints {
+    std::string name;
+    /// "mcs" or "apt".
+    std::string protocol;
+    std::string model;
     std::string tcp_host;
     std::uint16_t tcp_port = 0;
     std::string pty_path;
 };
 
-/// Extracts the first "tcp" ("HOST:PORT") and "pty" strings; nullopt if either is missing.
-std::optional<Endpoints> parse_endpoints(const std::string& json);
+/// Parses the endpoints file, {"devices":[{"name","protocol","model","tcp","pty"}]} with
+/// "tcp" as "HOST:PORT"; throws std::runtime_error saying what is missing or malformed.
+std::vector<DeviceEndpoints> parse_endpoints(const std::string& json);
 
 /// rigsimd started with fork/exec on ephemeral ports in a fresh temporary directory.
 class DaemonProcess {
@@ -33,8 +39,10 @@ public:
 
     /// The daemon's process id (-1 once it has been reaped).
     pid_t pid() const { return pid_; }
-    /// Where the daemon's first device listens.
-    const Endpoints& endpoints() const { return endpoints_; }
+    /// Where each of the daemon's devices listens, in the order of the endpoints file.
+    const std::vector<DeviceEndpoints>& devices() const { return devices_; }
+    /// The device called `name` speaking `protocol`; throws if the rig has none.
+    const DeviceEndpoints& device(const std::string& name, const std::string& protocol) const;
 
     /// Sends SIGTERM and waits up to `timeout` for the exit; throws if it does not
     /// exit in time (then kills it) or exits with a failure status.
@@ -51,7 +59,7 @@ private:
 
     std::string temp_dir_;
     pid_t pid_ = -1;
-    Endpoints endpoints_;
+    std::vector<DeviceEndpoints> devices_;
 };
 
 }  // namespace rigsim::bench

@@ -36,20 +36,34 @@ bool write_all(int fd, const char* data, std::size_t size)
     return true;
 }
 
-/// Reads and writes back until end of file or an error; `stopping` is checked
-/// after each read so that the owner can wake the loop and end it.
-void echo_loop(int fd, const std::atomic<bool>* stopping)
+/// Fills `reply` with `request` repeated (a non-empty request).
+void fill_echo(const std::string& request, std::string& reply)
 {
-    char buffer[4096];
+    for (std::size_t i = 0; i < reply.size(); ++i)
+        reply[i] = request[i % request.size()];
+}
+
+/// Reads requests of shape.request_bytes and answers each with shape.reply_bytes
+/// until end of file or an error; `stopping` is checked after each read so that the
+/// owner can wake the loop and end it.
+void echo_loop(int fd, EchoShape shape, const std::atomic<bool>* stopping)
+{
+    std::string request(shape.request_bytes, '\0');
+    std::string reply(shape.reply_bytes, '\0');
     for (;;) {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return;
-        if (stopping && stopping->load())
-            return;
-        if (!write_all(fd, buffer, static_cast<std::size_t>(n)))
+        std::size_t used = 0;
+        while (used < request.size()) {
+            const ssize_t n = ::read(fd, request.data() + used, request.size() - used);
+            if (n < 0 && errno == EINTR)
+                continue;
+            if (n <= 0)
+                return;
+            if (stopping && stopping->load())
+                return;
+            used += static_cast<std::size_t>(n);
+        }
+        fill_echo(request, reply);
+        if (!write_all(fd, reply.data(), reply.size()))
             return;
     }
 }
@@ -80,9 +94,24 @@ std::thread start_thread(std::optional<int> cpu, pid_t& thread_id, std::function
     return thread;
 }
 
+/// A shape the echo loop can serve: a request of at least one byte.
+EchoShape checked(EchoShape shape)
+{
+    if (shape.request_bytes == 0)
+        throw std::invalid_argument("echo server: requests of 0 bytes");
+    return shape;
+}
+
 }  // namespace
 
-TcpEchoServer::TcpEchoServer(std::optional<int> cpu)
+std::string echo_reply(const std::string& request, std::size_t reply_bytes)
+{
+    std::string reply(request.empty() ? 0 : reply_bytes, '\0');
+    fill_echo(request, reply);
+    return reply;
+}
+
+TcpEchoServer::TcpEchoServer(EchoShape shape, std::optional<int> cpu) : shape_(checked(shape))
 {
     listener_ = UniqueFd{::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)};
     if (listener_.get() < 0)
@@ -138,10 +167,10 @@ void TcpEchoServer::run()
         return;
     const int one = 1;
     ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    echo_loop(fd, nullptr);
+    echo_loop(fd, shape_, nullptr);
 }
 
-PtyEchoServer::PtyEchoServer(std::optional<int> cpu)
+PtyEchoServer::PtyEchoServer(EchoShape shape, std::optional<int> cpu) : shape_(checked(shape))
 {
     int master = -1;
     int slave = -1;
@@ -168,7 +197,7 @@ PtyEchoServer::~PtyEchoServer()
 
 void PtyEchoServer::run()
 {
-    echo_loop(master_.get(), &stopping_);
+    echo_loop(master_.get(), shape_, &stopping_);
 }
 
 }  // namespace rigsim::bench

@@ -5,6 +5,7 @@
 #include <sys/types.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -18,11 +19,22 @@ namespace rigsim::bench {
  * Each is one thread doing blocking read-then-write-back, no event loop.
  */
 
-/// Echoes everything one TCP client sends; listens on 127.0.0.1, ephemeral port.
+/// What the floor answers: each request of `request_bytes` gets `reply_bytes` back,
+/// the request repeated to fill them. A fair floor has the sizes of the real
+/// exchange: for APT MGMSG_MOT_REQ_POSCOUNTER, 6 bytes in and 12 out.
+struct EchoShape {
+    std::size_t request_bytes = 1;
+    std::size_t reply_bytes = 1;
+};
+
+/// The reply an echo server of `reply_bytes` gives to `request`.
+std::string echo_reply(const std::string& request, std::size_t reply_bytes);
+
+/// Echoes what one TCP client sends, in `shape`; listens on 127.0.0.1, ephemeral port.
 class TcpEchoServer {
 public:
     /// Starts listening and the echo thread, pinned to `cpu` if given.
-    explicit TcpEchoServer(std::optional<int> cpu);
+    TcpEchoServer(EchoShape shape, std::optional<int> cpu);
     ~TcpEchoServer();
     TcpEchoServer(const TcpEchoServer&) = delete;
     TcpEchoServer& operator=(const TcpEchoServer&) = delete;
@@ -35,6 +47,7 @@ public:
 private:
     void run();
 
+    EchoShape shape_;
     UniqueFd listener_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stopping_{false};
@@ -44,11 +57,11 @@ private:
     std::thread thread_;
 };
 
-/// Echoes everything written to a raw pty; clients open slave_path().
+/// Echoes what is written to a raw pty, in `shape`; clients open slave_path().
 class PtyEchoServer {
 public:
     /// Opens the pty and starts the echo thread, pinned to `cpu` if given.
-    explicit PtyEchoServer(std::optional<int> cpu);
+    PtyEchoServer(EchoShape shape, std::optional<int> cpu);
     ~PtyEchoServer();
     PtyEchoServer(const PtyEchoServer&) = delete;
     PtyEchoServer& operator=(const PtyEchoServer&) = delete;
@@ -61,6 +74,7 @@ public:
 private:
     void run();
 
+    EchoShape shape_;
     UniqueFd master_;
     /*
      * Held open for the server's lifetime: with no slave open, reads on the

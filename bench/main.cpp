@@ -1,8 +1,8 @@
 /*
  * rigsim_bench: round-trip latency of rigsimd against an echo floor on TCP and
- * pty, the daemon's CPU time per command, and its idle CPU. A measurement, not
- * a test: it exits 0 whatever the figures, 1 if something broke, 2 on bad flags.
- * See bench/README.md.
+ * pty, for an MCS and an APT request, the daemon's CPU time per command, and its
+ * idle CPU. A measurement, not a test: it exits 0 whatever the figures, 1 if
+ * something broke, 2 on bad flags. See bench/README.md.
  */
 #include "cpu_placement.hpp"
 #include "daemon_process.hpp"
@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -37,8 +38,19 @@ constexpr int kBlocks = 10;
 constexpr std::chrono::milliseconds kStartTimeout{10000};
 constexpr std::chrono::milliseconds kStopTimeout{5000};
 
-const std::string kRequest = ":GP0\n";
-const std::string kReply = ":P0,0\n";
+/// MCS GP (get position, MCS manual 3.3) of channel 0, which rests at 0.
+const std::string kMcsRequest = ":GP0\n";
+const std::string kMcsReply = ":P0,0\n";
+
+/*
+ * APT MGMSG_MOT_REQ_POSCOUNTER (0x0411) for channel 1: header only, to the
+ * generic USB unit (0x50) from the host (0x01). The answer, MGMSG_MOT_GET_POSCOUNTER
+ * (0x0412), carries 6 data bytes (0x81: to the host, data follows) from 0x50:
+ * the channel (1, u16) and the position counter (i32), little-endian.
+ */
+const std::string kAptRequest{"\x11\x04\x01\x00\x50\x01", 6};
+const std::string kAptReplyPrefix{"\x12\x04\x06\x00\x81\x50\x01\x00", 8};
+constexpr std::size_t kAptReplySize = 12;
 
 // Targets (see bench/README.md).
 constexpr double kTargetMedianRatio = 1.5;
@@ -61,9 +73,8 @@ void print_usage(std::FILE* out)
     std::fprintf(out,
                  "usage: rigsim_bench [--iterations N] [--idle-seconds S] [--pin MODE]\n"
                  "                    [--daemon PATH]\n"
-                 "  --iterations N    timed round trips per transport and server (default "
-                 "20000),\n"
-                 "                    after %d warm-up round trips\n"
+                 "  --iterations N    timed round trips per protocol, transport and server\n"
+                 "                    (default 20000), after %d warm-up round trips\n"
                  "  --idle-seconds S  length of each idle CPU window, 0 to skip (default 5)\n"
                  "  --pin MODE        same: client and servers (rigsimd and the floor) on one\n"
                  "                    CPU (default); split: client on one CPU, servers on\n"
@@ -142,10 +153,10 @@ void accumulate(CpuDelta& total, const CpuDelta& d, bool first)
         total.schedstat_s.reset();
 }
 
-/// One server under measurement: the client's fd, the reply it must give, its CPU clock.
+/// One server under measurement: the client's fd, the exchange it must give, its CPU clock.
 struct Server {
     int fd;
-    std::string expected;
+    Exchange exchange;
     std::function<CpuSample()> read_cpu;
     std::vector<std::int64_t> samples_ns;
     /// CPU of the server (daemon process or echo thread) over the timed round trips.
@@ -160,11 +171,11 @@ struct Server {
  */
 void measure_interleaved(Server& rigsim, Server& floor, const Options& options)
 {
-    round_trips(rigsim.fd, kRequest, rigsim.expected, kWarmupIterations);
-    round_trips(floor.fd, kRequest, floor.expected, kWarmupIterations);
+    round_trips(rigsim.fd, rigsim.exchange, kWarmupIterations);
+    round_trips(floor.fd, floor.exchange, kWarmupIterations);
     const auto run_block = [](Server& server, int iterations) {
         const auto before = server.read_cpu();
-        auto samples = round_trips(server.fd, kRequest, server.expected, iterations);
+        auto samples = round_trips(server.fd, server.exchange, iterations);
         accumulate(server.cpu, cpu_delta(before, server.read_cpu()), server.samples_ns.empty());
         server.samples_ns.insert(server.samples_ns.end(), samples.begin(), samples.end());
     };
@@ -179,19 +190,63 @@ void measure_interleaved(Server& rigsim, Server& floor, const Options& options)
     }
 }
 
-struct TransportResult {
+/// One protocol's round trip: the device that answers it and how its reply is checked.
+struct Protocol {
+    /// "mcs" or "apt", as in the endpoints file; also the report's label.
     const char* name;
+    /// The device of the default rig that answers.
+    const char* device;
+    /// The heading of its round-trip table.
+    const char* title;
+    std::string request;
+    ReplyEnd end;
+    /// What the floor answers to `request`: as many bytes as a real reply, except
+    /// for MCS, where a repeated request would put a '\n' inside the reply, so the
+    /// floor echoes the 5 bytes of ":GP0\n" for the 6 of ":P0,0\n".
+    std::size_t floor_reply_bytes;
+    /// rigsimd's reply to one request on `fd`, checked; every timed reply must equal it.
+    std::function<std::string(int fd)> first_reply;
+};
+
+/// The APT reply, whose position bytes are learnt from the first one: the header
+/// and channel are checked here, and the whole reply (so the position, which
+/// nothing moves) on every round trip after it.
+std::string first_apt_reply(int fd)
+{
+    const auto reply = request_fixed_length(fd, kAptRequest, kAptReplySize);
+    if (reply.compare(0, kAptReplyPrefix.size(), kAptReplyPrefix) != 0)
+        throw std::runtime_error(
+            "sent \"" + printable(kAptRequest, ReplyEnd::Length) + "\", expected \"" +
+            printable(kAptReplyPrefix, ReplyEnd::Length) + " + 4 position bytes\", got \"" +
+            printable(reply, ReplyEnd::Length) + "\"");
+    return reply;
+}
+
+const Protocol kMcs{"mcs",
+                    "mcs0",
+                    "round trip \":GP0\\n\" -> \":P0,0\\n\" (mcs0; floor echoes 5 bytes), us",
+                    kMcsRequest,
+                    ReplyEnd::Newline,
+                    kMcsRequest.size(),
+                    [](int) { return kMcsReply; }};
+
+const Protocol kApt{"apt",
+                    "tdc001",
+                    "round trip MGMSG_MOT_REQ_POSCOUNTER -> MGMSG_MOT_GET_POSCOUNTER "
+                    "(tdc001; 6 -> 12 bytes, the floor alike), us",
+                    kAptRequest,
+                    ReplyEnd::Length,
+                    kAptReplySize,
+                    first_apt_reply};
+
+struct TransportResult {
+    /// "mcs tcp", "apt pty", ...
+    std::string name;
     LatencyStats rigsim;
     LatencyStats floor;
     CpuDelta rigsim_cpu;
     CpuDelta floor_cpu;
 };
-
-TransportResult result_of(const char* name, Server& rigsim, Server& floor)
-{
-    return {name, latency_stats(rigsim.samples_ns), latency_stats(floor.samples_ns), rigsim.cpu,
-            floor.cpu};
-}
 
 double median_ratio(const TransportResult& r)
 {
@@ -203,32 +258,60 @@ double p99_ratio(const TransportResult& r)
     return r.rigsim.p99_us / r.floor.p99_us;
 }
 
-TransportResult measure_tcp(const DaemonProcess& daemon, const Placement& placement,
-                            const Options& options)
+/// Times `protocol` against rigsimd on `rigsim_fd` and the floor on `floor_fd`.
+TransportResult measure_pair(const Protocol& protocol, const char* transport, int rigsim_fd,
+                             int floor_fd, pid_t daemon_pid, pid_t echo_tid,
+                             const Options& options)
 {
-    const auto& ep = daemon.endpoints();
-    TcpEchoServer echo{placement.server_cpu};
-    auto rigsim_fd = connect_tcp(ep.tcp_host, ep.tcp_port);
-    auto floor_fd = connect_tcp("127.0.0.1", echo.port());
-    Server rigsim{rigsim_fd.get(), kReply, [&] { return read_process_cpu(daemon.pid()); }, {}, {}};
-    Server floor{floor_fd.get(), kRequest, [&] { return read_thread_cpu(echo.thread_id()); }, {},
+    Server rigsim{rigsim_fd,
+                  {protocol.request, protocol.first_reply(rigsim_fd), protocol.end},
+                  [daemon_pid] { return read_process_cpu(daemon_pid); },
+                  {},
+                  {}};
+    Server floor{floor_fd,
+                 {protocol.request, echo_reply(protocol.request, protocol.floor_reply_bytes),
+                  protocol.end},
+                 [echo_tid] { return read_thread_cpu(echo_tid); },
+                 {},
                  {}};
     measure_interleaved(rigsim, floor, options);
-    return result_of("tcp", rigsim, floor);
+    return {std::string{protocol.name} + " " + transport, latency_stats(rigsim.samples_ns),
+            latency_stats(floor.samples_ns), rigsim.cpu, floor.cpu};
 }
 
-TransportResult measure_pty(const DaemonProcess& daemon, const Placement& placement,
-                            const Options& options)
+EchoShape floor_shape(const Protocol& protocol)
 {
-    PtyEchoServer echo{placement.server_cpu};
-    auto rigsim_fd = open_pty(daemon.endpoints().pty_path);
-    auto floor_fd = open_pty(echo.slave_path());
-    Server rigsim{rigsim_fd.get(), kReply, [&] { return read_process_cpu(daemon.pid()); }, {}, {}};
-    Server floor{floor_fd.get(), kRequest, [&] { return read_thread_cpu(echo.thread_id()); }, {},
-                 {}};
-    measure_interleaved(rigsim, floor, options);
-    return result_of("pty", rigsim, floor);
+    return {protocol.request.size(), protocol.floor_reply_bytes};
 }
+
+TransportResult measure_tcp(const Protocol& protocol, const DaemonProcess& daemon,
+                            const Placement& placement, const Options& options)
+{
+    const auto& device = daemon.device(protocol.device, protocol.name);
+    TcpEchoServer echo{floor_shape(protocol), placement.server_cpu};
+    auto rigsim_fd = connect_tcp(device.tcp_host, device.tcp_port);
+    auto floor_fd = connect_tcp("127.0.0.1", echo.port());
+    return measure_pair(protocol, "tcp", rigsim_fd.get(), floor_fd.get(), daemon.pid(),
+                        echo.thread_id(), options);
+}
+
+TransportResult measure_pty(const Protocol& protocol, const DaemonProcess& daemon,
+                            const Placement& placement, const Options& options)
+{
+    const auto& device = daemon.device(protocol.device, protocol.name);
+    PtyEchoServer echo{floor_shape(protocol), placement.server_cpu};
+    auto rigsim_fd = open_pty(device.pty_path);
+    auto floor_fd = open_pty(echo.slave_path());
+    return measure_pair(protocol, "pty", rigsim_fd.get(), floor_fd.get(), daemon.pid(),
+                        echo.thread_id(), options);
+}
+
+/// One protocol's figures on both transports.
+struct ProtocolResult {
+    const Protocol* protocol;
+    TransportResult tcp;
+    TransportResult pty;
+};
 
 /// Samples the daemon's CPU over a window of wall time in which nothing talks to it.
 std::optional<CpuDelta> measure_idle(pid_t pid, double seconds)
@@ -247,18 +330,19 @@ double idle_percent(const CpuDelta& d)
 
 void print_latency(const TransportResult& r)
 {
-    std::printf("  %s  %-19s %10.2f %10.2f\n", r.name, "rigsimd", r.rigsim.median_us,
+    const char* name = r.name.c_str();
+    std::printf("  %s  %-19s %10.2f %10.2f\n", name, "rigsimd", r.rigsim.median_us,
                 r.rigsim.p99_us);
-    std::printf("  %s  %-19s %10.2f %10.2f\n", r.name, "floor (echo)", r.floor.median_us,
+    std::printf("  %s  %-19s %10.2f %10.2f\n", name, "floor (echo)", r.floor.median_us,
                 r.floor.p99_us);
-    std::printf("  %s  %-19s %10.2f %10.2f\n", r.name, "ratio rigsimd/floor", median_ratio(r),
+    std::printf("  %s  %-19s %10.2f %10.2f\n", name, "ratio rigsimd/floor", median_ratio(r),
                 p99_ratio(r));
 }
 
-void print_cpu_per_command(const char* transport, const char* server, const CpuDelta& d,
+void print_cpu_per_command(const std::string& transport, const char* server, const CpuDelta& d,
                            int iterations)
 {
-    std::printf("  %s  %-19s %10.2f %10.2f", transport, server, d.stat_s * 1e6 / iterations,
+    std::printf("  %s  %-19s %10.2f %10.2f", transport.c_str(), server, d.stat_s * 1e6 / iterations,
                 d.system_s * 1e6 / iterations);
     if (d.schedstat_s)
         std::printf(" %10.2f", *d.schedstat_s * 1e6 / iterations);
@@ -306,12 +390,16 @@ int run(const Options& options)
     DaemonProcess daemon{options.daemon, placement.server_cpu, kStartTimeout};
     if (placement.client_cpu)
         pin_this_thread(*placement.client_cpu);
-    const auto& ep = daemon.endpoints();
     std::printf("rigsim_bench: %s (pid %d)\n", options.daemon.c_str(),
                 static_cast<int>(daemon.pid()));
-    std::printf("  tcp %s:%u, pty %s\n", ep.tcp_host.c_str(), static_cast<unsigned>(ep.tcp_port),
-                ep.pty_path.c_str());
-    std::printf("  %d timed round trips per server after %d warm-up, in %d alternating blocks\n",
+    for (const Protocol* protocol : {&kMcs, &kApt}) {
+        const auto& d = daemon.device(protocol->device, protocol->name);
+        std::printf("  %s (%s %s): tcp %s:%u, pty %s\n", d.name.c_str(), d.protocol.c_str(),
+                    d.model.c_str(), d.tcp_host.c_str(), static_cast<unsigned>(d.tcp_port),
+                    d.pty_path.c_str());
+    }
+    std::printf("  %d timed round trips per protocol, transport and server after %d warm-up,"
+                " in %d alternating blocks\n",
                 options.iterations, kWarmupIterations, kBlocks);
     std::printf("  %s; idle windows %.1f s\n\n", describe(placement).c_str(),
                 options.idle_seconds);
@@ -319,46 +407,59 @@ int run(const Options& options)
 
     progress("idle window, fresh daemon");
     const auto idle_fresh = measure_idle(daemon.pid(), options.idle_seconds);
-    progress("tcp round trips");
-    const auto tcp = measure_tcp(daemon, placement, options);
-    progress("pty round trips");
-    const auto pty = measure_pty(daemon, placement, options);
+    std::vector<ProtocolResult> results;
+    for (const Protocol* protocol : {&kMcs, &kApt}) {
+        progress((std::string{protocol->name} + " tcp round trips").c_str());
+        auto tcp = measure_tcp(*protocol, daemon, placement, options);
+        progress((std::string{protocol->name} + " pty round trips").c_str());
+        auto pty = measure_pty(*protocol, daemon, placement, options);
+        results.push_back({protocol, std::move(tcp), std::move(pty)});
+    }
     // After clients have come and gone: a transport that spins on a closed peer shows here.
     progress("idle window, after clients closed");
     const auto idle_after = measure_idle(daemon.pid(), options.idle_seconds);
 
-    std::printf("round trip \":GP0\\n\" -> \":P0,0\\n\", us\n");
-    std::printf("  %-24s %10s %10s\n", "", "median", "p99");
-    print_latency(tcp);
-    print_latency(pty);
-    std::printf("\nserver CPU per command over the timed round trips, us"
+    for (const auto& r : results) {
+        std::printf("%s\n", r.protocol->title);
+        std::printf("  %-28s %10s %10s\n", "", "median", "p99");
+        print_latency(r.tcp);
+        print_latency(r.pty);
+        std::printf("\n");
+    }
+    std::printf("server CPU per command over the timed round trips, us"
                 " (/proc stat resolution %.2f us)\n",
                 stat_tick_s() * 1e6 / options.iterations);
-    std::printf("  %-24s %10s %10s %10s\n", "", "stat", "of it sys", "schedstat");
-    print_cpu_per_command(tcp, options.iterations);
-    print_cpu_per_command(pty, options.iterations);
+    std::printf("  %-28s %10s %10s %10s\n", "", "stat", "of it sys", "schedstat");
+    for (const auto& r : results) {
+        print_cpu_per_command(r.tcp, options.iterations);
+        print_cpu_per_command(r.pty, options.iterations);
+    }
     std::printf("\nidle CPU (default rig, no traffic)\n");
     print_idle("fresh daemon", idle_fresh);
     print_idle("after clients closed", idle_after);
 
-    const double tcp_cpu_us = tcp.rigsim_cpu.stat_s * 1e6 / options.iterations;
     std::printf("\n== summary (%s) ==\n", describe(placement).c_str());
-    std::printf("  tcp ratio rigsimd/floor at median  %8.2f     <= %.1f    %s\n",
-                median_ratio(tcp), kTargetMedianRatio,
-                verdict(median_ratio(tcp) <= kTargetMedianRatio));
-    std::printf("  pty ratio rigsimd/floor at median  %8.2f     <= %.1f    %s\n",
-                median_ratio(pty), kTargetMedianRatio,
-                verdict(median_ratio(pty) <= kTargetMedianRatio));
-    std::printf("  daemon CPU per command (tcp)       %8.2f us  <= %.0f us   %s"
-                "   (floor echo thread: %.2f us)\n",
-                tcp_cpu_us, kTargetCpuPerCommandUs, verdict(tcp_cpu_us <= kTargetCpuPerCommandUs),
-                tcp.floor_cpu.stat_s * 1e6 / options.iterations);
+    for (const auto& r : results) {
+        for (const TransportResult* t : {&r.tcp, &r.pty}) {
+            const std::string label = t->name + " ratio rigsimd/floor at median";
+            std::printf("  %-38s %8.2f     <= %.1f    %s\n", label.c_str(), median_ratio(*t),
+                        kTargetMedianRatio, verdict(median_ratio(*t) <= kTargetMedianRatio));
+        }
+    }
+    for (const auto& r : results) {
+        const double cpu_us = r.tcp.rigsim_cpu.stat_s * 1e6 / options.iterations;
+        const std::string label = "daemon CPU per command (" + r.tcp.name + ")";
+        std::printf("  %-38s %8.2f us  <= %.0f us   %s   (floor echo thread: %.2f us)\n",
+                    label.c_str(), cpu_us, kTargetCpuPerCommandUs,
+                    verdict(cpu_us <= kTargetCpuPerCommandUs),
+                    r.tcp.floor_cpu.stat_s * 1e6 / options.iterations);
+    }
     if (idle_fresh && idle_after) {
         const double idle = std::max(idle_percent(*idle_fresh), idle_percent(*idle_after));
-        std::printf("  idle CPU (worse window)            %8.2f %%   <= %.0f %%    %s\n", idle,
+        std::printf("  %-38s %8.2f %%   <= %.0f %%    %s\n", "idle CPU (worse window)", idle,
                     kTargetIdlePercent, verdict(idle <= kTargetIdlePercent));
     } else {
-        std::printf("  idle CPU                           skipped\n");
+        std::printf("  %-38s skipped\n", "idle CPU");
     }
     std::printf("  (for reference: a Python test double spends ~28 us/command)\n");
     std::fflush(stdout);

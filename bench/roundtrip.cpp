@@ -104,17 +104,46 @@ std::size_t read_line(int fd, char* buffer, std::size_t capacity)
     }
 }
 
-std::string printable(const char* data, std::size_t size)
+/// Reads exactly `size` bytes, never more: a longer reply leaves bytes behind that
+/// the next comparison rejects.
+void read_exactly(int fd, char* buffer, std::size_t size)
+{
+    std::size_t used = 0;
+    while (used < size) {
+        const ssize_t n = ::read(fd, buffer + used, size - used);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            throw std::runtime_error(errno_message("read"));
+        }
+        if (n == 0)
+            throw std::runtime_error("peer closed the connection");
+        used += static_cast<std::size_t>(n);
+    }
+}
+
+constexpr std::size_t kReplyCapacity = 256;
+
+}  // namespace
+
+std::string printable(const std::string& data, ReplyEnd end)
 {
     std::string out;
-    for (std::size_t i = 0; i < size; ++i) {
-        const char c = data[i];
+    char hex[8];
+    if (end == ReplyEnd::Length) {
+        for (std::size_t i = 0; i < data.size(); ++i) {
+            std::snprintf(hex, sizeof hex, i == 0 ? "%02x" : " %02x",
+                          static_cast<unsigned char>(data[i]));
+            out += hex;
+        }
+        return out;
+    }
+    for (const char c : data) {
         if (c == '\n')
             out += "\\n";
         else if (c == '\r')
             out += "\\r";
         else if (c < 0x20 || c > 0x7e) {
-            char hex[8];
             std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
             out += hex;
         } else
@@ -123,29 +152,42 @@ std::string printable(const char* data, std::size_t size)
     return out;
 }
 
-}  // namespace
-
-std::vector<std::int64_t> round_trips(int fd, const std::string& request,
-                                      const std::string& expected, int iterations)
+std::vector<std::int64_t> round_trips(int fd, const Exchange& exchange, int iterations)
 {
     using Clock = std::chrono::steady_clock;
+    const std::string& request = exchange.request;
+    const std::string& expected = exchange.reply;
+    if (exchange.end == ReplyEnd::Length && expected.size() > kReplyCapacity)
+        throw std::logic_error("expected reply longer than the read buffer");
     std::vector<std::int64_t> samples_ns;
     samples_ns.reserve(static_cast<std::size_t>(std::max(iterations, 0)));
-    char buffer[256];
+    char buffer[kReplyCapacity];
     for (int i = 0; i < iterations; ++i) {
         const auto start = Clock::now();
         write_all(fd, request.data(), request.size());
-        const std::size_t n = read_line(fd, buffer, sizeof buffer);
+        std::size_t n = expected.size();
+        if (exchange.end == ReplyEnd::Newline)
+            n = read_line(fd, buffer, sizeof buffer);
+        else
+            read_exactly(fd, buffer, n);
         const auto stop = Clock::now();
         if (n != expected.size() || std::memcmp(buffer, expected.data(), n) != 0)
-            throw std::runtime_error("sent \"" + printable(request.data(), request.size()) +
-                                     "\", expected \"" +
-                                     printable(expected.data(), expected.size()) +
-                                     "\", got \"" + printable(buffer, n) + "\"");
+            throw std::runtime_error("sent \"" + printable(request, exchange.end) +
+                                     "\", expected \"" + printable(expected, exchange.end) +
+                                     "\", got \"" +
+                                     printable(std::string(buffer, n), exchange.end) + "\"");
         samples_ns.push_back(
             std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count());
     }
     return samples_ns;
+}
+
+std::string request_fixed_length(int fd, const std::string& request, std::size_t size)
+{
+    std::string reply(size, '\0');
+    write_all(fd, request.data(), request.size());
+    read_exactly(fd, reply.data(), size);
+    return reply;
 }
 
 LatencyStats latency_stats(std::vector<std::int64_t>& samples_ns)

@@ -2,6 +2,7 @@
 
 #include "unique_fd.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,11 +18,32 @@ UniqueFd open_pty(const std::string& path);
 /// Puts a terminal in raw mode: cfmakeraw, blocking reads of at least one byte.
 void make_raw(int fd);
 
-/// Sends `request` on fd, reads up to and including '\n', and checks the bytes
-/// against `expected`, `iterations` times; returns each round trip in ns.
+/// How the client finds the end of a reply.
+enum class ReplyEnd {
+    /// MCS: the reply ends at the first '\n'.
+    Newline,
+    /// APT: the reply is a frame of a known length (the header gives it).
+    Length,
+};
+
+/// One request and the exact reply a correct server gives to it.
+struct Exchange {
+    std::string request;
+    std::string reply;
+    ReplyEnd end = ReplyEnd::Newline;
+};
+
+/// Sends the request on fd, reads one reply (up to '\n', or reply.size() bytes)
+/// and checks its bytes, `iterations` times; returns each round trip in ns.
 /// Throws on I/O errors, end of file, or an unexpected reply.
-std::vector<std::int64_t> round_trips(int fd, const std::string& request,
-                                      const std::string& expected, int iterations);
+std::vector<std::int64_t> round_trips(int fd, const Exchange& exchange, int iterations);
+
+/// Sends `request` once and returns the `size` bytes that come back, unchecked:
+/// for a reply whose variable part must be learnt before it can be checked.
+std::string request_fixed_length(int fd, const std::string& request, std::size_t size);
+
+/// `data` as text for a message: escaped text for Newline, hex bytes for Length.
+std::string printable(const std::string& data, ReplyEnd end);
 
 /// Median and 99th percentile of a set of round trips.
 struct LatencyStats {

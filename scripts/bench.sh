@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Release tree and runs the benchmark; arguments go to rigsim_bench
-# (--iterations N, --idle-seconds S, --daemon PATH). See bench/README.md.
+# (--iterations N, --idle-seconds S, --pin same|split|none, --daemon PATH).
+# See bench/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
