@@ -1,0 +1,246 @@
+// APT golden transcripts: hex sessions replayed byte for byte on a stepped clock (1 kHz).
+//
+// Format (tests/device/apt/transcripts/*.txt), one item per line:
+//   # comment                 ignored, as are blank lines; cite the manual page here
+//   @ TDC001 MTS50-Z8         a freshly powered-up device: the model, then its stage, or for a
+//   @ BBD203 MLS203-X MLS203-Y  card-slot controller the stage of each bay from bay 0 (0x21) on.
+//                             Required before the first step; a later '@' starts a new device.
+//   > 11 04 01 00 50 01       bytes sent (hex, one byte per token)
+//   ~ 100ms                   advance the clock (also "~ 3s")
+//   < 12 04 06 00 81 50 ...   bytes the device sent during the step above, in order. Consecutive
+//                             '<' lines concatenate; together they must equal, exactly, everything
+//                             sent since that step. A step with no '<' line asserts that nothing
+//                             was sent. A first token "49x" repeats the line's bytes 49 times.
+// A mismatch reports the file and line of the step, the expected and the actual hex.
+#include "apt_harness.hpp"
+
+#include "emulator/apt/catalogue.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using rigsim::test::AptHarness;
+
+namespace {
+
+/// A device line after '@': the model, then a stage (single unit) or one stage per bay (rack).
+rigsim::DeviceConfig device_from(const std::string& where, const std::string& spec)
+{
+    std::istringstream s(spec);
+    rigsim::DeviceConfig c;
+    c.name = "transcript";
+    c.protocol = rigsim::Protocol::Apt;
+    s >> c.model;
+    const auto* model = rigsim::apt::find_controller(c.model);
+    if (!model)
+        FAIL(where << ": unknown APT model '" << c.model << "'");
+    std::vector<std::string> stages;
+    for (std::string stage; s >> stage;)
+        stages.push_back(stage);
+    if (stages.empty())
+        FAIL(where << ": '@ " << spec << "' names no stage");
+    if (model->rack) {
+        c.apt.bays = stages;
+    } else {
+        if (stages.size() != 1)
+            FAIL(where << ": a single unit drives one stage, not " << stages.size());
+        c.apt.stage = stages.front();
+    }
+    return c;
+}
+
+bool is_hex_byte(const std::string& t)
+{
+    return t.size() == 2 && std::isxdigit(static_cast<unsigned char>(t[0])) != 0
+           && std::isxdigit(static_cast<unsigned char>(t[1])) != 0;
+}
+
+/// Hex tokens -> canonical "AA BB CC" (upper case, single spaces); "49x" first repeats.
+std::string canonical_hex(const std::string& where, const std::string& text, bool allow_repeat)
+{
+    std::istringstream s(text);
+    std::vector<std::string> tokens;
+    for (std::string t; s >> t;)
+        tokens.push_back(t);
+    int repeat = 1;
+    std::size_t first = 0;
+    if (allow_repeat && !tokens.empty() && tokens[0].size() >= 2 && tokens[0].back() == 'x'
+        && tokens[0].find_first_not_of("0123456789") == tokens[0].size() - 1) {
+        repeat = std::stoi(tokens[0]);
+        first = 1;
+    }
+    std::string one;
+    for (std::size_t i = first; i < tokens.size(); ++i) {
+        if (!is_hex_byte(tokens[i]))
+            FAIL(where << ": '" << tokens[i] << "' is not a hex byte");
+        if (!one.empty())
+            one += ' ';
+        for (char ch : tokens[i])
+            one += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    }
+    std::string out;
+    for (int r = 0; r < repeat; ++r) {
+        if (!out.empty() && !one.empty())
+            out += ' ';
+        out += one;
+    }
+    return out;
+}
+
+/// Clock advance after '~': "250ms", "250 ms", "3s".
+std::int64_t advance_ms(const std::string& where, const std::string& text)
+{
+    std::istringstream s(text);
+    long long n = -1;
+    std::string unit;
+    s >> n >> unit;
+    if (n < 0)
+        FAIL(where << ": no duration in '~ " << text << "'");
+    if (unit == "ms")
+        return n;
+    if (unit == "s")
+        return n * 1000;
+    FAIL(where << ": unknown unit '" << unit << "' (ms or s)");
+    return 0;
+}
+
+void replay(const std::string& name)
+{
+    const std::string path = RIGSIM_SOURCE_DIR "/tests/device/apt/transcripts/" + name;
+    std::ifstream in(path);
+    INFO("transcript " << path);
+    REQUIRE(in);
+    std::unique_ptr<AptHarness> harness;
+    int steps = 0;
+    std::string line, actual, expected;
+    int number = 0, step_line = 0;
+    bool in_step = false;
+    // Compare what the last step produced with the '<' lines that followed it.
+    auto settle = [&] {
+        if (!in_step)
+            return;
+        INFO(name << ":" << step_line << ": expected: " << (expected.empty() ? "(nothing)" : expected));
+        INFO(name << ":" << step_line << ": actual:   " << (actual.empty() ? "(nothing)" : actual));
+        CHECK(actual == expected);
+        actual.clear();
+        expected.clear();
+        in_step = false;
+    };
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#')
+            continue;
+        const std::string where = name + ":" + std::to_string(number);
+        const char kind = line[0];
+        const std::string rest = line.size() > 1 ? line.substr(1) : "";
+        if (kind == '<') {
+            if (!in_step)
+                FAIL(where << ": '<' with no step before it");
+            const auto bytes = canonical_hex(where, rest, true);
+            if (!expected.empty() && !bytes.empty())
+                expected += ' ';
+            expected += bytes;
+            continue;
+        }
+        settle();
+        if (kind == '@') {
+            harness = std::make_unique<AptHarness>(device_from(where, rest));
+            continue;
+        }
+        if (!harness)
+            FAIL(where << ": no '@' device line before the first step");
+        if (kind == '>') {
+            const auto bytes = canonical_hex(where, rest, false);
+            if (bytes.empty())
+                FAIL(where << ": '>' with no bytes");
+            actual = harness->send(bytes);
+        } else if (kind == '~') {
+            harness->advance_ms(advance_ms(where, rest));
+            actual = harness->take();
+        } else {
+            FAIL(where << ": unknown line kind '" << kind << "'");
+        }
+        in_step = true;
+        step_line = number;
+        ++steps;
+    }
+    settle();
+    CHECK(steps > 0);
+}
+
+/// Every transcript has a test case below.
+const std::vector<std::string> kTranscripts = {
+    "apt_system.txt", "apt_parameters.txt", "apt_moves.txt", "apt_homing.txt", "apt_limits.txt",
+    "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
+};
+
+} // namespace
+
+TEST_CASE("apt transcripts: every file in transcripts/ is replayed", "[device][apt][transcript]")
+{
+    for (const auto& entry : std::filesystem::directory_iterator(RIGSIM_SOURCE_DIR "/tests/device/apt/transcripts")) {
+        const auto file = entry.path().filename().string();
+        INFO(file);
+        CHECK(std::find(kTranscripts.begin(), kTranscripts.end(), file) != kTranscripts.end());
+    }
+}
+
+TEST_CASE("apt transcript: generic system messages", "[device][apt][transcript]")
+{
+    replay("apt_system.txt");
+}
+
+TEST_CASE("apt transcript: counters and parameter trios", "[device][apt][transcript]")
+{
+    replay("apt_parameters.txt");
+}
+
+TEST_CASE("apt transcript: moves", "[device][apt][transcript]")
+{
+    replay("apt_moves.txt");
+}
+
+TEST_CASE("apt transcript: homing", "[device][apt][transcript]")
+{
+    replay("apt_homing.txt");
+}
+
+TEST_CASE("apt transcript: limits and backlash", "[device][apt][transcript]")
+{
+    replay("apt_limits.txt");
+}
+
+TEST_CASE("apt transcript: status updates", "[device][apt][transcript]")
+{
+    replay("apt_status.txt");
+}
+
+TEST_CASE("apt transcript: BBD203 rack system", "[device][apt][transcript]")
+{
+    replay("apt_rack_bbd203.txt");
+}
+
+TEST_CASE("apt transcript: BBD203 brushless PMD parameters", "[device][apt][transcript]")
+{
+    replay("apt_bbd203_pmd.txt");
+}
+
+TEST_CASE("apt transcript: stepper cubes and the BSC203 rack", "[device][apt][transcript]")
+{
+    replay("apt_stepper.txt");
+}
+
+TEST_CASE("apt transcript: bad input", "[device][apt][transcript]")
+{
+    replay("apt_bad_input.txt");
+}
