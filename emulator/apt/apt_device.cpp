@@ -154,16 +154,19 @@ std::string AptDevice::stage_axis_block(std::size_t bay) const
     std::string d;
     put_u16(d, stage.pmd_stage_id);
     put_u16(d, 0);
-    std::string part(stage.name);
+    std::string part(stage.pmd_part_number.empty() ? stage.name : stage.pmd_part_number);
     part.resize(16, '\0');
     d += part;
     put_u32(d, serial_ % 1'000'000 * 10 + static_cast<std::uint32_t>(bay));
     put_u32(d, static_cast<std::uint32_t>(stage.counts_per_mm));
     put_i32(d, channels_[bay]->min_position());
     put_i32(d, channels_[bay]->max_position());
-    put_i32(d, channels_[bay]->velocity.acceleration);
-    put_i32(d, channels_[bay]->velocity.acceleration);
-    put_i32(d, channels_[bay]->velocity.max);
+    // "inherent in the design of the stage and cannot be altered" (p. 75): not VELPARAMS.
+    const auto& design = channels_[bay]->design_velocity();
+    const auto max_acceleration = stage.pmd_max_acceleration > 0 ? stage.pmd_max_acceleration : design.acceleration;
+    put_i32(d, max_acceleration);
+    put_i32(d, max_acceleration);
+    put_i32(d, stage.pmd_max_velocity > 0 ? stage.pmd_max_velocity : design.max);
     d.resize(72, '\0');
     return d;
 }
@@ -180,13 +183,16 @@ bool AptDevice::handle_pmd(std::size_t bay, const Frame& f, std::string& reply)
             if (set == MGMSG_MOT_SET_PMDSTAGEAXISPARAMS) {
                 // "can only be used to increase the Minimum position value and decrease the
                 // Maximum position value": the travel narrows, nothing else changes.
-                channels_[bay]->narrow_travel(get_i32(f.data, 28), get_i32(f.data, 32));
+                // Data: chan, stage ID, axis ID, part number[16], serial, counts per unit,
+                // MinPos at 30, MaxPos at 34 (p. 75).
+                channels_[bay]->narrow_travel(get_i32(f.data, 30), get_i32(f.data, 34));
                 return true;
             }
             if (set == MGMSG_MOT_SET_PMDPROFILEMODEPARAMS) {
                 // p. 69: mode 0 trapezoidal, 2 S-curve; jerk in PMD jerk units (7.1).
                 const auto mode = get_u16(f.data, 2);
                 if (mode != 0 && mode != 2) {
+                    forget_set();
                     log_->warn("MOT_SET_PMDPROFILEMODEPARAMS mode {} (0 trapezoidal, 2 S-curve): ignored", mode);
                     return true;
                 }
@@ -397,8 +403,14 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
 {
     auto& ch = *channels_[bay];
     const std::uint8_t me = address_of(bay);
-    if (f.has_data && f.info->name.find("_SET_") != std::string_view::npos)
-        last_set_[{bay, f.id}] = std::string(f.data);   // what MOT_SET_EEPROMPARAMS can save
+    // What MOT_SET_EEPROMPARAMS can save: the last SET the bay accepted (forget_set() undoes
+    // this for one it ignores).
+    set_undo_.reset();
+    if (f.has_data && f.info->name.find("_SET_") != std::string_view::npos) {
+        const auto it = last_set_.find({bay, f.id});
+        set_undo_ = SetUndo{{bay, f.id}, it != last_set_.end() ? std::optional<std::string>(it->second) : std::nullopt};
+        last_set_[{bay, f.id}] = std::string(f.data);
+    }
     auto answer = [&](std::uint16_t id, const std::string& data) { reply += encode_with_data(id, host_, me, data); };
     auto answer_header = [&](std::uint16_t id, std::uint8_t p1, std::uint8_t p2) {
         reply += encode_header_only(id, p1, p2, host_, me);
@@ -406,6 +418,7 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     // Channel addressing: header-only messages carry it in param1, others as the first word.
     const std::uint16_t chan = f.has_data ? get_u16(f.data, 0) : f.param1;
     auto wrong_channel = [&] {
+        forget_set();
         log_->warn("{}: {} for channel {}: a module has only channel 1, ignored", peer, f.info->name, chan);
     };
     if (handle_system(f, peer))
@@ -448,6 +461,7 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_SET_VELPARAMS: {
         const VelocityParams v{get_i32(f.data, 2), get_i32(f.data, 6), get_i32(f.data, 10)};
         if (v.acceleration <= 0 || v.max <= 0 || v.min < 0) {
+            forget_set();
             log_->warn("{}: MOT_SET_VELPARAMS with acceleration {} and maximum velocity {}: ignored", peer,
                        v.acceleration, v.max);
             return;
@@ -468,6 +482,7 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         j.stop_mode = get_u16(f.data, 20);
         if ((j.mode != 1 && j.mode != 2) || (j.stop_mode != 1 && j.stop_mode != 2) || j.velocity.max <= 0
             || j.velocity.acceleration <= 0) {
+            forget_set();
             log_->warn("{}: MOT_SET_JOGPARAMS out of range: ignored", peer);
             return;
         }
@@ -501,8 +516,13 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         return answer(MGMSG_MOT_GET_MOVEABSPARAMS, chan_and_i32(ch.absolute_position));
     case MGMSG_MOT_SET_HOMEPARAMS: {
         HomeParams h{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10)};
-        if ((h.direction != 1 && h.direction != 2) || (h.limit_switch != 1 && h.limit_switch != 4) || h.velocity <= 0
-            || h.offset < 0) {
+        // p. 37: on a brushless (MLS203) channel only the homing velocity counts; the other
+        // fields are kept as sent and ignored.
+        const bool only_velocity = model_.motor == MotorKind::Brushless;
+        if (h.velocity <= 0
+            || (!only_velocity
+                && ((h.direction != 1 && h.direction != 2) || (h.limit_switch != 1 && h.limit_switch != 4) || h.offset < 0))) {
+            forget_set();
             log_->warn("{}: MOT_SET_HOMEPARAMS out of range: ignored", peer);
             return;
         }
@@ -522,6 +542,15 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_SET_LIMSWITCHPARAMS: {
         LimitSwitchParams l{get_u16(f.data, 2), get_u16(f.data, 4), get_i32(f.data, 6), get_i32(f.data, 10),
                             get_u16(f.data, 14)};
+        // p. 39: hardware modes 1..6 and software modes 1..3, each possibly with 0x80.
+        const auto hard_ok = [](std::uint16_t m) { return (m & ~0x80u) >= 1 && (m & ~0x80u) <= 6; };
+        const auto soft = l.mode & ~0x80u;
+        if (!hard_ok(l.cw_hard) || !hard_ok(l.ccw_hard) || soft < 1 || soft > 3) {
+            forget_set();
+            log_->warn("{}: MOT_SET_LIMSWITCHPARAMS modes {}, {} (1..6) and {} (1..3): ignored", peer, l.cw_hard,
+                       l.ccw_hard, l.mode);
+            return;
+        }
         ch.limit_switch = l;
         return;
     }
@@ -539,6 +568,14 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_SET_DCPIDPARAMS:
         if (model_.motor == MotorKind::Stepper)
             break;
+        // p. 51: proportional, integral, differential and integral limit 0..32767.
+        for (const std::size_t at : {2, 6, 10, 14}) {
+            if (get_i32(f.data, at) < 0 || get_i32(f.data, at) > 32767) {
+                forget_set();
+                log_->warn("{}: MOT_SET_DCPIDPARAMS with a term of {} (0..32767): ignored", peer, get_i32(f.data, at));
+                return;
+            }
+        }
         ch.pid_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_DCPIDPARAMS:
@@ -554,9 +591,21 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         if (ch.av_modes.empty())
             ch.av_modes = std::string("\x0b\x00", 2);   // LED: ident, limit switch, moving
         return answer(MGMSG_MOT_GET_AVMODES, std::string("\x01\x00", 2) + ch.av_modes);
-    case MGMSG_MOT_SET_POTPARAMS:
+    case MGMSG_MOT_SET_POTPARAMS: {
+        // p. 55-57: windows in ADC counts up to 127, each from the previous one on, and "Wnd3
+        // must be greater than Wnd2"; velocities in encoder counts/s.
+        const auto zero = get_u16(f.data, 2), w1 = get_u16(f.data, 8), w2 = get_u16(f.data, 14), w3 = get_u16(f.data, 20);
+        const bool velocities_ok = get_i32(f.data, 4) >= 0 && get_i32(f.data, 10) >= 0 && get_i32(f.data, 16) >= 0
+                                   && get_i32(f.data, 22) >= 0;
+        if (!(zero <= w1 && w1 <= w2 && w2 < w3 && w3 <= 127) || !velocities_ok) {
+            forget_set();
+            log_->warn("{}: MOT_SET_POTPARAMS windows {}, {}, {}, {} (rising to 127) or a negative velocity: ignored",
+                       peer, zero, w1, w2, w3);
+            return;
+        }
         ch.pot_params.assign(f.data.substr(2));
         return;
+    }
     case MGMSG_MOT_REQ_POTPARAMS:
         if (ch.pot_params.empty())
             ch.pot_params.assign(24, '\0');
@@ -623,6 +672,7 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         return answer(MGMSG_MOT_GET_STATUSUPDATE, status_packet(bay));
     case MGMSG_MOT_REQ_DCSTATUSUPDATE:
         if (model_.motor == MotorKind::Stepper) {   // a DC message: a stepper controller ignores it
+            forget_set();
             log_->warn("{}: {} is not a message a {} acts on: ignored", peer, f.info->name, config_.model);
             return;
         }
@@ -638,9 +688,21 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
             return;
         // A message of the table that this controller does not act on (a GET sent by a
         // host, a rack or brushless message): the real unit ignores it.
+        forget_set();
         log_->warn("{}: {} is not a message a {} acts on: ignored", peer, f.info->name, config_.model);
         return;
     }
+}
+
+void AptDevice::forget_set()
+{
+    if (!set_undo_)
+        return;
+    if (set_undo_->previous)
+        last_set_[set_undo_->key] = *set_undo_->previous;
+    else
+        last_set_.erase(set_undo_->key);
+    set_undo_.reset();
 }
 
 void AptDevice::broadcast(const std::string& frame)

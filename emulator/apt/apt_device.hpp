@@ -82,6 +82,8 @@ private:
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
     void restore_from_eeprom();
     void broadcast(const std::string& frame);
+    /// The SET being handled was ignored: MOT_SET_EEPROMPARAMS must not save it.
+    void forget_set();
     /// HW_RESPONSE or HW_RICHRESPONSE for a fault of bay `bay` (p. 19).
     std::string fault_report(std::size_t bay) const;
 
@@ -102,6 +104,12 @@ private:
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> pmd_blocks_;   ///< (bay, SET id) -> data after the channel word
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;   ///< (bay, SET id) -> data
     std::vector<std::uint16_t> last_move_;  ///< per bay: the message that started its last move
+    struct SetUndo {
+        std::pair<std::size_t, std::uint16_t> key;
+        std::optional<std::string> previous;
+    };
+    std::optional<SetUndo> set_undo_;       ///< how to take back the SET being handled
+
 };
 
 } // namespace rigsim::apt

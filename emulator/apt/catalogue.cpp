@@ -50,8 +50,12 @@ constexpr std::array<StageModel, 11> kStages{{
     // continuous rotation, a home switch; APT defaults 10 deg/s, 10 deg/s², home offset 4 deg.
     {"PRM1-Z8", MotorKind::DcServo, 360.0, 1'919.6418, 10.0, 10.0, 10.0, 4.0, 0, 0, true},
     // MLS203 (7.1): 20,000 counts/mm; X 110 mm, Y 75 mm of travel.
-    {"MLS203-X", MotorKind::Brushless, 110.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439, false, 0x10},
-    {"MLS203-Y", MotorKind::Brushless, 75.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439, false, 0x11},
+    // p. 76's example: part number "MLS203 Y Axis", MaxAccn 27,488 (2,000 mm/s²), MaxVel
+    // 26,843,546 (200 mm/s).
+    {"MLS203-X", MotorKind::Brushless, 110.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439, false, 0x10,
+     "MLS203 X Axis", 26'843'546, 27'488},
+    {"MLS203-Y", MotorKind::Brushless, 75.0, 20'000.0, 100.0, 500.0, 10.0, 1.0, 134'218.0, 13.7439, false, 0x11,
+     "MLS203 Y Axis", 26'843'546, 27'488},
     // DDSM100 direct-drive stage: 100 mm, 0.5 µm encoder (2,000 counts/mm), 500 mm/s, 5,000 mm/s².
     {"DDSM100", MotorKind::Brushless, 100.0, 2'000.0, 500.0, 5'000.0, 5.0, 0.5},
 }};

@@ -48,8 +48,13 @@ struct StageModel {
     /// A rotation stage turns without end: no travel limits, a home switch once per turn
     /// (at 0 of the physical angle). Its unit is the degree where a linear stage's is the mm.
     bool rotary = false;
-    /// MOT_GET_PMDSTAGEAXISPARAMS stage ID (p. 75 names 0x10/0x11 for MLS203 X/Y only).
+    /// MOT_GET_PMDSTAGEAXISPARAMS (p. 75): stage ID (named for MLS203 X/Y only), part number
+    /// (empty: the name), and the design's maximum velocity and acceleration in PMD units
+    /// (0: the power-up VELPARAMS).
     std::uint16_t pmd_stage_id = 0;
+    std::string_view pmd_part_number = {};
+    std::int32_t pmd_max_velocity = 0;
+    std::int32_t pmd_max_acceleration = 0;
 };
 
 /// The controller with this name, or nullptr.

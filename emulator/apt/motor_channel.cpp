@@ -19,9 +19,12 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
         travel_min_ = -kRotaryTravelCounts;
         travel_max_ = kRotaryTravelCounts;
     }
+    limit_min_ = travel_min_;
+    limit_max_ = travel_max_;
     const double cpm = stage.counts_per_mm;
     velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
     velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * acceleration_factor()));
+    design_velocity_ = velocity;
     jog.step_size = static_cast<std::int32_t>(std::lround(0.1 * cpm));
     jog.velocity = velocity;
     home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * velocity_factor()));
@@ -56,21 +59,21 @@ double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
 
 std::int32_t MotorChannel::min_position() const
 {
-    return static_cast<std::int32_t>(std::lround(travel_min_ - counter_offset_));
+    return static_cast<std::int32_t>(std::lround(limit_min_));
 }
 
 std::int32_t MotorChannel::max_position() const
 {
-    return static_cast<std::int32_t>(std::lround(travel_max_ - counter_offset_));
+    return static_cast<std::int32_t>(std::lround(limit_max_));
 }
 
 void MotorChannel::narrow_travel(std::int32_t min_position, std::int32_t max_position)
 {
-    const double lo = min_position + counter_offset_;
-    const double hi = max_position + counter_offset_;
+    const double lo = std::max(limit_min_, static_cast<double>(min_position));
+    const double hi = std::min(limit_max_, static_cast<double>(max_position));
     if (lo < hi) {
-        travel_min_ = std::max(travel_min_, lo);
-        travel_max_ = std::min(travel_max_, hi);
+        limit_min_ = lo;
+        limit_max_ = hi;
     }
 }
 
@@ -146,19 +149,20 @@ void MotorChannel::set_enabled(bool e)
 
 bool MotorChannel::switch_stops(bool forward, bool homing) const
 {
+    // p. 37: a brushless (MLS203) channel does not use the limit switches for homing.
+    if (homing && controller_.motor == MotorKind::Brushless)
+        return true;
     // p. 39: 1 ignores the switch (or there is none); 4 and 5 serve homing only.
     const auto mode = (forward ? limit_switch.cw_hard : limit_switch.ccw_hard) & 0x7f;
     return homing ? mode != 1 : mode == 2 || mode == 3 || mode == 6;
 }
 
-double MotorChannel::run_target(bool forward, bool homing) const
+double MotorChannel::run_target(bool forward) const
 {
     if (stage_.rotary)
         return forward ? travel_max_ : travel_min_;
     const double beyond = travel_max_ - travel_min_;
-    if (forward)
-        return switch_stops(true, homing) ? travel_max_ : travel_max_ + beyond;
-    return switch_stops(false, homing) ? travel_min_ : travel_min_ - beyond;
+    return forward ? travel_max_ + beyond : travel_min_ - beyond;
 }
 
 double MotorChannel::next_home_switch(bool forward) const
@@ -172,14 +176,15 @@ void MotorChannel::start_profile(double target_physical, double v, double a, Mot
     const Ticks now = clock_.now();
     sample(now);
     fault_bits_ = 0;   // a new move clears a stall
-    // Hardware limits: the switch ahead stops the axis at the end of travel; an ignored one
-    // lets it run into the end stop.
-    double target = std::clamp(target_physical, travel_min_, travel_counts());
-    crash_ = false;
-    if (target != target_physical && !stage_.rotary
-        && !switch_stops(target_physical > travel_counts(), motion == Motion::HomingToLimit)) {
-        target = target_physical;
-        crash_ = true;
+    profile_slip_ = 0;
+    // The controller ends a move at the limit switch ahead, or at a travel that
+    // PMDSTAGEAXISPARAMS narrowed; past an ignored switch the axis runs into the end stop.
+    double target = target_physical;
+    if (!stage_.rotary && (target > limit_max_ || target < limit_min_)) {
+        const bool forward = target > limit_max_;
+        const bool narrowed = forward ? limit_max_ < travel_max_ : limit_min_ > travel_min_;
+        if (narrowed || switch_stops(forward, motion == Motion::HomingToLimit))
+            target = std::clamp(target, limit_min_, limit_max_);
     }
     if (v <= 0) {
         motion_ = Motion::Idle;
@@ -217,7 +222,7 @@ void MotorChannel::move_to(double target_physical)
     // GENMOVEPARAMS backlash: a move in the reverse direction overshoots by the backlash
     // distance and comes back forward, so that every move ends approaching forward.
     if (backlash > 0 && target_physical < state_[0] - 0.5) {
-        pending_backlash_target_ = target_physical;
+        pending_backlash_target_ = target_physical - counter_offset_;
         start_profile(target_physical - backlash, counts_per_s(velocity.max),
                       counts_per_s2(velocity.acceleration), Motion::Moving);
         return;
@@ -247,11 +252,13 @@ void MotorChannel::home()
         return;
     // Drive to the configured limit switch at the homing velocity (HOMEPARAMS); a rotation
     // stage to its home switch, met once per turn.
-    const bool to_forward = home_params.limit_switch == 4 || home_params.direction == 1;
+    // p. 37: a brushless (MLS203) channel always homes in the positive direction.
+    const bool to_forward = controller_.motor == MotorKind::Brushless || home_params.limit_switch == 4
+                            || home_params.direction == 1;
     homed_ = false;
     homing_forward_ = to_forward;
     sample(clock_.now());
-    start_profile(stage_.rotary ? next_home_switch(to_forward) : run_target(to_forward, true),
+    start_profile(stage_.rotary ? next_home_switch(to_forward) : run_target(to_forward),
                   counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
 }
 
@@ -264,7 +271,7 @@ void MotorChannel::jog_move(bool forward)
     const double v = counts_per_s(jog.velocity.max);
     const double a = counts_per_s2(jog.velocity.acceleration);
     if (jog.mode == 1) {   // continuous: until stopped or at a limit
-        start_profile(run_target(forward, false), v, a, Motion::Jogging);
+        start_profile(within_soft_limits(run_target(forward)), v, a, Motion::Jogging);
         return;
     }
     sample(clock_.now());
@@ -276,8 +283,8 @@ void MotorChannel::move_velocity(bool forward)
 {
     if (!enabled_)
         return;
-    start_profile(run_target(forward, false), counts_per_s(velocity.max), counts_per_s2(velocity.acceleration),
-                  Motion::Moving);
+    start_profile(within_soft_limits(run_target(forward)), counts_per_s(velocity.max),
+                  counts_per_s2(velocity.acceleration), Motion::Moving);
 }
 
 void MotorChannel::stop(bool immediate)
@@ -299,9 +306,9 @@ void MotorChannel::stop(bool immediate)
     const double a = counts_per_s2(velocity.acceleration);
     const double v = state_[1];
     const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
-    // Running into an end stop, the axis meets it before it can stop (crash_ stays set).
-    profile_ = models::TrapezoidProfile::plan(state_, crash_ ? stop_at : std::clamp(stop_at, travel_min_, travel_counts()),
-                                              std::max(std::abs(v), 1.0), a);
+    // An end on the way stops the axis first (enforce_ends()).
+    profile_ = models::TrapezoidProfile::plan(state_, stop_at, std::max(std::abs(v), 1.0), a);
+    profile_slip_ = 0;
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motion_ = Motion::Stopping;
@@ -314,22 +321,36 @@ void MotorChannel::sample(Ticks now)
     if (motion_ == Motion::Idle)
         return;
     state_ = profile_.sample(clock_.seconds(now - start_));
-    if (crash_ && controller_.motor != MotorKind::Stepper) {
-        if (state_[0] > travel_max_)
-            hit_end_stop(travel_max_);
-        else if (state_[0] < travel_min_)
-            hit_end_stop(travel_min_);
+    state_[0] -= profile_slip_;
+    enforce_ends();
+}
+
+bool MotorChannel::enforce_ends()
+{
+    constexpr double kTolerance = 1e-6;   // counts: a profile that ends on a limit may round past it
+    if (stage_.rotary || motion_ == Motion::Idle)
+        return false;
+    const bool forward = state_[0] > limit_max_ + kTolerance;
+    if (!forward && state_[0] >= limit_min_ - kTolerance)
+        return false;
+    const double limit = forward ? limit_max_ : limit_min_;
+    const bool narrowed = forward ? limit_max_ < travel_max_ : limit_min_ > travel_min_;
+    if (narrowed || switch_stops(forward, motion_ == Motion::HomingToLimit)) {
+        state_ = models::AxisState(limit, 0.0);   // the switch (or the narrowed limit) stops it
+        conclude();
+        return true;
     }
+    hit_end_stop(limit);
+    return motion_ == Motion::Idle;
 }
 
 void MotorChannel::hit_end_stop(double end)
 {
-    crash_ = false;
-    pending_backlash_target_.reset();
     if (controller_.motor == MotorKind::Stepper) {
         // Open loop: the motor keeps stepping against the stop; the counters count the
-        // microsteps the carriage did not make.
+        // microsteps the carriage does not make, and the profile runs on.
         const double lost = state_[0] - end;
+        profile_slip_ += lost;
         counter_offset_ -= lost;
         encoder_offset_ -= lost;
         state_ = models::AxisState(end, 0.0);
@@ -339,6 +360,7 @@ void MotorChannel::hit_end_stop(double end)
     // limit (brushless, PMDPOSITIONLOOPPARAMS) trips, and the controller stops the axis.
     state_ = models::AxisState(end, 0.0);
     motion_ = Motion::Idle;
+    pending_backlash_target_.reset();
     fault_bits_ = controller_.motor == MotorKind::Brushless ? status::kMotionError : status::kCurrentLimit;
     events_.push_back(MotorEvent::Fault);
     events_.push_back(MotorEvent::Stopped);
@@ -346,22 +368,20 @@ void MotorChannel::hit_end_stop(double end)
 
 void MotorChannel::finish(Ticks now)
 {
-    if (crash_ && (profile_.target() > travel_max_ || profile_.target() < travel_min_)) {
-        const double end = profile_.target() > travel_max_ ? travel_max_ : travel_min_;
-        if (controller_.motor != MotorKind::Stepper)
-            return hit_end_stop(end);
-        state_ = models::AxisState(profile_.target(), 0.0);
-        hit_end_stop(end);   // the counters keep the lost microsteps; the move ends as planned
-    } else {
-        state_ = models::AxisState(profile_.target(), 0.0);
-    }
-    crash_ = false;
+    (void)now;
+    state_ = models::AxisState(profile_.target() - profile_slip_, 0.0);
+    if (!enforce_ends())
+        conclude();
+}
+
+void MotorChannel::conclude()
+{
     switch (motion_) {
     case Motion::Idle:
         return;
     case Motion::Moving:
         if (pending_backlash_target_) {   // the backlash leg is done: approach forward
-            const double target = *pending_backlash_target_;
+            const double target = *pending_backlash_target_ + counter_offset_;
             pending_backlash_target_.reset();
             motion_ = Motion::Idle;
             start_profile(target, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration), Motion::Moving);
@@ -379,8 +399,18 @@ void MotorChannel::finish(Ticks now)
         events_.push_back(MotorEvent::Stopped);
         return;
     case Motion::HomingToLimit: {
+        if (!stage_.rotary && !switch_stops(homing_forward_, true)) {
+            // A stepper ran on into the end stop: no switch, no home (a DC motor stalled).
+            motion_ = Motion::Idle;
+            events_.push_back(MotorEvent::Stopped);
+            return;
+        }
         // At the switch: back off by the offset distance, then zero the counter there.
-        const double back = homing_forward_ ? -home_params.offset : home_params.offset;
+        // p. 37: a brushless channel has no offset; its counters read the full travel at the
+        // forward end, so that the stage's positions run from 0 to its travel.
+        const double back = controller_.motor == MotorKind::Brushless ? 0.0
+                            : homing_forward_                          ? -home_params.offset
+                                                                       : home_params.offset;
         motion_ = Motion::Idle;
         if (back != 0 && counts_per_s(home_params.velocity) > 0)
             start_profile(state_[0] + back, counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration),
@@ -394,13 +424,14 @@ void MotorChannel::finish(Ticks now)
         complete_homing();
         return;
     }
-    (void)now;
 }
 
 void MotorChannel::complete_homing()
 {
-    counter_offset_ = state_[0];
-    encoder_offset_ = state_[0];
+    // A brushless stage's counters count from its reverse end (PMDSTAGEAXISPARAMS MinPos 0).
+    const double zero = controller_.motor == MotorKind::Brushless ? travel_min_ : state_[0];
+    counter_offset_ = zero;
+    encoder_offset_ = zero;
     homed_ = true;
     events_.push_back(MotorEvent::Homed);
 }

@@ -71,11 +71,15 @@ public:
     std::uint32_t status_bits() const;
 
     bool enabled() const { return enabled_; }
+    /// The stage's power-up velocity parameters: its design limits (PMDSTAGEAXISPARAMS).
+    const VelocityParams& design_velocity() const { return design_velocity_; }
     const StageModel& stage() const { return stage_; }
-    /// Travel limits in position counter units (MOT_GET_PMDSTAGEAXISPARAMS Min/MaxPos).
+    /// The travel the controller allows, in the stage's own counts from its reverse end
+    /// (MOT_GET_PMDSTAGEAXISPARAMS Min/MaxPos, p. 75: "typically zero" and the travel).
     std::int32_t min_position() const;
     std::int32_t max_position() const;
-    /// MOT_SET_PMDSTAGEAXISPARAMS may only raise the minimum and lower the maximum.
+    /// MOT_SET_PMDSTAGEAXISPARAMS may only raise the minimum and lower the maximum; the
+    /// controller then stops moves there (the end stops stay where they are).
     void narrow_travel(std::int32_t min_position, std::int32_t max_position);
     void set_enabled(bool e);
 
@@ -121,15 +125,20 @@ private:
     double travel_counts() const { return travel_max_; }
     /// Whether the hardware limit switch ahead stops the axis (LIMSWITCHPARAMS hard modes).
     bool switch_stops(bool forward, bool homing) const;
-    /// Where a run toward one end (velocity move, continuous jog, homing) is planned to: the
-    /// end, or past it into the end stop when the switch there does not stop the axis.
-    double run_target(bool forward, bool homing) const;
+    /// Where a run toward one end (velocity move, continuous jog, homing) is planned to: past
+    /// the end (start_profile() stops it at a switch or limit that stops the axis).
+    double run_target(bool forward) const;
     /// The home switch of a rotation stage ahead of the carriage (once per turn).
     double next_home_switch(bool forward) const;
     void start_profile(double target_physical, double v, double a, Motion motion);
+    /// After a sample: a carriage past a limit that stops the axis ends its motion there; past
+    /// an ignored switch it meets the end stop. True if the motion ended.
+    bool enforce_ends();
     /// The carriage met its end stop at `end`: DC and brushless motors stall (a fault), a
-    /// stepper keeps counting the microsteps it loses.
+    /// stepper keeps stepping and loses the microsteps, which its counters still count.
     void hit_end_stop(double end);
+    /// What follows when the motion reaches its end: the next leg, or the end-of-move event.
+    void conclude();
     void sample(Ticks now);
     void finish(Ticks now);
     void complete_homing();
@@ -141,8 +150,10 @@ private:
     const StageModel& stage_;
     const Clock& clock_;
     bool enabled_ = true;
-    double travel_min_ = 0;          ///< physical counts; PMDSTAGEAXISPARAMS may narrow them
+    double travel_min_ = 0;          ///< physical counts: the limit switches, the end stops
     double travel_max_;
+    double limit_min_ = 0;           ///< what PMDSTAGEAXISPARAMS leaves of the travel
+    double limit_max_;
     bool homed_ = false;
     double counter_offset_;          ///< physical counts that read 0 on the position counter
     double encoder_offset_;
@@ -153,10 +164,11 @@ private:
     Ticks end_ = 0;
     bool jog_direction_forward_ = true;
     bool homing_forward_ = false;
-    bool crash_ = false;             ///< the move runs past an end whose switch does not stop it
+    VelocityParams design_velocity_;
+    double profile_slip_ = 0;        ///< stepper: how far the profile ran on against an end stop
     std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
     std::vector<MotorEvent> events_;
-    std::optional<double> pending_backlash_target_;   ///< the forward approach after a backlash overshoot
+    std::optional<double> pending_backlash_target_;   ///< counter value of the forward approach after a backlash overshoot
 };
 
 } // namespace rigsim::apt

@@ -208,6 +208,7 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device re
         std::string out;
         auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
         session->receive(bytes("13 04 0E 00 D0 01 01 00 00 00 00 00 10 00 00 00 00 10 00 00"));   // VELPARAMS
+        session->receive(bytes("13 04 0E 00 D0 01 01 00 00 00 00 00 00 00 00 00 00 20 00 00"));   // ignored: not saved
         session->receive(bytes("3A 04 06 00 D0 01 01 00 00 0D 00 00"));                           // backlash
         session->receive(bytes("B9 04 04 00 D0 01 01 00 13 04"));                                 // save VELPARAMS only
     }
@@ -245,17 +246,18 @@ TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "
     const auto axis = bytes(h.send("F1 04 01 00 22 01"));
     REQUIRE(axis.size() == 80);
     CHECK(get_u16(axis, 8) == 0x11);
-    CHECK(axis.substr(12, 8) == "MLS203-Y");
-    CHECK(get_u32(axis, 32) == 20'000);
-    CHECK(get_i32(axis, 40) - get_i32(axis, 36) == 75 * 20'000);
-    // SET may only narrow the travel: max position -> +1 mm above the counter's zero.
+    // p. 76's example but for the serial number: "MLS203 Y Axis", 20,000 counts per unit,
+    // MinPos 0, MaxPos 1,500,000, MaxAccn = MaxDec 27,488, MaxVel 26,843,546.
+    CHECK(hex(axis.substr(12, 16)) == "4D 4C 53 32 30 33 20 59 20 41 78 69 73 00 00 00");
+    CHECK(hex(axis.substr(32, 24)) == "20 4E 00 00 00 00 00 00 60 E3 16 00 60 6B 00 00 60 6B 00 00 9A 99 99 01");
+    // SET may only narrow the travel: max position -> 1 mm.
     std::string set = axis.substr(6);
     std::string frame = encode_with_data(MGMSG_MOT_SET_PMDSTAGEAXISPARAMS, 0x22, 0x01, set);
     const auto narrowed_max = get_i32(axis, 36) + 20'000;   // min + 1 mm
-    frame[6 + 32] = static_cast<char>(narrowed_max & 0xff);
-    frame[6 + 33] = static_cast<char>((narrowed_max >> 8) & 0xff);
-    frame[6 + 34] = static_cast<char>((narrowed_max >> 16) & 0xff);
-    frame[6 + 35] = static_cast<char>((narrowed_max >> 24) & 0xff);
+    frame[6 + 34] = static_cast<char>(narrowed_max & 0xff);   // MaxPos: data offset 34 (p. 75)
+    frame[6 + 35] = static_cast<char>((narrowed_max >> 8) & 0xff);
+    frame[6 + 36] = static_cast<char>((narrowed_max >> 16) & 0xff);
+    frame[6 + 37] = static_cast<char>((narrowed_max >> 24) & 0xff);
     CHECK(h.send(hex(frame)) == "");
     CHECK(get_i32(bytes(h.send("F1 04 01 00 22 01")), 40) == narrowed_max);
 }

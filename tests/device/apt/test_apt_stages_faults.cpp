@@ -156,13 +156,14 @@ TEST_CASE("a stepper against its end stop loses steps: the counter counts them, 
     const auto out = frames(h.take());
     REQUIRE(out.size() == 1);
     CHECK(out[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(700'000));   // MOVE_COMPLETED
-    // The carriage stands at the end stop; back 640,000 microsteps by the counter is
-    // 60,000 short of where the counter says it started.
-    CHECK(h.send("48 04 06 00 D0 01 01 00 " + le32(-700'000)) == "");
+    // The carriage stands at the end stop, 60,000 microsteps short of where the counter says:
+    // at the reverse switch the counter reads -580,000 where it read -640,000 before.
+    CHECK(h.send("57 04 01 02 50 01") == "");   // MOVE_VELOCITY reverse
     h.advance_ms(40'000);
-    h.take();
-    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
-    CHECK(h.device().channel().min_position() == -640'000 + 60'000);
+    const auto back = frames(h.take());
+    REQUIRE(back.size() == 1);
+    CHECK(back[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(-580'000));
+    CHECK((status_of(back[0]) & status::kReverseHardLimit) != 0);
 }
 
 TEST_CASE("PRM1-Z8 turns without end and homes on its switch once per turn", "[device][apt][stage]")
@@ -194,7 +195,7 @@ TEST_CASE("PRM1-Z8 turns without end and homes on its switch once per turn", "[d
 TEST_CASE("DRV014 and DDSM100: travel, encoder resolution and power-up velocities", "[device][apt][stage]")
 {
     AptHarness kst(cube("KST101", "DRV014"));
-    CHECK(kst.device().channel().max_position() == 640'000);
+    CHECK(kst.device().channel().max_position() == 1'280'000);   // 50 mm
     CHECK(kst.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 00 90 01 00 00 C8 00 00");
 
     AptHarness bbd(bbd203({"DDSM100"}));
@@ -207,7 +208,10 @@ TEST_CASE("DRV014 and DDSM100: travel, encoder resolution and power-up velocitie
     CHECK(get_u16(axis, 8) == 0);                               // no stage ID in the manual
     CHECK(axis.substr(12, 7) == "DDSM100");
     CHECK(get_u32(axis, 32) == 2'000);
-    CHECK(get_i32(axis, 40) - get_i32(axis, 36) == 200'000);
+    CHECK(get_i32(axis, 36) == 0);
+    CHECK(get_i32(axis, 40) == 200'000);
+    CHECK(get_i32(axis, 44) == 6'872);        // MaxAccn: the power-up acceleration
+    CHECK(get_i32(axis, 52) == 6'710'900);    // MaxVel
 }
 
 TEST_CASE("PMDPROFILEMODEPARAMS S-curve: the move takes a/j longer than the trapezoid", "[device][apt][scurve][rack]")
@@ -244,4 +248,85 @@ TEST_CASE("S-curve ramps start gently: after 20 ms the S-curve axis trails the t
     // S-curve: j t³/6 = 10,000 × 0.02³ / 6 mm = 0.01333 mm = 267 counts.
     CHECK(h.device().channel(0).position() == 2'000);
     CHECK(h.device().channel(1).position() == Approx(267).margin(1));
+}
+
+TEST_CASE("a move re-targeted while running whose braking overshoots an ignored end stalls there", "[device][apt][fault]")
+{
+    AptHarness h;   // TDC001 + MTS50-Z8: 2.4 mm/s, 1.5 mm/s²: 1.92 mm (65,866 counts) to brake
+    CHECK(h.send(kIgnoreForwardSwitch) == "");
+    CHECK(h.send("57 04 01 01 50 01") == "");
+    h.advance_ms(10'800);   // past 817,600: braking from there ends beyond the end (857,600)
+    REQUIRE(position_of(h.send("11 04 01 00 50 01")) > 817'600);
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(837'600)) == "");   // a legal target
+    h.advance_ms(3'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 2);
+    CHECK(out[0] == "80 00 00 00 01 50");
+    CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 50 01 00 " + le32(857'600));
+}
+
+TEST_CASE("a stepper stopped while pushing against its end stop keeps the steps it lost", "[device][apt][fault][stepper]")
+{
+    AptHarness h(cube("KST101", "DRV014"));   // end stops at -640,000 and +640,000
+    CHECK(h.send(kIgnoreForwardSwitch) == "");
+    CHECK(h.send("57 04 01 01 50 01") == "");
+    h.advance_ms(15'000);                      // 30 mm at 2 mm/s: 5 mm into the stop
+    CHECK(h.send("65 04 01 01 50 01").substr(0, 17) == "66 04 0E 00 81 50");   // immediate stop
+    const auto counted = position_of(h.send("11 04 01 00 50 01"));
+    CHECK(counted > 640'000 + 100'000);
+    CHECK(h.send("57 04 01 02 50 01") == "");  // to the reverse switch: 1,280,000 microsteps away
+    h.advance_ms(60'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(get_i32(bytes(out[0]), 8) == counted - 1'280'000);
+}
+
+TEST_CASE("a stepper's backlash overshoot into an ignored end still ends on the commanded count", "[device][apt][fault][stepper]")
+{
+    AptHarness h(cube("KST101", "DRV014"));
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // CCW ignored
+    CHECK(h.send("3A 04 06 00 D0 01 01 00 " + le32(1'000)) == "");                               // backlash
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(-639'990)) == "");
+    h.advance_ms(30'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(-639'990));
+}
+
+TEST_CASE("homing a stepper whose home switch is ignored ends in MOVE_STOPPED, not homed", "[device][apt][fault][stepper]")
+{
+    AptHarness h(cube("TST001", "DRV001"));
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // CCW ignored
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    h.advance_ms(60'000);
+    const auto out = frames(h.take());
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].substr(0, 17) == "66 04 0E 00 81 50");
+    CHECK((status_of(out[0]) & status::kHomed) == 0);
+}
+
+TEST_CASE("LIMSWITCHPARAMS modes outside the manual's are ignored", "[device][apt][fault]")
+{
+    AptHarness h;
+    const std::string before = h.send("24 04 01 00 50 01");
+    CHECK(h.send("23 04 10 00 D0 01 01 00 00 00 02 00 00 00 00 00 00 00 00 00 01 00") == "");   // CW 0
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 07 00 00 00 00 00 00 00 00 00 01 00") == "");   // CCW 7
+    CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 02 00 00 00 00 00 00 00 00 00 04 00") == "");   // soft 4
+    CHECK(h.send("24 04 01 00 50 01") == before);
+    CHECK(h.send("23 04 10 00 D0 01 01 00 82 00 82 00 00 00 00 00 00 00 00 00 83 00") == "");   // swapped: fine
+    CHECK(h.send("24 04 01 00 50 01") == "25 04 10 00 81 50 01 00 82 00 82 00 00 00 00 00 00 00 00 00 83 00");
+}
+
+TEST_CASE("a narrowed travel stops a brushless bay at its new limit, not at the end stop", "[device][apt][rack]")
+{
+    AptHarness h(bbd203({"MLS203-X"}));
+    std::string axis = bytes(h.send("F1 04 01 00 21 01")).substr(6);
+    std::string max;
+    put_i32(max, 1'000'000);   // 50 mm of 110
+    axis.replace(34, 4, max);
+    CHECK(h.send(hex(encode_with_data(MGMSG_MOT_SET_PMDSTAGEAXISPARAMS, 0x21, 0x01, axis))) == "");
+    CHECK(h.send("43 04 01 00 21 01") == "");   // homes forward: at the limit the counter reads 50 mm
+    h.advance_ms(30'000);
+    CHECK(h.take() == "44 04 01 00 01 21");
+    CHECK(h.send("11 04 01 00 21 01") == "12 04 06 00 81 21 01 00 " + le32(1'000'000));
 }
