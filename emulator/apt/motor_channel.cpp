@@ -209,8 +209,10 @@ bool MotorChannel::soft_limits_active() const
 
 double MotorChannel::within_soft_limits(double target_physical) const
 {
-    // LIMSWITCHPARAMS software limits, in position steps (counter units), for modes 2 and 3.
-    if (!soft_limits_active())
+    // LIMSWITCHPARAMS software limits, in position steps (counter units). Mode 3 ("profiled
+    // stop at limit") plans the move to stop there; mode 2 ("stop immediate at limit") runs on
+    // and stops dead when it gets there (soft_stop()).
+    if (!soft_limits_active() || (limit_switch.mode & 0x7f) != 3)
         return target_physical;
     return std::clamp(target_physical, limit_switch.ccw_soft + counter_offset_, limit_switch.cw_soft + counter_offset_);
 }
@@ -320,9 +322,31 @@ void MotorChannel::sample(Ticks now)
 {
     if (motion_ == Motion::Idle)
         return;
+    const double before = state_[0];
     state_ = profile_.sample(clock_.seconds(now - start_));
     state_[0] -= profile_slip_;
-    enforce_ends();
+    if (!soft_stop(before))
+        enforce_ends();
+}
+
+bool MotorChannel::soft_stop(double before)
+{
+    if (!soft_limits_active() || (limit_switch.mode & 0x7f) != 2 || motion_ == Motion::HomingToLimit
+        || motion_ == Motion::HomingBackOff)
+        return false;
+    // Only a crossing counts: a stage set beyond a limit may move back in.
+    const double cw = limit_switch.cw_soft + counter_offset_, ccw = limit_switch.ccw_soft + counter_offset_;
+    double limit;
+    if (before < cw && state_[0] >= cw)
+        limit = cw;
+    else if (before > ccw && state_[0] <= ccw)
+        limit = ccw;
+    else
+        return false;
+    state_ = models::AxisState(limit, 0.0);
+    pending_backlash_target_.reset();
+    conclude();
+    return true;
 }
 
 bool MotorChannel::enforce_ends()
@@ -369,8 +393,9 @@ void MotorChannel::hit_end_stop(double end)
 void MotorChannel::finish(Ticks now)
 {
     (void)now;
+    const double before = state_[0];
     state_ = models::AxisState(profile_.target() - profile_slip_, 0.0);
-    if (!enforce_ends())
+    if (!soft_stop(before) && !enforce_ends())
         conclude();
 }
 

@@ -134,6 +134,9 @@ private:
     /// After a sample: a carriage past a limit that stops the axis ends its motion there; past
     /// an ignored switch it meets the end stop. True if the motion ended.
     bool enforce_ends();
+    /// LIMSWITCHPARAMS software limit mode 2: the axis stops dead where it crosses a limit
+    /// (from `before`, the position at the previous sample). True if it did.
+    bool soft_stop(double before);
     /// The carriage met its end stop at `end`: DC and brushless motors stall (a fault), a
     /// stepper keeps stepping and loses the microsteps, which its counters still count.
     void hit_end_stop(double end);

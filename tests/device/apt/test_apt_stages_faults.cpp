@@ -330,3 +330,28 @@ TEST_CASE("a narrowed travel stops a brushless bay at its new limit, not at the 
     CHECK(h.take() == "44 04 01 00 01 21");
     CHECK(h.send("11 04 01 00 21 01") == "12 04 06 00 81 21 01 00 " + le32(1'000'000));
 }
+
+TEST_CASE("software limit mode 2 stops dead at the limit, mode 3 brakes to it", "[device][apt]")
+{
+    // Soft limits ±0.5 mm (17,152 counts); a move to +1 mm. Accelerating at 1.5 mm/s² the stage
+    // crosses +0.5 mm after sqrt(2 × 0.5 / 1.5) = 0.816 s; a profiled stop there takes 1.155 s.
+    for (const char* mode : {"02", "03"}) {
+        AptHarness h;
+        CHECK(h.send(std::string("23 04 10 00 D0 01 01 00 02 00 02 00 00 43 00 00 00 BD FF FF ") + mode + " 00") == "");
+        CHECK(h.send("53 04 06 00 D0 01 01 00 00 86 00 00") == "");
+        h.advance_ms(850);
+        const auto early = h.take();
+        if (std::string(mode) == "02") {
+            REQUIRE(frames(early).size() == 1);
+            CHECK(early.substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(17'152));
+        } else {
+            CHECK(early == "");
+            h.advance_ms(310);
+            CHECK(h.take().substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(17'152));
+        }
+        // From the limit the stage moves back in.
+        CHECK(h.send("53 04 06 00 D0 01 01 00 00 00 00 00") == "");
+        h.advance_ms(2'000);
+        CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+    }
+}
