@@ -182,6 +182,7 @@ void replay(const std::string& name)
 const std::vector<std::string> kTranscripts = {
     "apt_system.txt", "apt_parameters.txt", "apt_moves.txt", "apt_homing.txt", "apt_limits.txt",
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
+    "apt_faults.txt", "apt_stages_scurve.txt",
 };
 
 } // namespace
@@ -243,4 +244,14 @@ TEST_CASE("apt transcript: stepper cubes and the BSC203 rack", "[device][apt][tr
 TEST_CASE("apt transcript: bad input", "[device][apt][transcript]")
 {
     replay("apt_bad_input.txt");
+}
+
+TEST_CASE("apt transcript: faults at an ignored end of travel", "[device][apt][transcript]")
+{
+    replay("apt_faults.txt");
+}
+
+TEST_CASE("apt transcript: PRM1-Z8, DRV014, DDSM100 and S-curve moves", "[device][apt][transcript]")
+{
+    replay("apt_stages_scurve.txt");
 }
