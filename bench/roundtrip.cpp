@@ -82,6 +82,21 @@ void write_all(int fd, const char* data, std::size_t size)
 
 /// Reads until a '\n' arrives; returns the byte count (the '\n' is the last byte
 /// unless the peer sent more, which the caller's comparison then rejects).
+/// One read() of up to `size` bytes: retried on EINTR; an error or end of file throws.
+std::size_t read_some(int fd, char* buffer, std::size_t size)
+{
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, size);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            throw std::runtime_error(errno_message("read"));
+        if (n == 0)
+            throw std::runtime_error("peer closed the connection");
+        return static_cast<std::size_t>(n);
+    }
+}
+
 std::size_t read_line(int fd, char* buffer, std::size_t capacity)
 {
     std::size_t used = 0;
@@ -89,16 +104,9 @@ std::size_t read_line(int fd, char* buffer, std::size_t capacity)
         if (used == capacity)
             throw std::runtime_error("reply longer than " + std::to_string(capacity) +
                                      " bytes without '\\n'");
-        const ssize_t n = ::read(fd, buffer + used, capacity - used);
-        if (n < 0) {
-            if (errno == EINTR)
-                continue;
-            throw std::runtime_error(errno_message("read"));
-        }
-        if (n == 0)
-            throw std::runtime_error("peer closed the connection");
-        const bool complete = std::memchr(buffer + used, '\n', static_cast<std::size_t>(n));
-        used += static_cast<std::size_t>(n);
+        const std::size_t n = read_some(fd, buffer + used, capacity - used);
+        const bool complete = std::memchr(buffer + used, '\n', n);
+        used += n;
         if (complete)
             return used;
     }
@@ -108,18 +116,8 @@ std::size_t read_line(int fd, char* buffer, std::size_t capacity)
 /// the next comparison rejects.
 void read_exactly(int fd, char* buffer, std::size_t size)
 {
-    std::size_t used = 0;
-    while (used < size) {
-        const ssize_t n = ::read(fd, buffer + used, size - used);
-        if (n < 0) {
-            if (errno == EINTR)
-                continue;
-            throw std::runtime_error(errno_message("read"));
-        }
-        if (n == 0)
-            throw std::runtime_error("peer closed the connection");
-        used += static_cast<std::size_t>(n);
-    }
+    for (std::size_t used = 0; used < size;)
+        used += read_some(fd, buffer + used, size - used);
 }
 
 constexpr std::size_t kReplyCapacity = 256;
