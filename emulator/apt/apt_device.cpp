@@ -356,6 +356,23 @@ void AptDevice::handle_motherboard(const Frame& f, std::string_view peer, std::s
         reply += encode_with_data(MGMSG_RACK_GET_STATUSBITS, host_, kRack, d);
         return;
     }
+    case MGMSG_RACK_SET_DIGOUTPUTS:
+    case MGMSG_RACK_REQ_DIGOUTPUTS: {
+        // p. 26: header only; param1 the outputs (bits 0..3 for outputs 1..4), param2 the bay
+        // whose card the outputs belong to ("28, 02, 01, 22, 11, 01": bay address 0x22), or 0
+        // for the motherboard's own.
+        const bool bay_ok = f.param2 == 0 || (f.param2 >= kBay0 && f.param2 < kBay0 + channels_.size());
+        if (!bay_ok || (f.id == MGMSG_RACK_SET_DIGOUTPUTS && f.param1 > 0x0F)) {
+            log_->warn("{}: {} for outputs 0x{:02x} of bay 0x{:02x} (outputs 0..0x0f; 0 or a present bay): ignored",
+                       peer, f.info->name, f.param1, f.param2);
+            return;
+        }
+        if (f.id == MGMSG_RACK_SET_DIGOUTPUTS) {
+            digital_outputs_[f.param2] = f.param1;
+            return;
+        }
+        return answer_header(MGMSG_RACK_GET_DIGOUTPUTS, digital_outputs_[f.param2], f.param2);
+    }
     default:
         if (!handle_system(f, peer))
             log_->warn("{}: {} to the motherboard: it acts on no such message, ignored", peer, f.info->name);

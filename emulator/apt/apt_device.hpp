@@ -109,6 +109,7 @@ private:
         std::optional<std::string> previous;
     };
     std::optional<SetUndo> set_undo_;       ///< how to take back the SET being handled
+    std::map<std::uint8_t, std::uint8_t> digital_outputs_;   ///< rack: bay address (0: motherboard) -> outputs
 
 };
 
