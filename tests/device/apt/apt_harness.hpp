@@ -15,20 +15,38 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace rigsim::test {
 
 using namespace rigsim::apt;
 
 
-inline DeviceConfig tdc001()
+/// A single-unit controller (T-Cube/K-Cube) driving `stage`.
+inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
 {
     DeviceConfig c;
-    c.name = "tdc";
+    c.name = "cube";
     c.protocol = Protocol::Apt;
-    c.model = "TDC001";
-    c.apt.stage = "MTS50-Z8";
+    c.model = model;
+    c.apt.stage = stage;
     return c;
+}
+
+/// A card-slot controller (BBD203, BSC203) with these stages in bays 0, 1, ...
+inline DeviceConfig apt_rack(const std::string& model, std::vector<std::string> bays)
+{
+    DeviceConfig c;
+    c.name = "rack";
+    c.protocol = Protocol::Apt;
+    c.model = model;
+    c.apt.bays = std::move(bays);
+    return c;
+}
+
+inline DeviceConfig tdc001()
+{
+    return apt_cube("TDC001", "MTS50-Z8");
 }
 
 /// Hex "05 00 00 00 50 01" -> bytes.

@@ -161,12 +161,7 @@ TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS
 
 TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the bay", "[device][apt][rack]")
 {
-    DeviceConfig c;
-    c.name = "bbd";
-    c.protocol = Protocol::Apt;
-    c.model = "BBD203";
-    c.apt.bays = {"MLS203-X", "MLS203-Y"};
-    AptHarness h(c);
+    AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-Y"}));
     // The motherboard: its info (type 45, 2 bays) and which bays are used (p. 23: from 0).
     const auto info = bytes(h.send("05 00 00 00 11 01"));
     REQUIRE(info.size() == 90);
@@ -228,12 +223,7 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device re
 
 TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "[device][apt][rack]")
 {
-    DeviceConfig c;
-    c.name = "bbd";
-    c.protocol = Protocol::Apt;
-    c.model = "BBD203";
-    c.apt.bays = {"MLS203-X", "MLS203-Y"};
-    AptHarness h(c);
+    AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-Y"}));
     // PMDPROFILEMODEPARAMS (0x04E3/E4/E5): zeros until set, then what was set.
     const auto before = bytes(h.send("E4 04 01 00 21 01"));
     REQUIRE(before.size() >= 6);
@@ -264,12 +254,7 @@ TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "
 
 TEST_CASE("stepper cubes: microsteps, MOT_GET_STATUSUPDATE, no DC messages", "[device][apt][stepper]")
 {
-    DeviceConfig c;
-    c.name = "tst";
-    c.protocol = Protocol::Apt;
-    c.model = "KST101";
-    c.apt.stage = "ZST225B";
-    AptHarness h(c);
+    AptHarness h(apt_cube("KST101", "ZST225B"));
     const auto info = bytes(h.send("05 00 00 00 50 01"));
     REQUIRE(info.size() == 90);
     CHECK(get_u32(info, 6) == 26'000'001);
@@ -289,12 +274,7 @@ TEST_CASE("stepper cubes: microsteps, MOT_GET_STATUSUPDATE, no DC messages", "[d
 
 TEST_CASE("a BSC203 stepper rack: three bays, MOTSTATUS from each bay", "[device][apt][rack][stepper]")
 {
-    DeviceConfig c;
-    c.name = "bsc";
-    c.protocol = Protocol::Apt;
-    c.model = "BSC203";
-    c.apt.bays = {"DRV001", "DRV001", "ZST225B"};
-    AptHarness h(c);
+    AptHarness h(apt_rack("BSC203", {"DRV001", "DRV001", "ZST225B"}));
     CHECK(get_u16(bytes(h.send("05 00 00 00 11 01")), 88) == 3);
     CHECK(h.send("60 00 02 00 11 01") == "61 00 02 01 01 11");
     CHECK(h.send("48 04 06 00 A3 01 01 00 00 64 00 00") == "");     // bay 2 by 1 mm (25600 microsteps)

@@ -12,26 +12,6 @@ using namespace rigsim::test;
 
 namespace {
 
-DeviceConfig cube(const char* model, const char* stage)
-{
-    DeviceConfig c;
-    c.name = "cube";
-    c.protocol = Protocol::Apt;
-    c.model = model;
-    c.apt.stage = stage;
-    return c;
-}
-
-DeviceConfig bbd203(std::vector<std::string> bays)
-{
-    DeviceConfig c;
-    c.name = "bbd";
-    c.protocol = Protocol::Apt;
-    c.model = "BBD203";
-    c.apt.bays = std::move(bays);
-    return c;
-}
-
 /// The frames of a reply stream (hex in, hex per frame out), split by their headers.
 std::vector<std::string> frames(const std::string& reply_hex)
 {
@@ -68,7 +48,7 @@ constexpr const char* kIgnoreForwardSwitch = "23 04 10 00 D0 01 01 00 01 00 02 0
 
 TEST_CASE("a move past an ignored limit switch stalls the DC motor: KDC101 sends HW_RICHRESPONSE", "[device][apt][fault]")
 {
-    AptHarness h(cube("KDC101", "Z825B"));   // 25 mm: the counter reads 0 mid-travel, the end is +428,800
+    AptHarness h(apt_cube("KDC101", "Z825B"));   // 25 mm: the counter reads 0 mid-travel, the end is +428,800
     CHECK(h.send(kIgnoreForwardSwitch) == "");
     CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(500'000)) == "");
     h.advance_ms(10'000);
@@ -133,7 +113,7 @@ TEST_CASE("with its limit switch making contact the axis stops at the switch wit
 
 TEST_CASE("a BBD203 bay that runs into its end stop: motion error, HW_RESPONSE from the motherboard", "[device][apt][fault][rack]")
 {
-    AptHarness h(bbd203({"MLS203-X", "MLS203-Y"}));
+    AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-Y"}));
     CHECK(h.send("23 04 10 00 A2 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // bay 1: CCW ignored
     CHECK(h.send("57 04 01 02 22 01") == "");   // MOVE_VELOCITY reverse, bay 1 (Y, 75 mm)
     h.advance_ms(3'000);
@@ -149,7 +129,7 @@ TEST_CASE("a BBD203 bay that runs into its end stop: motion error, HW_RESPONSE f
 
 TEST_CASE("a stepper against its end stop loses steps: the counter counts them, no fault", "[device][apt][fault][stepper]")
 {
-    AptHarness h(cube("KST101", "DRV014"));   // 50 mm at 25,600 microsteps/mm: the end is +640,000
+    AptHarness h(apt_cube("KST101", "DRV014"));   // 50 mm at 25,600 microsteps/mm: the end is +640,000
     CHECK(h.send(kIgnoreForwardSwitch) == "");
     CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(700'000)) == "");
     h.advance_ms(20'000);
@@ -168,7 +148,7 @@ TEST_CASE("a stepper against its end stop loses steps: the counter counts them, 
 
 TEST_CASE("PRM1-Z8 turns without end and homes on its switch once per turn", "[device][apt][stage]")
 {
-    AptHarness h(cube("KDC101", "PRM1-Z8"));
+    AptHarness h(apt_cube("KDC101", "PRM1-Z8"));
     constexpr double kCountsPerDeg = 1'919.6418;
     // VELPARAMS: 10 deg/s and 10 deg/s² in the DC servo scaling.
     const auto vel = bytes(h.send("14 04 01 00 50 01"));
@@ -194,11 +174,11 @@ TEST_CASE("PRM1-Z8 turns without end and homes on its switch once per turn", "[d
 
 TEST_CASE("DRV014 and DDSM100: travel, encoder resolution and power-up velocities", "[device][apt][stage]")
 {
-    AptHarness kst(cube("KST101", "DRV014"));
+    AptHarness kst(apt_cube("KST101", "DRV014"));
     CHECK(kst.device().channel().max_position() == 1'280'000);   // 50 mm
     CHECK(kst.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 00 90 01 00 00 C8 00 00");
 
-    AptHarness bbd(bbd203({"DDSM100"}));
+    AptHarness bbd(apt_rack("BBD203", {"DDSM100"}));
     // 500 mm/s and 5,000 mm/s² at 2,000 counts/mm in the PMD scaling of 7.1 (per count).
     const auto vel = bytes(bbd.send("14 04 01 00 21 01"));
     CHECK(get_i32(vel, 16) == 6'710'900);
@@ -216,7 +196,7 @@ TEST_CASE("DRV014 and DDSM100: travel, encoder resolution and power-up velocitie
 
 TEST_CASE("PMDPROFILEMODEPARAMS S-curve: the move takes a/j longer than the trapezoid", "[device][apt][scurve][rack]")
 {
-    AptHarness h(bbd203({"MLS203-X", "MLS203-X"}));
+    AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-X"}));
     // p. 69's example: S-curve, jerk 10,000 mm/s³ (922337), for bay 1 only.
     CHECK(h.send("E3 04 0C 00 A2 01 01 00 02 00 E1 12 0E 00 00 00 00 00") == "");
     CHECK(h.send("E4 04 01 00 22 01") == "E5 04 0C 00 81 22 01 00 02 00 E1 12 0E 00 00 00 00 00");
@@ -239,7 +219,7 @@ TEST_CASE("PMDPROFILEMODEPARAMS S-curve: the move takes a/j longer than the trap
 
 TEST_CASE("S-curve ramps start gently: after 20 ms the S-curve axis trails the trapezoid", "[device][apt][scurve][rack]")
 {
-    AptHarness h(bbd203({"MLS203-X", "MLS203-X"}));
+    AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-X"}));
     CHECK(h.send("E3 04 0C 00 A2 01 01 00 02 00 E1 12 0E 00 00 00 00 00") == "");
     CHECK(h.send("48 04 06 00 A1 01 01 00 " + le32(1'000'000)) == "");
     CHECK(h.send("48 04 06 00 A2 01 01 00 " + le32(1'000'000)) == "");
@@ -267,7 +247,7 @@ TEST_CASE("a move re-targeted while running whose braking overshoots an ignored 
 
 TEST_CASE("a stepper stopped while pushing against its end stop keeps the steps it lost", "[device][apt][fault][stepper]")
 {
-    AptHarness h(cube("KST101", "DRV014"));   // end stops at -640,000 and +640,000
+    AptHarness h(apt_cube("KST101", "DRV014"));   // end stops at -640,000 and +640,000
     CHECK(h.send(kIgnoreForwardSwitch) == "");
     CHECK(h.send("57 04 01 01 50 01") == "");
     h.advance_ms(15'000);                      // 30 mm at 2 mm/s: 5 mm into the stop
@@ -283,7 +263,7 @@ TEST_CASE("a stepper stopped while pushing against its end stop keeps the steps 
 
 TEST_CASE("a stepper's backlash overshoot into an ignored end still ends on the commanded count", "[device][apt][fault][stepper]")
 {
-    AptHarness h(cube("KST101", "DRV014"));
+    AptHarness h(apt_cube("KST101", "DRV014"));
     CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // CCW ignored
     CHECK(h.send("3A 04 06 00 D0 01 01 00 " + le32(1'000)) == "");                               // backlash
     CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(-639'990)) == "");
@@ -295,7 +275,7 @@ TEST_CASE("a stepper's backlash overshoot into an ignored end still ends on the 
 
 TEST_CASE("homing a stepper whose home switch is ignored ends in MOVE_STOPPED, not homed", "[device][apt][fault][stepper]")
 {
-    AptHarness h(cube("TST001", "DRV001"));
+    AptHarness h(apt_cube("TST001", "DRV001"));
     CHECK(h.send("23 04 10 00 D0 01 01 00 02 00 01 00 00 00 00 00 00 00 00 00 01 00") == "");   // CCW ignored
     CHECK(h.send("43 04 01 00 50 01") == "");
     h.advance_ms(60'000);
@@ -319,7 +299,7 @@ TEST_CASE("LIMSWITCHPARAMS modes outside the manual's are ignored", "[device][ap
 
 TEST_CASE("a narrowed travel stops a brushless bay at its new limit, not at the end stop", "[device][apt][rack]")
 {
-    AptHarness h(bbd203({"MLS203-X"}));
+    AptHarness h(apt_rack("BBD203", {"MLS203-X"}));
     std::string axis = bytes(h.send("F1 04 01 00 21 01")).substr(6);
     std::string max;
     put_i32(max, 1'000'000);   // 50 mm of 110
