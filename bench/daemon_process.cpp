@@ -1,5 +1,7 @@
 #include "daemon_process.hpp"
 
+#include "proc_cpu.hpp"
+
 #include "unique_fd.hpp"
 
 #include <nlohmann/json.hpp>
@@ -31,15 +33,6 @@ using SteadyClock = std::chrono::steady_clock;
 /// Interval between two looks at the endpoints file or the child's status.
 constexpr std::chrono::milliseconds kPollInterval{5};
 
-std::optional<std::string> read_file(const std::string& path)
-{
-    std::ifstream in{path, std::ios::binary};
-    if (!in)
-        return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::string describe_status(int status)
 {

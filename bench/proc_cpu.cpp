@@ -10,8 +10,6 @@
 
 namespace rigsim::bench {
 
-namespace {
-
 std::optional<std::string> read_file(const std::string& path)
 {
     std::ifstream in{path, std::ios::binary};
@@ -21,8 +19,6 @@ std::optional<std::string> read_file(const std::string& path)
     text << in.rdbuf();
     return text.str();
 }
-
-}  // namespace
 
 double stat_tick_s()
 {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 namespace rigsim::bench {
 
@@ -18,6 +19,9 @@ struct CpuSample {
     /// Time on CPU from /proc/.../schedstat, in ns; absent if the kernel lacks schedstat.
     std::optional<std::int64_t> schedstat_ns;
 };
+
+/// The whole content of a file, or nothing if it cannot be opened.
+std::optional<std::string> read_file(const std::string& path);
 
 /// Reads the CPU time of every thread of process `pid` from /proc.
 CpuSample read_process_cpu(pid_t pid);

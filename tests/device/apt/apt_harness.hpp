@@ -8,6 +8,7 @@
 #include "emulator/apt/wire.hpp"
 #include "emulator/core/clock.hpp"
 #include "emulator/core/rig_config.hpp"
+#include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
 #include <spdlog/sinks/null_sink.h>
@@ -50,28 +51,6 @@ inline DeviceConfig tdc001()
 }
 
 /// Hex "05 00 00 00 50 01" -> bytes.
-inline std::string bytes(const std::string& hex)
-{
-    std::istringstream in(hex);
-    std::string out, b;
-    while (in >> b)
-        out.push_back(static_cast<char>(std::stoi(b, nullptr, 16)));
-    return out;
-}
-
-inline std::string hex(std::string_view s)
-{
-    static constexpr char kHex[] = "0123456789ABCDEF";
-    std::string out;
-    for (unsigned char c : s) {
-        if (!out.empty())
-            out += ' ';
-        out += kHex[c >> 4];
-        out += kHex[c & 0xf];
-    }
-    return out;
-}
-
 class AptHarness {
 public:
     explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr)

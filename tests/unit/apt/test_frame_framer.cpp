@@ -3,6 +3,7 @@
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
+#include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -12,21 +13,10 @@
 #include <vector>
 
 using namespace rigsim::apt;
+using rigsim::test::hex;
 
 namespace {
 
-std::string hex(std::string_view bytes)
-{
-    std::string out;
-    char buf[4];
-    for (unsigned char c : bytes) {
-        std::snprintf(buf, sizeof buf, "%02X", c);
-        if (!out.empty())
-            out += ' ';
-        out += buf;
-    }
-    return out;
-}
 
 /// "0453 d=50 s=01 p=01,00" for header-only frames, "0453 d=50 s=01 [01 00 ...]" with data.
 std::string describe(const Frame& f)

@@ -3,6 +3,7 @@
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
+#include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -13,35 +14,14 @@
 #include <vector>
 
 using namespace rigsim::apt;
+using rigsim::test::hex;
+const auto unhex = rigsim::test::bytes;
 
 namespace {
 
 const std::vector<std::uint8_t> kAddresses{0x01, 0x11, 0x21, 0x22, 0x23, 0x24, 0x25,
                                            0x26, 0x27, 0x28, 0x29, 0x2A, 0x50};
 
-/// "23 02 00 00 21 01" -> bytes.
-std::string unhex(const std::string& text)
-{
-    std::istringstream in(text);
-    std::string out;
-    unsigned byte = 0;
-    while (in >> std::hex >> byte)
-        out.push_back(static_cast<char>(byte));
-    return out;
-}
-
-std::string hex(std::string_view bytes)
-{
-    std::string out;
-    char buf[4];
-    for (unsigned char c : bytes) {
-        std::snprintf(buf, sizeof buf, "%02X", c);
-        if (!out.empty())
-            out += ' ';
-        out += buf;
-    }
-    return out;
-}
 
 struct Parsed {
     std::vector<Frame> frames;
