@@ -9,23 +9,56 @@
 #include <boost/asio/signal_set.hpp>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace {
 
 constexpr int kExitRuntimeError = 1;
 constexpr int kExitUsage = 2;   // bad flag or bad config
 
+/// Signals whose default action ends the process: each shuts the daemon down cleanly, so
+/// that no pty symlink or endpoints file is left behind. SIGHUP has nothing to reload.
+constexpr int kShutdownSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM};
+
+/// A file the daemon wrote (--endpoints-json): removed at exit if it is still the one written.
+class OwnedFile {
+public:
+    explicit OwnedFile(std::string path) : path_(std::move(path))
+    {
+        struct stat st {};
+        if (::lstat(path_.c_str(), &st) == 0) {
+            dev_ = st.st_dev;
+            ino_ = st.st_ino;
+        }
+    }
+    void remove() const
+    {
+        struct stat st {};
+        if (ino_ != 0 && ::lstat(path_.c_str(), &st) == 0 && st.st_dev == dev_ && st.st_ino == ino_)
+            ::unlink(path_.c_str());
+    }
+
+private:
+    std::string path_;
+    dev_t dev_ = 0;
+    ino_t ino_ = 0;
+};
+
 constexpr std::string_view kUsage = R"(Usage: rigsimd [OPTION]...
-Emulate SmarAct MCS (and, later, Thorlabs APT) motion controllers on pseudo-terminals and
-TCP sockets. Without --config, runs the built-in default rig (config/default.json).
+Emulate SmarAct MCS and Thorlabs APT motion controllers on pseudo-terminals and TCP
+sockets. Without --config, runs the built-in default rig (config/default.json).
 
   --config FILE          run the rig described in FILE (JSON, see docs/config.md)
   --check-config FILE    validate FILE and exit: 0 if valid, 2 with a message naming the
@@ -49,8 +82,10 @@ TCP sockets. Without --config, runs the built-in default rig (config/default.jso
   --help                 show this help and exit
   --version              show the version and exit
 
-Logs go to standard error; the endpoint list goes to standard output.
-SIGINT and SIGTERM shut down cleanly and remove the pty symlinks.
+Logs go to standard error (repeated warnings about one connection are rate-limited:
+at most 10 per second, then a count); the endpoint list goes to standard output.
+SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2 and SIGALRM shut down cleanly: the
+pty symlinks and the --endpoints-json file are removed (SIGHUP reloads nothing).
 Exit status: 0 on success or after a signal, 1 on a run-time failure (e.g. a port in
 use), 2 on a bad flag or config.
 )";
@@ -67,13 +102,30 @@ struct UsageError {
     std::string message;
 };
 
+/// A user's value in a message: quoted, and cut to a sane length.
+std::string echo(std::string_view value)
+{
+    constexpr std::size_t kMax = 64;
+    if (value.size() <= kMax)
+        return "\"" + std::string(value) + "\"";
+    return "\"" + std::string(value.substr(0, kMax)) + "\"... (" + std::to_string(value.size()) + " characters)";
+}
+
+/// A bound as the help text writes it (0.001, 1000).
+std::string number_text(double v)
+{
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
+
 double parse_double(std::string_view flag, const std::string& value, double lo, double hi)
 {
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-        throw UsageError{std::string(flag) + ": expected a number " + std::to_string(lo) + ".."
-                         + std::to_string(hi) + ", got \"" + value + "\""};
+        throw UsageError{std::string(flag) + ": expected a number " + number_text(lo) + ".." + number_text(hi)
+                         + ", got " + echo(value)};
     return v;
 }
 
@@ -83,7 +135,7 @@ std::uint32_t parse_uint(std::string_view flag, const std::string& value, std::u
     const unsigned long long v = std::strtoull(value.c_str(), &end, 10);
     if (value.empty() || value[0] == '-' || *end != '\0' || v < lo || v > hi)
         throw UsageError{std::string(flag) + ": expected an integer " + std::to_string(lo) + ".."
-                         + std::to_string(hi) + ", got \"" + value + "\""};
+                         + std::to_string(hi) + ", got " + echo(value)};
     return static_cast<std::uint32_t>(v);
 }
 
@@ -141,7 +193,7 @@ std::optional<Options> parse_args(int argc, char** argv)
             boost::system::error_code ec;
             o.rig.bind = boost::asio::ip::make_address(v, ec);
             if (ec)
-                throw UsageError{"--bind: expected an IP address, got \"" + v + "\""};
+                throw UsageError{"--bind: expected an IP address, got " + echo(v)};
         } else if (arg == "--time-scale")
             o.rig.time_scale = parse_double(arg, value(), 0.001, 1000);
         else if (arg == "--state-file") {
@@ -154,7 +206,7 @@ std::optional<Options> parse_args(int argc, char** argv)
             if (auto err = rigsim::apply_log_level(value(), o.rig.log_levels))
                 throw UsageError{*err};
         } else
-            throw UsageError{"unknown option \"" + arg + "\" (see --help)"};
+            throw UsageError{"unknown option " + echo(arg) + " (see --help)"};
     }
     if (o.config && o.check_config)
         throw UsageError{"--config and --check-config exclude each other"};
@@ -194,36 +246,65 @@ int main(int argc, char** argv)
         config.tick_hz = *opts.tick_hz;
 
     auto log = rigsim::make_logger("rigsimd", opts.rig.log_levels);
+    // Summaries of rate-limited warnings appear within a second of their window's end.
+    spdlog::flush_every(std::chrono::seconds(1));
+    // Ownership order: the io_context outlives the rig, and its pending handlers (which hold
+    // connections, which hold sessions on devices) are run to completion before the rig is
+    // destroyed, so no session outlives its device.
+    boost::asio::io_context io;
+    boost::asio::signal_set signals(io);
+    for (const int signo : kShutdownSignals)
+        signals.add(signo);
+    std::signal(SIGPIPE, SIG_IGN);
+    std::optional<rigsim::Rig> rig;
+    std::optional<OwnedFile> endpoints_file;
+    auto shut_down = [&] {
+        if (rig)
+            rig->stop();
+        boost::system::error_code ignored;
+        signals.cancel(ignored);
+        io.restart();
+        io.run();   // every operation is cancelled: this runs their handlers, then returns
+        rig.reset();
+        if (endpoints_file)
+            endpoints_file->remove();
+    };
+    int status = 0;
     try {
-        boost::asio::io_context io;
-        rigsim::Rig rig(io, config, opts.rig);
-
-        boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+        rig.emplace(io, config, opts.rig);
         signals.async_wait([&](const boost::system::error_code& ec, int signo) {
             if (ec)
                 return;
-            log->info("signal {}: shutting down", signo);
-            rig.stop();
+            log->info("signal {} ({}): shutting down", signo, ::strsignal(signo));
             io.stop();
         });
-        std::signal(SIGPIPE, SIG_IGN);
 
-        rig.start();
-        for (const auto& e : rig.endpoints())
+        rig->start();
+        for (const auto& e : rig->endpoints())
             std::cout << e.name << " (" << rigsim::to_string(e.protocol) << " " << e.model << "): tcp "
                       << e.tcp << " pty " << e.pty << "\n";
         std::cout.flush();
-        if (opts.endpoints_json)
-            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig.endpoints()));
-        log->info("rig running: {} device(s), tick {} Hz, time scale {}", rig.endpoints().size(),
+        if (opts.endpoints_json) {
+            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints()));
+            endpoints_file.emplace(*opts.endpoints_json);
+        }
+        log->info("rig running: {} device(s), tick {} Hz, time scale {}", rig->endpoints().size(),
                   config.tick_hz, opts.rig.time_scale);
         io.run();
-        rig.stop();
     } catch (const std::exception& e) {
         log->critical("{}", e.what());
         std::cerr << "rigsimd: " << e.what() << "\n";
-        return kExitRuntimeError;
+        status = kExitRuntimeError;
     }
+    try {
+        shut_down();
+    } catch (const std::exception& e) {
+        log->critical("while shutting down: {}", e.what());
+        status = kExitRuntimeError;
+    }
+    rigsim::flush_log_summaries();
+    if (status != 0)
+        return status;
     log->info("stopped");
     return 0;
 }

@@ -1,6 +1,7 @@
 #include "emulator/core/logging.hpp"
 
 #include "emulator/core/device.hpp"
+#include "emulator/core/rate_limited_sink.hpp"
 
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
@@ -21,7 +22,19 @@ std::optional<spdlog::level::level_enum> parse_level(std::string_view s)
     return std::nullopt;
 }
 
+/// The one sink of every logger: stderr, with repeated warnings rate-limited per connection.
+const std::shared_ptr<RateLimitedSink>& shared_sink()
+{
+    static const auto sink = std::make_shared<RateLimitedSink>(std::make_shared<spdlog::sinks::stderr_sink_mt>());
+    return sink;
+}
+
 } // namespace
+
+void flush_log_summaries()
+{
+    shared_sink()->flush_summaries();
+}
 
 std::optional<std::string> apply_log_level(std::string_view arg, LogLevels& levels)
 {
@@ -45,8 +58,7 @@ std::shared_ptr<spdlog::logger> make_logger(const std::string& name, const LogLe
 {
     if (auto existing = spdlog::get(name))
         return existing;
-    static const auto sink = std::make_shared<spdlog::sinks::stderr_sink_st>();
-    auto logger = std::make_shared<spdlog::logger>(name, sink);
+    auto logger = std::make_shared<spdlog::logger>(name, shared_sink());
     logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %^%-5l%$ [%n] %v");
     const auto it = levels.per_logger.find(name);
     logger->set_level(it != levels.per_logger.end() ? it->second : levels.global);

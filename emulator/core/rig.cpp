@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <fcntl.h>
+#include <stdexcept>
 #include <system_error>
 #include <unistd.h>
 
@@ -64,6 +65,23 @@ std::unique_ptr<Device> make_device(const DeviceConfig& config, Clock& clock,
 
 } // namespace
 
+boost::asio::ip::address client_address(const boost::asio::ip::address& bound)
+{
+    // A socket bound to the wildcard address is reached on loopback from this machine.
+    if (bound.is_v6() && bound.is_unspecified())
+        return boost::asio::ip::address_v6::loopback();
+    if (bound.is_v4() && bound.is_unspecified())
+        return boost::asio::ip::address_v4::loopback();
+    return bound;
+}
+
+std::string tcp_address_text(const boost::asio::ip::address& address, std::uint16_t port)
+{
+    // RFC 3986 host syntax: an IPv6 address in brackets, so that the port stays separable.
+    const auto host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+    return host + ":" + std::to_string(port);
+}
+
 struct Rig::Entry {
     std::unique_ptr<Device> device;
     std::unique_ptr<PacedDevice> paced;
@@ -81,13 +99,22 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         e->device = make_device(dc, clock_, log, *store_);
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
-        e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log);
+        try {
+            e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log);
+        } catch (const std::exception& ex) {
+            throw std::runtime_error("device \"" + dc.name + "\": cannot listen on tcp "
+                                     + tcp_address_text(options.bind, port) + ": " + ex.what());
+        }
         const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
-        e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log);
+        try {
+            e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log);
+        } catch (const std::exception& ex) {
+            throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
+        }
 
         const auto ep = e->tcp->local_endpoint();
         endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
-                                             ep.address().to_string() + ":" + std::to_string(ep.port()),
+                                             tcp_address_text(client_address(ep.address()), ep.port()),
                                              e->pty->symlink_path()});
         log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
                   e->pty->device_path());

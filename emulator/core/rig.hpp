@@ -33,7 +33,7 @@ struct DeviceEndpoints {
     std::string name;
     Protocol protocol;
     std::string model;
-    std::string tcp;   ///< "127.0.0.1:40100"
+    std::string tcp;   ///< "127.0.0.1:40100", "[::1]:40100" (where a local client connects)
     std::string pty;   ///< symlink path
 };
 
@@ -61,6 +61,12 @@ private:
     std::vector<std::unique_ptr<Entry>> entries_;
     std::vector<DeviceEndpoints> endpoints_;
 };
+
+/// The address a client on this machine connects to for a socket bound to `bound`: loopback
+/// for a wildcard address (0.0.0.0, ::), `bound` otherwise.
+boost::asio::ip::address client_address(const boost::asio::ip::address& bound);
+/// "127.0.0.1:40100", "[::1]:40100".
+std::string tcp_address_text(const boost::asio::ip::address& address, std::uint16_t port);
 
 /// The endpoints document: {"devices":[{"name","protocol","model","tcp","pty"}]}.
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints);

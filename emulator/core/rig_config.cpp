@@ -18,12 +18,16 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
+
 namespace rigsim {
 namespace {
 
 using nlohmann::json;
 
 constexpr std::size_t kMaxNameLength = 64;
+/// A rig file larger than this is refused (the largest example is a few kB).
+constexpr std::size_t kMaxConfigBytes = 4 << 20;
 constexpr std::size_t kMaxChannels = 255;
 constexpr std::int64_t kTravelLimitNm = 2'000'000'000;
 constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
@@ -70,10 +74,42 @@ bool is_name_char(char c)
            c == '.' || c == '-';
 }
 
-/// `value` as compact JSON; never throws on odd UTF-8.
+/// Echoed values and keys longer than this are cut in messages.
+constexpr std::size_t kMaxEcho = 80;
+
+/// `text` cut to kMaxEcho bytes (on a UTF-8 character boundary), marked as cut.
+std::string cut(std::string text)
+{
+    if (text.size() <= kMaxEcho)
+        return text;
+    const auto total = text.size();
+    std::size_t end = kMaxEcho;
+    while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80)
+        --end;
+    text.resize(end);
+    return text + "... (" + std::to_string(total) + " characters)";
+}
+
+/// What kind of file a non-regular st_mode is, for messages.
+std::string file_kind(mode_t mode)
+{
+    if (S_ISDIR(mode))
+        return "a directory";
+    if (S_ISCHR(mode))
+        return "a character device";
+    if (S_ISBLK(mode))
+        return "a block device";
+    if (S_ISFIFO(mode))
+        return "a pipe";
+    if (S_ISSOCK(mode))
+        return "a socket";
+    return "not a regular file";
+}
+
+/// `value` as compact JSON, cut to a sane length; never throws on odd UTF-8.
 std::string dump(const json& value)
 {
-    return value.dump(-1, ' ', false, json::error_handler_t::replace);
+    return cut(value.dump(-1, ' ', false, json::error_handler_t::replace));
 }
 
 /// `s` as a JSON string literal (quoted, escaped).
@@ -120,7 +156,9 @@ std::string pointer_to(const std::string& parent, std::size_t index)
 /// Throw the one error format: `<source>: <pointer>: <what>`; the root shows as "/".
 [[noreturn]] void fail(std::string_view source, const std::string& pointer, const std::string& what)
 {
-    throw ConfigError(std::string(source) + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
+    constexpr std::size_t kMaxPointer = 160;
+    const auto shown = pointer.size() <= kMaxPointer ? pointer : pointer.substr(0, kMaxPointer) + "...";
+    throw ConfigError(std::string(source) + ": " + (pointer.empty() ? "/" : shown) + ": " + what);
 }
 
 /// 1-based line and column of nlohmann's 1-based byte position in `text`.
@@ -183,7 +221,6 @@ public:
         return true;
     }
 
-private:
     struct Frame {
         bool is_object;
         std::set<std::string> keys;
@@ -198,6 +235,17 @@ private:
             ++stack_.back().index;
     }
 
+    /// The pointer of the value being parsed: inside the innermost open container, the
+    /// value of its current key or index (for errors the parser raises on a value).
+    std::string value_pointer() const
+    {
+        if (stack_.empty())
+            return {};
+        const auto& top = stack_.back();
+        return top.is_object ? pointer_to(pointer(), top.key) : pointer_to(pointer(), top.index);
+    }
+
+private:
     /// The pointer of the innermost open container.
     std::string pointer() const
     {
@@ -414,6 +462,10 @@ private:
             ok = !s.empty() && s.size() <= kMaxNameLength;
             for (char c : s)
                 ok = ok && is_name_char(c);
+            // The name is a file name in the pty directory: "." and ".." are that directory
+            // and its parent.
+            if (s == "." || s == "..")
+                fail(pointer, "expected a device name, got " + quote(s) + " (\".\" and \"..\" name directories)");
         }
         if (!ok)
             fail(pointer, "expected a name of 1.." + std::to_string(kMaxNameLength) +
@@ -514,8 +566,8 @@ private:
 
 RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
 {
+    DuplicateKeyCheck duplicates{source};
     try {
-        DuplicateKeyCheck duplicates{source};
         const auto root = json::parse(
             json_text.begin(), json_text.end(),
             [&duplicates](int, json::parse_event_t event, json& parsed) {
@@ -526,6 +578,13 @@ RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
         const auto [line, column] = line_column(json_text, e.byte);
         throw ConfigError(std::string(source) + ": line " + std::to_string(line) + ", column " +
                           std::to_string(column) + ": " + explanation(e));
+    } catch (const json::out_of_range& e) {
+        // A number the parser cannot hold (1e400): name where it is.
+        const std::string_view what = e.what();
+        const auto at = what.find("number overflow");
+        fail(source, duplicates.value_pointer(),
+             at == std::string_view::npos ? std::string(what) : cut(std::string(what.substr(at)))
+                 + " (not a finite number)");
     } catch (const json::exception& e) {
         throw ConfigError(std::string(source) + ": " + e.what());
     }
@@ -537,11 +596,23 @@ RigConfig load_rig_config(const std::string& path)
                                                                &std::fclose};
     if (!file)
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(::fileno(file.get()), &st) != 0)
+        throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode))
+        throw ConfigError(path + ": not a regular file (" + file_kind(st.st_mode) + "): a rig is read from a JSON file");
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxConfigBytes)
+        throw ConfigError(path + ": " + std::to_string(st.st_size) + " bytes: a rig file may hold at most "
+                          + std::to_string(kMaxConfigBytes) + " bytes");
     std::string text;
     std::array<char, 4096> buffer;
     std::size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0)
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) {
         text.append(buffer.data(), n);
+        if (text.size() > kMaxConfigBytes)   // it grew while being read
+            throw ConfigError(path + ": more than " + std::to_string(kMaxConfigBytes)
+                              + " bytes: a rig file may hold at most that");
+    }
     if (std::ferror(file.get()))
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));
     return parse_rig_config(text, path);

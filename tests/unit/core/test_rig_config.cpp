@@ -147,7 +147,7 @@ TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit
                       missing + ": cannot read: No such file or directory");
     const std::string directory = RIGSIM_SOURCE_DIR "/config";
     CHECK_THROWS_WITH(rigsim::load_rig_config(directory),
-                      directory + ": cannot read: Is a directory");
+                      directory + ": not a regular file (a directory): a rig is read from a JSON file");
 }
 
 TEST_CASE("rig config: a load error names the file", "[unit][config]")
