@@ -160,13 +160,13 @@ TEST_CASE("PMDSTAGEAXISPARAMS only narrows the travel: a wider or inverted one i
     const auto min_position = get_i32(block, 30), max_position = get_i32(block, 34);
     auto set = [&](std::int32_t lo, std::int32_t hi) {
         auto d = block;
-        d.replace(30, 4, std::string(4, '\0'));
         std::string v;
         put_i32(v, lo);
         put_i32(v, hi);
         d.replace(30, 8, v);
         return h.send(hex(encode_with_data(MGMSG_MOT_SET_PMDSTAGEAXISPARAMS, kBay0Address, kHost, d)));
     };
+    CHECK(set(min_position - 1, max_position - 1000) == "");            // wider at one end: not half applied
     CHECK(set(min_position - 1, max_position) == "");                   // wider at the low end
     CHECK(set(min_position, max_position + 1) == "");                   // wider at the high end
     CHECK(set(min_position + 1000, min_position + 1000) == "");         // empty
