@@ -32,6 +32,106 @@ std::string velocity_block(const VelocityParams& v)
     return d;
 }
 
+enum class Field { U16, I16, U32, I32 };
+
+/// One field of a SET's data packet and the values the manual allows for it.
+struct FieldRange {
+    std::uint16_t set_id;
+    std::string_view name;
+    std::size_t offset;   ///< in the data packet (the channel word is at 0)
+    Field type;
+    std::int64_t min;
+    std::int64_t max;
+};
+
+constexpr std::int64_t kMaxLong = 2'147'483'647;
+
+/// The field ranges of every SET a motor unit acts on, as the manual's data structures give
+/// them (page in the comment). Fields the manual gives no range (positions, distances, the
+/// backlash: signed longs) take any value. Rules that tie two fields together, and modes
+/// whose values are not a range, are checked in handle_bay().
+constexpr FieldRange kSetRanges[] = {
+    // p. 30: acceleration and maximum velocity are unsigned longs; a zero would never move.
+    {MGMSG_MOT_SET_VELPARAMS, "minimum velocity", 2, Field::I32, 0, kMaxLong},
+    {MGMSG_MOT_SET_VELPARAMS, "acceleration", 6, Field::I32, 1, kMaxLong},
+    {MGMSG_MOT_SET_VELPARAMS, "maximum velocity", 10, Field::I32, 1, kMaxLong},
+    // p. 32: jog mode 1 continuous, 2 single step; stop mode 1 immediate, 2 profiled.
+    {MGMSG_MOT_SET_JOGPARAMS, "jog mode", 2, Field::U16, 1, 2},
+    {MGMSG_MOT_SET_JOGPARAMS, "jog step size", 4, Field::I32, 0, kMaxLong},
+    {MGMSG_MOT_SET_JOGPARAMS, "jog minimum velocity", 8, Field::I32, 0, kMaxLong},
+    {MGMSG_MOT_SET_JOGPARAMS, "jog acceleration", 12, Field::I32, 1, kMaxLong},
+    {MGMSG_MOT_SET_JOGPARAMS, "jog maximum velocity", 16, Field::I32, 1, kMaxLong},
+    {MGMSG_MOT_SET_JOGPARAMS, "stop mode", 20, Field::U16, 1, 2},
+    // p. 51: proportional, integral, differential and integral limit 0..32767.
+    {MGMSG_MOT_SET_DCPIDPARAMS, "proportional", 2, Field::I32, 0, 32767},
+    {MGMSG_MOT_SET_DCPIDPARAMS, "integral", 6, Field::I32, 0, 32767},
+    {MGMSG_MOT_SET_DCPIDPARAMS, "differential", 10, Field::I32, 0, 32767},
+    {MGMSG_MOT_SET_DCPIDPARAMS, "integral limit", 14, Field::I32, 0, 32767},
+    // p. 58: mode 1 jog, 2 go to position.
+    {MGMSG_MOT_SET_BUTTONPARAMS, "mode", 2, Field::U16, 1, 2},
+    // p. 61: PMDPOSITIONLOOPPARAMS. The PosErrLim text says "0 to 7FFFFFF" (seven Fs); the
+    // dword's other limit field, Integral Limit, says 7FFFFFFF: taken for both.
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "Kp", 2, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "Ki", 4, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "integral limit", 6, Field::U32, 0, kMaxLong},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "Kd", 10, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "KdTimePos", 12, Field::U16, 1, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "KvffPos", 16, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "KaffPos", 18, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "PosErrLim", 20, Field::U32, 0, kMaxLong},
+    // p. 63-64: MotorBias "-32767 to 32768" in a signed word: -32767..32767.
+    {MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, "ContCurrentLim", 2, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, "EnergyLim", 4, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, "MotorLim", 6, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, "MotorBias", 8, Field::I16, -32767, 32767},
+    // p. 66: settle time 0..32767 cycles; both windows 0..65535 (any word).
+    {MGMSG_MOT_SET_PMDTRACKSETTLEPARAMS, "settle time", 2, Field::U16, 0, 32767},
+    // p. 69: mode 0 trapezoidal, 2 S-curve (1 is no mode); jerk 0..4294967295 (any dword).
+    {MGMSG_MOT_SET_PMDPROFILEMODEPARAMS, "mode", 2, Field::U16, 0, 2},
+    // p. 71 and 73: phase 0 A, 1 B, 2 A and B; gains, limit, dead band, feed-forward 0..32767.
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "phase", 2, Field::U16, 0, 2},
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "KpCurrent", 4, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "KiCurrent", 6, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "ILimCurrent", 8, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "IDeadBand", 10, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "Kff", 12, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "phase", 2, Field::U16, 0, 2},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "KpSettled", 4, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "KiSettled", 6, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "ILimSettled", 8, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "IDeadBandSettled", 10, Field::U16, 0, 32767},
+    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "KffSettled", 12, Field::U16, 0, 32767},
+};
+
+std::int64_t field_value(std::string_view data, const FieldRange& r)
+{
+    switch (r.type) {
+    case Field::U16:
+        return get_u16(data, r.offset);
+    case Field::I16:
+        return get_i16(data, r.offset);
+    case Field::U32:
+        return get_u32(data, r.offset);
+    case Field::I32:
+        return get_i32(data, r.offset);
+    }
+    return 0;
+}
+
+/// The first field of SET `f` outside its range in kSetRanges, as "<name> <value> (<min>..<max>)".
+std::optional<std::string> out_of_range(const Frame& f)
+{
+    for (const auto& r : kSetRanges) {
+        if (r.set_id != f.id)
+            continue;
+        const auto v = field_value(f.data, r);
+        if (v < r.min || v > r.max)
+            return std::string(r.name) + " " + std::to_string(v) + " (" + std::to_string(r.min) + ".."
+                   + std::to_string(r.max) + ")";
+    }
+    return std::nullopt;
+}
+
 } // namespace
 
 /// One connection: its own framer; frames go to the device, answers come back.
@@ -46,6 +146,15 @@ public:
 
     void receive(std::string_view bytes) override
     {
+        const Ticks now = device_.clock().now();
+        if (framer_.buffered() > 0
+            && now - last_byte_ > device_.clock().ticks_from_ms(AptDevice::kInterByteTimeout_ms)) {
+            const auto n = framer_.discard_partial();
+            log_.warn("{}: dropped {} byte(s) of an unfinished APT message after {} ms without its rest", peer_, n,
+                      AptDevice::kInterByteTimeout_ms);
+        }
+        if (!bytes.empty())
+            last_byte_ = now;
         std::size_t dropped = 0;
         while (!bytes.empty()) {
             const auto r = framer_.parse(bytes);
@@ -71,6 +180,7 @@ private:
     std::string peer_;
     spdlog::logger& log_;
     FrameFramer framer_;
+    Ticks last_byte_ = 0;   ///< clock tick of the last bytes received
 };
 
 AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
@@ -185,7 +295,15 @@ bool AptDevice::handle_pmd(std::size_t bay, const Frame& f, std::string& reply)
                 // Maximum position value": the travel narrows, nothing else changes.
                 // Data: chan, stage ID, axis ID, part number[16], serial, counts per unit,
                 // MinPos at 30, MaxPos at 34 (p. 75).
-                channels_[bay]->narrow_travel(get_i32(f.data, 30), get_i32(f.data, 34));
+                const auto min_position = get_i32(f.data, 30), max_position = get_i32(f.data, 34);
+                auto& ch = *channels_[bay];
+                if (min_position >= max_position || min_position < ch.min_position() || max_position > ch.max_position()) {
+                    forget_set();
+                    log_->warn("MOT_SET_PMDSTAGEAXISPARAMS travel {}..{} is not within {}..{}: ignored", min_position,
+                               max_position, ch.min_position(), ch.max_position());
+                    return true;
+                }
+                ch.narrow_travel(min_position, max_position);
                 return true;
             }
             if (set == MGMSG_MOT_SET_PMDPROFILEMODEPARAMS) {
@@ -285,7 +403,7 @@ std::string AptDevice::info_packet(std::optional<std::size_t> bay) const
     std::string notes(model_.notes);
     notes.resize(64, '\0');
     d += notes;
-    put_u16(d, static_cast<std::uint16_t>(model_.rack && !bay ? channels_.size() : 1));
+    put_u16(d, static_cast<std::uint16_t>(model_.rack && !bay ? built_in_bays() : 1));
     return d;
 }
 
@@ -335,6 +453,8 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         return handle_motherboard(f, peer, reply);
     if (f.dest >= kBay0 && f.dest < kBay0 + channels_.size())
         return handle_bay(f.dest - kBay0, f, peer, reply);
+    if (f.dest >= kBay0 && f.dest < kBay0 + built_in_bays())
+        return handle_empty_bay(f.dest - kBay0, f, peer, reply);
     log_->warn("{}: {} to 0x{:02x}: no module in that bay, ignored", peer, f.info->name, f.dest);
 }
 
@@ -349,7 +469,9 @@ void AptDevice::handle_motherboard(const Frame& f, std::string_view peer, std::s
         return;
     case MGMSG_RACK_REQ_BAYUSED:
         // p. 23: "Is controller bay #1 (i.e. bay 0) occupied": bays are numbered from 0 here.
-        return answer_header(MGMSG_RACK_GET_BAYUSED, f.param1, f.param1 < channels_.size() ? 0x01 : 0x02);
+        // The BBD203's and BSC203's channel cards are built in: every bay is occupied, with a
+        // stage or not (a card without one reports its motor not connected).
+        return answer_header(MGMSG_RACK_GET_BAYUSED, f.param1, f.param1 < built_in_bays() ? 0x01 : 0x02);
     case MGMSG_RACK_REQ_STATUSBITS: {
         std::string d;
         put_u32(d, 0);   // digital inputs of the USER IO connector: all low
@@ -378,6 +500,52 @@ void AptDevice::handle_motherboard(const Frame& f, std::string_view peer, std::s
             log_->warn("{}: {} to the motherboard: it acts on no such message, ignored", peer, f.info->name);
         return;
     }
+}
+
+std::size_t AptDevice::built_in_bays() const
+{
+    return std::max(channels_.size(), static_cast<std::size_t>(model_.max_bays));
+}
+
+void AptDevice::handle_empty_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply)
+{
+    const std::uint8_t me = address_of(bay);
+    if (handle_system(f, peer))
+        return;
+    if (f.id == MGMSG_HW_REQ_INFO) {
+        reply += encode_with_data(MGMSG_HW_GET_INFO, host_, me, info_packet(bay));
+        return;
+    }
+    const std::uint16_t chan = f.has_data ? get_u16(f.data, 0) : f.param1;
+    if (chan == kChan1) {
+        // The card answers what it knows without a motor: its info, and status with the
+        // "motor connected" bit (0x100, p.77) clear.
+        std::string status;
+        put_u16(status, kChan1);
+        switch (f.id) {
+        case MGMSG_MOT_REQ_STATUSBITS:
+            put_u32(status, 0);
+            reply += encode_with_data(MGMSG_MOT_GET_STATUSBITS, host_, me, status);
+            return;
+        case MGMSG_MOT_REQ_STATUSUPDATE:
+            put_i32(status, 0);
+            put_i32(status, 0);
+            put_u32(status, 0);
+            reply += encode_with_data(MGMSG_MOT_GET_STATUSUPDATE, host_, me, status);
+            return;
+        case MGMSG_MOT_REQ_DCSTATUSUPDATE:
+            if (model_.motor == MotorKind::Stepper)
+                break;
+            put_i32(status, 0);
+            put_u32(status, 0);
+            put_u32(status, 0);
+            reply += encode_with_data(MGMSG_MOT_GET_DCSTATUSUPDATE, host_, me, status);
+            return;
+        default:
+            break;
+        }
+    }
+    log_->warn("{}: {} to bay {} (0x{:02x}): no stage is connected to it, ignored", peer, f.info->name, bay, me);
 }
 
 bool AptDevice::handle_system(const Frame& f, std::string_view peer)
@@ -433,22 +601,25 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         reply += encode_header_only(id, p1, p2, host_, me);
     };
     // Channel addressing: header-only messages carry it in param1, others as the first word.
-    const std::uint16_t chan = f.has_data ? get_u16(f.data, 0) : f.param1;
+    const std::uint16_t sent_chan = f.has_data ? get_u16(f.data, 0) : f.param1;
+    // The manual says the channel must be 1, but T-Cube and K-Cube firmware takes channel 0
+    // as its one channel too (public drivers send 0 and work); rack bays keep the manual's rule.
+    const std::uint16_t chan = !model_.rack && sent_chan == 0 ? kChan1 : sent_chan;
     auto wrong_channel = [&] {
         forget_set();
-        log_->warn("{}: {} for channel {}: a module has only channel 1, ignored", peer, f.info->name, chan);
+        log_->warn("{}: {} for channel {}: a module has only channel 1, ignored", peer, f.info->name, sent_chan);
     };
     if (handle_system(f, peer))
         return;
     switch (f.id) {
     // ---- generic ----
     case MGMSG_MOD_SET_CHANENABLESTATE:
-        if (f.param1 != kChan1 || (f.param2 != 1 && f.param2 != 2))
+        if (chan != kChan1 || (f.param2 != 1 && f.param2 != 2))
             return wrong_channel();
         ch.set_enabled(f.param2 == 1);
         return;
     case MGMSG_MOD_REQ_CHANENABLESTATE:
-        if (f.param1 != kChan1)
+        if (chan != kChan1)
             return wrong_channel();
         return answer_header(MGMSG_MOD_GET_CHANENABLESTATE, kChan1, ch.enabled() ? 1 : 2);
     case MGMSG_HW_REQ_INFO:
@@ -463,6 +634,13 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     }
     if (chan != kChan1)
         return wrong_channel();
+    if (f.has_data) {
+        if (auto bad = out_of_range(f)) {
+            forget_set();
+            log_->warn("{}: {} with {}: ignored", peer, f.info->name, *bad);
+            return;
+        }
+    }
     switch (f.id) {
     // ---- motor parameters: SET stores, REQ answers GET ----
     case MGMSG_MOT_SET_POSCOUNTER:
@@ -477,10 +655,10 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         return answer(MGMSG_MOT_GET_ENCCOUNTER, chan_and_i32(ch.encoder()));
     case MGMSG_MOT_SET_VELPARAMS: {
         const VelocityParams v{get_i32(f.data, 2), get_i32(f.data, 6), get_i32(f.data, 10)};
-        if (v.acceleration <= 0 || v.max <= 0 || v.min < 0) {
+        if (v.min > v.max) {   // p. 30: the minimum (start) velocity of a ramp up to the maximum
             forget_set();
-            log_->warn("{}: MOT_SET_VELPARAMS with acceleration {} and maximum velocity {}: ignored", peer,
-                       v.acceleration, v.max);
+            log_->warn("{}: MOT_SET_VELPARAMS with minimum velocity {} above the maximum {}: ignored", peer, v.min,
+                       v.max);
             return;
         }
         ch.velocity = v;
@@ -497,10 +675,10 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
         j.step_size = get_i32(f.data, 4);
         j.velocity = {get_i32(f.data, 8), get_i32(f.data, 12), get_i32(f.data, 16)};
         j.stop_mode = get_u16(f.data, 20);
-        if ((j.mode != 1 && j.mode != 2) || (j.stop_mode != 1 && j.stop_mode != 2) || j.velocity.max <= 0
-            || j.velocity.acceleration <= 0) {
+        if (j.velocity.min > j.velocity.max) {
             forget_set();
-            log_->warn("{}: MOT_SET_JOGPARAMS out of range: ignored", peer);
+            log_->warn("{}: MOT_SET_JOGPARAMS with jog minimum velocity {} above the maximum {}: ignored", peer,
+                       j.velocity.min, j.velocity.max);
             return;
         }
         ch.jog = j;
@@ -585,14 +763,6 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_SET_DCPIDPARAMS:
         if (model_.motor == MotorKind::Stepper)
             break;
-        // p. 51: proportional, integral, differential and integral limit 0..32767.
-        for (const std::size_t at : {2, 6, 10, 14}) {
-            if (get_i32(f.data, at) < 0 || get_i32(f.data, at) > 32767) {
-                forget_set();
-                log_->warn("{}: MOT_SET_DCPIDPARAMS with a term of {} (0..32767): ignored", peer, get_i32(f.data, at));
-                return;
-            }
-        }
         ch.pid_params.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_DCPIDPARAMS:
@@ -602,6 +772,12 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
             ch.pid_params = std::string("\x8c\x01\x00\x00\x0e\x01\x00\x00\xa0\x0f\x00\x00\xfc\x12\x00\x00\x0f\x00", 18);
         return answer(MGMSG_MOT_GET_DCPIDPARAMS, std::string("\x01\x00", 2) + ch.pid_params);
     case MGMSG_MOT_SET_AVMODES:
+        // p. 52-53: mode bits 1 (ident), 2 (limit switch), 8 (moving); no others.
+        if ((get_u16(f.data, 2) & ~0x000Bu) != 0) {
+            forget_set();
+            log_->warn("{}: MOT_SET_AVMODES mode bits 0x{:04x} (bits of 0x000b only): ignored", peer, get_u16(f.data, 2));
+            return;
+        }
         ch.av_modes.assign(f.data.substr(2));
         return;
     case MGMSG_MOT_REQ_AVMODES:
@@ -644,6 +820,12 @@ void AptDevice::handle_bay(std::size_t bay, const Frame& f, std::string_view pee
     case MGMSG_MOT_MOVE_VELOCITY:
         if (!ch.enabled()) {
             log_->warn("{}: {} while channel 1 is disabled: it does not move", peer, f.info->name);
+            return;
+        }
+        // Drivers re-send MOVE_HOME every 0.5-3 s while they wait for MOVE_HOMED: a unit
+        // that is homing keeps homing rather than starting over.
+        if (f.id == MGMSG_MOT_MOVE_HOME && ch.homing()) {
+            log_->info("{}: MOT_MOVE_HOME while homing: homing goes on", peer);
             return;
         }
         break;

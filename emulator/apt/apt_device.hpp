@@ -29,6 +29,10 @@ public:
     static constexpr std::int64_t kUpdatePeriod_ms = 100;
     /// USB units stop their update messages after 50 without MOT_ACK_DCSTATUSUPDATE.
     static constexpr int kUpdatesWithoutAck = 50;
+    /// A frame whose bytes stop for longer than this (clock time) is dropped when the next bytes
+    /// arrive. The manual gives no serial timing beyond 115200 baud (2.3), at which a whole
+    /// frame of 261 bytes takes 23 ms.
+    static constexpr std::int64_t kInterByteTimeout_ms = 50;
     /// HW_RICHRESPONSE code of rigsim's one modelled fault (Thorlabs publishes no code list).
     static constexpr std::uint16_t kFaultCodeStalled = 0x0001;
 
@@ -48,6 +52,7 @@ public:
     /// The motor channel of a single unit, or of bay `bay` of a rack.
     MotorChannel& channel(std::size_t bay = 0) { return *channels_.at(bay); }
     std::size_t bay_count() const { return channels_.size(); }
+    const Clock& clock() const { return clock_; }
     std::uint32_t serial_number() const { return serial_; }
     int identify_count() const { return identify_count_; }
 
@@ -68,6 +73,10 @@ private:
     bool handle_system(const Frame& f, std::string_view peer);
     void handle_motherboard(const Frame& f, std::string_view peer, std::string& reply);
     void handle_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
+    /// A rack's built-in channel card with no stage configured: info and status only.
+    void handle_empty_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
+    /// Bays whose channel card is built in (all of a BBD203's or BSC203's).
+    std::size_t built_in_bays() const;
     std::string info_packet(std::optional<std::size_t> bay) const;
     std::string status_packet(std::size_t bay) const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
     std::string dc_status_packet(std::size_t bay) const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout

@@ -93,6 +93,19 @@ void FrameFramer::emit(Result& r, std::string_view bytes)
     dropping_ = false;
 }
 
+std::size_t FrameFramer::discard_partial()
+{
+    const std::size_t n = buffered();
+    if (n == 0)
+        return 0;
+    pending_.clear();
+    expected_ = 0;
+    dropped_bytes_ += n;
+    ++garbage_runs_;
+    dropping_ = false;
+    return n;
+}
+
 FrameFramer::Result FrameFramer::parse(std::string_view in)
 {
     if (frame_in_pending_) {   // the last result's frame lived in pending_: it is used now

@@ -61,6 +61,10 @@ public:
     /// True while a plausible header has arrived but its data packet has not.
     bool in_frame() const { return pending_.size() >= kHeaderSize && !frame_in_pending_; }
 
+    /// Drop a partial header or a frame short of its data (the inter-byte timeout ran out);
+    /// returns the bytes dropped, which count as garbage.
+    std::size_t discard_partial();
+
     // Counters for logs, since construction.
     std::uint64_t frames() const { return frames_; }                 ///< frames returned
     std::uint64_t dropped_bytes() const { return dropped_bytes_; }   ///< garbage bytes skipped

@@ -107,6 +107,8 @@ public:
     /// MOVE_STOP: 1 immediate, 2 profiled (decelerate).
     void stop(bool immediate);
     bool moving() const { return motion_ != Motion::Idle; }
+    /// On the way to the home switch or backing off from it.
+    bool homing() const { return motion_ == Motion::HomingToLimit || motion_ == Motion::HomingBackOff; }
 
     /// End-of-move events since the last call.
     std::vector<MotorEvent> take_events();

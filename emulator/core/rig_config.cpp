@@ -37,7 +37,7 @@ constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
 constexpr std::array<std::string_view, 8> kDeviceKeys{
     "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs", "apt"};
 constexpr std::array<std::string_view, 3> kAptKeys{"stage", "bays", "serial_number"};
-constexpr std::array<std::string_view, 2> kMcsKeys{"system_id", "channels"};
+constexpr std::array<std::string_view, 3> kMcsKeys{"system_id", "interface_version", "channels"};
 constexpr std::array<std::string_view, 16> kChannelKeys{
     "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
     "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
@@ -492,6 +492,8 @@ private:
         if (const auto* id = find(v, "system_id"))
             mcs.system_id = static_cast<std::uint32_t>(
                 get_int(*id, pointer_to(pointer, "system_id"), 0, kMaxSystemId));
+        if (const auto* iv = find(v, "interface_version"))
+            mcs.interface_version = load_interface_version(*iv, pointer_to(pointer, "interface_version"));
         const auto channels_pointer = pointer_to(pointer, "channels");
         const auto& channels = require(v, pointer, "channels");
         const std::string expected =
@@ -503,6 +505,31 @@ private:
         for (std::size_t i = 0; i < channels.size(); ++i)
             mcs.channels.push_back(load_channel(channels[i], pointer_to(channels_pointer, i)));
         return mcs;
+    }
+
+    /// "<high>.<low>.<update>", each 0..65535: the GIV answer (MCS manual 3.1).
+    McsInterfaceVersion load_interface_version(const json& v, const std::string& pointer) const
+    {
+        const std::string expected = "expected a version \"<high>.<low>.<update>\" of three numbers 0..65535, got ";
+        if (!v.is_string())
+            fail(pointer, expected + describe(v));
+        const auto text = v.get<std::string>();
+        std::int64_t parts[3] = {0, 0, 0};
+        std::size_t part = 0, digits = 0;
+        for (const char c : text) {
+            if (c == '.' && digits > 0 && part < 2) {
+                ++part;
+                digits = 0;
+            } else if (c >= '0' && c <= '9' && digits < 5) {
+                parts[part] = parts[part] * 10 + (c - '0');
+                ++digits;
+            } else {
+                fail(pointer, expected + describe(v));
+            }
+        }
+        if (part != 2 || digits == 0 || parts[0] > 65535 || parts[1] > 65535 || parts[2] > 65535)
+            fail(pointer, expected + describe(v));
+        return {parts[0], parts[1], parts[2]};
     }
 
     McsChannelConfig load_channel(const json& v, const std::string& pointer) const

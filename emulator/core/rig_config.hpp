@@ -49,8 +49,16 @@ struct McsChannelConfig {
 };
 
 /// An MCS controller (SmarAct, ASCII protocol).
+/// The GIV answer `IV<high>,<low>,<update>`; the default is the version the manual documents.
+struct McsInterfaceVersion {
+    std::int64_t high = 1;
+    std::int64_t low = 2;
+    std::int64_t update = 44;
+};
+
 struct McsConfig {
     std::uint32_t system_id = 1000;                ///< GSI answer
+    McsInterfaceVersion interface_version;         ///< GIV answer ("interface_version": "1.2.44")
     std::vector<McsChannelConfig> channels;        ///< 1..255 channels
 };
 

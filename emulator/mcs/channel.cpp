@@ -650,6 +650,9 @@ std::optional<ErrorCode> Channel::set_position(std::int64_t position)
         return ErrorCode::NoSensorPresent;
     if (sensor_mode_ == SensorMode::Disabled)
         return ErrorCode::SensorDisabled;
+    // 3.2 SP: on a rotary positioner the angle is 0 .. 359,999,999 µ° (revolution 0).
+    if (angular() && (position < 0 || position > 359'999'999))
+        return ErrorCode::InvalidParameter;
     sample(clock_.now());
     // 2.3.3: known physical position -> the offset is rewritten (non-volatile);
     // unknown -> only the current, volatile shift changes.

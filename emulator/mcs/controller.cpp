@@ -13,7 +13,8 @@ constexpr std::int64_t kBaudClock_hz = 4'000'000;
 } // namespace
 
 Controller::Controller(const McsConfig& config, const Clock& clock)
-    : clock_(clock), system_id_(config.system_id)
+    : clock_(clock), system_id_(config.system_id),
+      interface_version_{config.interface_version.high, config.interface_version.low, config.interface_version.update}
 {
     channels_.reserve(config.channels.size());
     for (std::size_t i = 0; i < config.channels.size(); ++i) {

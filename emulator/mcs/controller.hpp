@@ -13,11 +13,11 @@
 
 namespace rigsim::mcs {
 
-/// GIV answer of the emulated firmware (RS232 form, manual 3.1).
+/// A version triple: GIV's interface version (RS232 form, manual 3.1), GFV's firmware versions (3.5).
 struct InterfaceVersion {
-    int high = 1;
-    int low = 5;
-    int update = 0;
+    std::int64_t high = 1;
+    std::int64_t low = 2;
+    std::int64_t update = 44;
 };
 
 enum class CommunicationMode : int { Sync = 0, Async = 1 };
@@ -43,7 +43,10 @@ public:
     void set_effector_report(std::int32_t index, bool report);
 
     std::uint32_t system_id() const { return system_id_; }
-    InterfaceVersion interface_version() const { return {}; }
+    /// GIV: the configured interface version (default 1.2.44, the manual's title page).
+    InterfaceVersion interface_version() const { return interface_version_; }
+    /// GFV: signal controller and generator firmware (the manual documents no number).
+    InterfaceVersion firmware_version() const { return {1, 5, 0}; }
 
     CommunicationMode communication_mode() const { return mode_; }
     void set_communication_mode(CommunicationMode m) { mode_ = m; }
@@ -92,6 +95,7 @@ public:
 private:
     const Clock& clock_;
     std::uint32_t system_id_;
+    InterfaceVersion interface_version_;
     std::vector<Channel> channels_;   ///< one per index; end effector indices hold an unused one
     std::vector<std::unique_ptr<EndEffector>> effectors_;   ///< non-null for end effector indices
     std::vector<bool> effector_report_;

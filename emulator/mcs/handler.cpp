@@ -449,7 +449,7 @@ Reply Handler::on(const GetFirmwareVersion& c)
 {
     if (!controller_.valid_index(c.channel))
         return missing(c.channel);
-    const auto v = controller_.interface_version();
+    const auto v = controller_.firmware_version();
     const std::string version = std::to_string(v.high) + "," + std::to_string(v.low) + "," + std::to_string(v.update);
     if (controller_.effector(c.channel))   // device type 9: end effector module
         return Answer{join("FV", c.channel) + ",9," + version + ",9," + version};

@@ -63,6 +63,34 @@ TEST_CASE("MOVE_HOME drives to the reverse limit, backs off, zeroes and sends MO
     CHECK((h.device().channel().status_bits() & status::kHomed) != 0);
 }
 
+namespace {
+
+/// The clock millisecond at which MOVE_HOMED arrives after MOVE_HOME at 0, with MOVE_HOME
+/// sent again every `resend_ms` (0: never) while waiting, as drivers do.
+std::int64_t homed_at_ms(std::int64_t resend_ms)
+{
+    AptHarness h;
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    for (std::int64_t t_ms = 1; t_ms <= 60'000; ++t_ms) {
+        h.advance_ms(1);
+        if (h.take() == "44 04 01 00 01 50")
+            return t_ms;
+        if (resend_ms > 0 && t_ms % resend_ms == 0)
+            CHECK(h.send("43 04 01 00 50 01") == "");
+    }
+    return -1;
+}
+
+} // namespace
+
+TEST_CASE("MOVE_HOME while homing is ignored: re-sent every 500 ms, MOVE_HOMED comes at the same tick", "[device][apt]")
+{
+    const auto undisturbed_ms = homed_at_ms(0);
+    REQUIRE(undisturbed_ms > 0);
+    CHECK(homed_at_ms(500) == undisturbed_ms);
+    CHECK(homed_at_ms(3000) == undisturbed_ms);
+}
+
 TEST_CASE("MOVE_STOP always answers MOVE_STOPPED, even when still", "[device][apt]")
 {
     AptHarness h;
@@ -159,6 +187,39 @@ TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS
     CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
 }
 
+TEST_CASE("single-channel units take channel 0 as their channel 1; answers carry channel 1", "[device][apt]")
+{
+    for (const char* model : {"TDC001", "KDC101"}) {
+        INFO(model);
+        AptHarness h(apt_cube(model, "MTS50-Z8"));
+        // REQ_POSCOUNTER for channel 0: GET_POSCOUNTER for channel 1.
+        CHECK(h.send("11 04 00 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+        // SET_MOVERELPARAMS for channel 0 (10,000 counts), read back.
+        CHECK(h.send("45 04 06 00 D0 01 00 00 10 27 00 00") == "");
+        CHECK(h.send("46 04 00 00 50 01") == "47 04 06 00 81 50 01 00 10 27 00 00");
+        // MOVE_ABSOLUTE (long form) for channel 0 to 1 mm: the stage moves.
+        CHECK(h.send("53 04 06 00 D0 01 00 00 00 86 00 00") == "");
+        h.advance_ms(3000);
+        CHECK(h.take().substr(0, 17) == "64 04 0E 00 81 50");
+        CHECK(position_of(h.send("11 04 01 00 50 01")) == 34'304);
+        // Header-only: MOD_REQ_CHANENABLESTATE and MOVE_JOG for channel 0.
+        CHECK(h.send("11 02 00 00 50 01") == "12 02 01 01 01 50");
+        CHECK(h.send("6A 04 00 02 50 01") == "");
+        h.advance_ms(3000);
+        CHECK(position_of(h.send("11 04 01 00 50 01")) == 34'304 - 3'430);   // one jog step back
+        CHECK(h.send("11 04 02 00 50 01") == "");                              // channel 2: still ignored
+    }
+    for (const char* model : {"TST001", "KST101"}) {
+        INFO(model);
+        AptHarness h(apt_cube(model, "DRV001"));
+        CHECK(h.send("11 04 00 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    }
+    // A rack bay keeps the manual's rule: channel 1 only.
+    AptHarness rack(apt_rack("BBD203", {"MLS203-X", "MLS203-Y", "MLS203-X"}));
+    CHECK(rack.send("11 04 00 00 21 01") == "");
+    CHECK(rack.send("11 04 01 00 21 01") == "12 04 06 00 81 21 01 00 00 00 00 00");
+}
+
 TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the bay", "[device][apt][rack]")
 {
     AptHarness h(apt_rack("BBD203", {"MLS203-X", "MLS203-Y"}));
@@ -168,10 +229,11 @@ TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the 
     CHECK(hex(info.substr(0, 6)) == "06 00 54 00 81 11");
     CHECK(get_u32(info, 6) == 73'000'001);
     CHECK(get_u16(info, 18) == 45);
-    CHECK(get_u16(info, 88) == 2);
+    CHECK(get_u16(info, 88) == 3);                                 // three channels built in
     CHECK(h.send("60 00 00 00 11 01") == "61 00 00 01 01 11");
     CHECK(h.send("60 00 01 00 11 01") == "61 00 01 01 01 11");
-    CHECK(h.send("60 00 02 00 11 01") == "61 00 02 02 01 11");    // bay 2 empty
+    CHECK(h.send("60 00 02 00 11 01") == "61 00 02 01 01 11");    // bay 2: built in, no stage
+    CHECK(h.send("60 00 03 00 11 01") == "61 00 03 02 01 11");    // no bay 3
     // A bay's card: type 44, one channel, its own address as the source.
     const auto card = bytes(h.send("05 00 00 00 22 01"));
     REQUIRE(card.size() == 90);
@@ -189,6 +251,33 @@ TEST_CASE("a BBD203 rack: motherboard at 0x11, bays at 0x21+, replies carry the 
     CHECK(position_of(h.send("11 04 01 00 21 01")) == 0);        // bay 0 did not move
     CHECK(h.send("11 04 01 00 23 01") == "");                      // absent bay: ignored
     CHECK(h.send("11 04 01 00 50 01") == "");                      // not a single unit
+}
+
+TEST_CASE("a built-in rack channel without a stage: bay occupied, card answers, motor not connected", "[device][apt][rack]")
+{
+    for (const auto& [model, stage] : {std::pair<const char*, const char*>{"BBD203", "MLS203-X"}, {"BSC203", "DRV001"}}) {
+        INFO(model);
+        AptHarness h(apt_rack(model, {stage}));
+        // p.23: bays 1 and 2 are occupied (their cards are built in); there is no bay 3.
+        CHECK(h.send("60 00 01 00 11 01") == "61 00 01 01 01 11");
+        CHECK(h.send("60 00 02 00 11 01") == "61 00 02 01 01 11");
+        CHECK(h.send("60 00 03 00 11 01") == "61 00 03 02 01 11");
+        CHECK(get_u16(bytes(h.send("05 00 00 00 11 01")), 88) == 3);
+        // The card in bay 2 identifies itself (one channel, its own address) ...
+        const auto card = bytes(h.send("05 00 00 00 23 01"));
+        REQUIRE(card.size() == 90);
+        CHECK(hex(card.substr(0, 6)) == "06 00 54 00 81 23");
+        CHECK(get_u16(card, 88) == 1);
+        // ... reports no motor connected (p.77: bit 0x100 clear) ...
+        CHECK(h.send("29 04 01 00 23 01") == "2A 04 06 00 81 23 01 00 00 00 00 00");
+        CHECK(h.send("80 04 01 00 23 01") == "81 04 0E 00 81 23 01 00 00 00 00 00 00 00 00 00 00 00 00 00");
+        // ... and moves nothing.
+        CHECK(h.send("48 04 06 00 A3 01 01 00 40 0D 03 00") == "");
+        h.advance_ms(5000);
+        CHECK(h.take() == "");
+        // The bay with a stage reports its motor connected.
+        CHECK((get_u32(bytes(h.send("29 04 01 00 21 01")), 8) & status::kMotorConnected) != 0);
+    }
 }
 
 TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device restores it", "[device][apt][eeprom]")

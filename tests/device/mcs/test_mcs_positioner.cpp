@@ -13,9 +13,18 @@ TEST_CASE("initialization commands answer with the configured system", "[device]
     McsHarness h;
     CHECK(h.send(":GNC\n") == ":N3\n");
     CHECK(h.send(":GSI\n") == ":ID3118100\n");
-    CHECK(h.send(":GIV\n") == ":IV1,5,0\n");
+    CHECK(h.send(":GIV\n") == ":IV1,2,44\n");   // manual title page: interface version 1.2.44
     CHECK(h.send(":GCT2\n") == ":CT2,0\n");
     CHECK(h.send(":GST1\n") == ":ST1,1\n");
+}
+
+TEST_CASE("GIV answers the configured interface version", "[device][mcs]")
+{
+    auto config = mcs_device_config();
+    config.mcs.interface_version = {2, 0, 7};
+    McsHarness h(config);
+    CHECK(h.send(":GIV\n") == ":IV2,0,7\n");
+    CHECK(h.send(":GFV0\n") == ":FV0,2,1,5,0,3,1,5,0\n");   // firmware versions are not the interface version
 }
 
 TEST_CASE("MPA moves at the configured speed, GS reports targeting then stopped", "[device][mcs]")

@@ -34,6 +34,29 @@ TEST_CASE("FRM finds a single mark, holds it, and makes the position known", "[d
     CHECK(h.send(":GS0\n") == ":S0,0\n");
 }
 
+TEST_CASE("the default rig's positioners start away from their marks: FRM takes a different, non-zero time on each", "[device][mcs][frm]")
+{
+    const auto rig = rigsim::default_rig_config();
+    REQUIRE(rig.devices.at(0).protocol == rigsim::Protocol::Mcs);
+    // Start positions -2.5, +4 and +3 mm, marks at 0, search at 1 mm/s forward (2.3.3): -2.5 mm
+    // -> 2.5 s; +4 mm -> forward to the end stop at 10.5 mm, then back to the mark:
+    // 6.5 + 10.5 mm = 17 s; +3 mm -> 7.5 + 10.5 mm = 18 s.
+    const std::int64_t expected_ms[] = {2'500, 17'000, 18'000};
+    for (int ch = 0; ch < 3; ++ch) {
+        INFO("channel " << ch);
+        McsHarness h(rig.devices[0]);
+        const auto c = std::to_string(ch);
+        CHECK(h.send(":FRM" + c + ",0,0,1\n") == ":E" + c + ",0\n");
+        std::int64_t searched_ms = 0;
+        while (h.send(":GS" + c + "\n") == ":S" + c + ",7\n" && searched_ms < 60'000) {
+            h.advance_ms(1);
+            ++searched_ms;
+        }
+        CHECK(searched_ms == expected_ms[ch]);
+        CHECK(h.send(":GPPK" + c + "\n:GP" + c + "\n") == ":PPK" + c + ",1\n:P" + c + ",0\n");
+    }
+}
+
 TEST_CASE("FRM backward reverses at the end stop and still finds the mark", "[device][mcs][frm]")
 {
     McsHarness h(one_channel("S"));
@@ -174,6 +197,17 @@ TEST_CASE("rotary channels: MAA, MAR and GA with revolutions, SAL/GAL", "[device
     h.advance_ms(9000);
     CHECK(h.send(":GS0\n:GA0\n") == ":S0,0\n:A0,45000000,0\n");   // stopped at the limit
     CHECK(h.send(":GPL0\n:SPL0,0,1\n") == ":E0,143\n:E0,143\n");
+}
+
+TEST_CASE("SP on a rotary channel takes 0..359,999,999 and answers E<ch>,7 outside it", "[device][mcs][rotary]")
+{
+    McsHarness h(one_channel("SR", 0));
+    // 3.2 SP: "In case of a rotary positioner the range of this parameter is limited to
+    // 0 .. 359,999,999"; 4.2: error 7 "A parameter given exceeds the valid range".
+    CHECK(h.send(":SP0,360000000\n:GA0\n") == ":E0,7\n:A0,0,0\n");
+    CHECK(h.send(":SP0,-1\n:GA0\n") == ":E0,7\n:A0,0,0\n");
+    CHECK(h.send(":SP0,359999999\n:GA0\n") == ":E0,0\n:A0,359999999,0\n");
+    CHECK(h.send(":SP0,0\n:GA0\n") == ":E0,0\n:A0,0,0\n");
 }
 
 TEST_CASE("goniometers have end stops; linear channels refuse angle commands", "[device][mcs][rotary]")

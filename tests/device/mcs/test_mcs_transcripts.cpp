@@ -49,8 +49,10 @@ void replay(const std::string& path)
             harness = std::make_unique<McsHarness>(rig.devices.at(0), rig.tick_hz);
             continue;
         }
-        if (!harness)
-            harness = std::make_unique<McsHarness>();
+        if (!harness) {   // the default rig's MCS, as the e2e replay of the same file uses
+            const auto rig = rigsim::default_rig_config();
+            harness = std::make_unique<McsHarness>(rig.devices.at(0), rig.tick_hz);
+        }
         auto& h = *harness;
         if (kind == '>') {
             settle(last_command_line);

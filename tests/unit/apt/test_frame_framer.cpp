@@ -327,3 +327,21 @@ TEST_CASE("apt framer survives 10 MB of garbage", "[unit][apt][framer]")
         CHECK(f.buffered() == 0);
     }
 }
+
+TEST_CASE("discard_partial drops a frame short of its data or a partial header, then frames resume", "[unit][apt][framer]")
+{
+    FrameFramer f;
+    const auto set_vel = rigsim::test::bytes("13 04 0E 00 D0 01 01 00 00 00 00 00 F4 01 00 00 40 42 0F 00");
+    const auto req_pos = rigsim::test::bytes("11 04 01 00 50 01");
+    CHECK(f.discard_partial() == 0);
+    CHECK(frame(f, set_vel.substr(0, 10), 10).empty());
+    CHECK(f.in_frame());
+    CHECK(f.discard_partial() == 10);
+    CHECK(f.buffered() == 0);
+    CHECK(f.dropped_bytes() == 10);
+    CHECK(frame(f, req_pos, 6) == std::vector<std::string>{"0411 d=50 s=01 p=01,00"});
+    CHECK(frame(f, req_pos.substr(0, 3), 3).empty());
+    CHECK(f.discard_partial() == 3);
+    CHECK(frame(f, set_vel, 1) == std::vector<std::string>{"0413 d=50 s=01 [01 00 00 00 00 00 F4 01 00 00 40 42 0F 00]"});
+    CHECK(f.discard_partial() == 0);   // the last frame is not a partial one
+}

@@ -137,7 +137,7 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     CHECK(rig.devices[5].model == "BSC203");
     CHECK(rig.devices[5].apt.bays.size() == 3);
     CHECK(rig.devices[6].model == "BBD203");
-    CHECK(rig.devices[6].apt.bays.size() == 2);
+    CHECK(rig.devices[6].apt.bays.size() == 3);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
@@ -206,7 +206,7 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     {
         rig["devices"][0]["mcs"]["channel"] = json::array();
         CHECK(error_of(rig) ==
-              "rig.json: /devices/0/mcs: unknown key \"channel\" (allowed: system_id, channels)");
+              "rig.json: /devices/0/mcs: unknown key \"channel\" (allowed: system_id, interface_version, channels)");
     }
     SECTION("channel")
     {
@@ -581,5 +581,30 @@ TEST_CASE("rig config: faithful_timing is a boolean", "[unit][config]")
         FAIL("no error");
     } catch (const rigsim::ConfigError& e) {
         CHECK(std::string(e.what()) == "rig.json: /devices/0/faithful_timing: expected true or false, got 1");
+    }
+}
+
+TEST_CASE("rig config: mcs interface_version is \"<high>.<low>.<update>\", default 1.2.44", "[unit][config]")
+{
+    const auto dflt = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json");
+    CHECK(dflt.devices[0].mcs.interface_version.high == 1);
+    CHECK(dflt.devices[0].mcs.interface_version.low == 2);
+    CHECK(dflt.devices[0].mcs.interface_version.update == 44);
+    const auto ok = rigsim::parse_rig_config(
+        R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"interface_version":"1.5.0","channels":[{}]}}]})", "rig.json");
+    CHECK(ok.devices[0].mcs.interface_version.high == 1);
+    CHECK(ok.devices[0].mcs.interface_version.low == 5);
+    CHECK(ok.devices[0].mcs.interface_version.update == 0);
+    for (const char* bad : {R"("1.2")", R"("1.2.3.4")", R"("1..2")", R"("a.b.c")", R"("1.2.65536")", R"("")", R"(" 1.2.3")",
+                            R"("1.2.")", "[1,2,44]", "1"}) {
+        INFO(bad);
+        try {
+            rigsim::parse_rig_config(std::string(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"interface_version":)") + bad
+                                         + R"(,"channels":[{}]}}]})",
+                                     "rig.json");
+            FAIL("no error");
+        } catch (const rigsim::ConfigError& e) {
+            CHECK(std::string(e.what()).rfind("rig.json: /devices/0/mcs/interface_version: expected a version \"<high>.<low>.<update>\" of three numbers 0..65535, got ", 0) == 0);
+        }
     }
 }
