@@ -45,7 +45,8 @@ std::shared_ptr<spdlog::logger> make_logger(const std::string& name, const LogLe
 {
     if (auto existing = spdlog::get(name))
         return existing;
-    static const auto sink = std::make_shared<spdlog::sinks::stderr_sink_st>();
+    // _mt: the state file's writer thread logs too (StateStore).
+    static const auto sink = std::make_shared<spdlog::sinks::stderr_sink_mt>();
     auto logger = std::make_shared<spdlog::logger>(name, sink);
     logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %^%-5l%$ [%n] %v");
     const auto it = levels.per_logger.find(name);
