@@ -89,10 +89,11 @@ StateStore::StateStore(std::string path, std::shared_ptr<spdlog::logger> log, Wr
     } catch (const std::system_error& e) {
         throw state_file_error(path_, e.what());
     }
+    const auto text = read_state_file(path_, file_);
+    // Saves replace the file by a rename in its directory: find out now, not at the first save.
     const auto dir = parent_of(file_);
     if (::access(dir.c_str(), W_OK | X_OK) != 0)
         throw state_file_error(path_, "cannot write in " + dir + ": " + std::strerror(errno));
-    const auto text = read_state_file(path_, file_);
     if (text) {
         try {
             state_ = nlohmann::json::parse(*text);
