@@ -145,7 +145,11 @@ TEST_CASE("state file: a damaged entry is skipped and logged; the damaged file i
     c.send(header(0x0411, 1, 0));
     const auto pos = wait_for(c.fd(), 0x0412);
     REQUIRE(pos);
-    CHECK(get32(*pos, 2) == 0);   // the stage did not move
+    CHECK(get32(*pos, 2) == 0);   // the stage did not move ...
+    c.send(header(0x0429, 1, 0));   // MOT_REQ_STATUSBITS
+    const auto bits = wait_for(c.fd(), 0x042A);
+    REQUIRE(bits);
+    CHECK((get32(*bits, 2) & 0x30) == 0);   // ... and is not moving (0x10 forward, 0x20 reverse)
     c.send(header(0x0414, 1, 0));
     const auto vel = wait_for(c.fd(), 0x0415);
     REQUIRE(vel);
