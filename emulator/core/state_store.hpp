@@ -43,6 +43,7 @@ public:
     const nlohmann::json* get(const std::string& device, const std::string& key) const;
     /// Save; with a file, hand the new state to the writer and return (no I/O here).
     void set(const std::string& device, const std::string& key, nlohmann::json value);
+    /// Everything device `device` saved (an empty object if nothing).
     const nlohmann::json& device_state(const std::string& device) const;
 
     /// An entry that `device` cannot restore: one warn line naming the file, the device, the

@@ -98,7 +98,7 @@ TEST_CASE("state file: a directory or an unreadable file stops start-up (exit 1)
     }
 }
 
-TEST_CASE("state file: a symlinked state file stays a link after a save; stale temporaries are removed",
+TEST_CASE("state file: a symlinked state file stays a link after a save, and stale temporaries are removed",
           "[e2e][state]")
 {
     TempDir state_dir;
@@ -128,7 +128,7 @@ TEST_CASE("state file: a symlinked state file stays a link after a save; stale t
     CHECK(is_symlink(link));
 }
 
-TEST_CASE("state file: a damaged entry is skipped and logged; the damaged file is kept at the next save",
+TEST_CASE("state file: a damaged entry is skipped and logged, and the damaged file is kept at the next save",
           "[e2e][state]")
 {
     TempDir state_dir;

@@ -104,7 +104,7 @@ TEST_CASE("write_file_atomically: a symlinked destination is written through, th
     CHECK(resolve_symlinks(dir.file("link2")) == dir.file("real.json"));
 }
 
-TEST_CASE("write_file_atomically: a dangling link creates its target; failures name the file and leave nothing",
+TEST_CASE("write_file_atomically: a dangling link creates its target, and failures name the file and leave nothing",
           "[unit][atomic_file]")
 {
     TempDir dir;

@@ -165,7 +165,7 @@ TEST_CASE("state store: a burst of saves coalesces and the last one is on disk a
     CHECK(dir.entries() == std::vector<std::string>{"state.json"});
 }
 
-TEST_CASE("state store: the destructor writes the last save; write errors are logged, not thrown",
+TEST_CASE("state store: the destructor writes the last save, and write errors are logged, not thrown",
           "[unit][state_store]")
 {
     TempDir dir;
@@ -228,7 +228,7 @@ TEST_CASE("state store: a state file with damaged entries is kept as <file>.dama
     CHECK(dir.entries() == std::vector<std::string>{"state.json", "state.json.damaged", "state.json.damaged.1"});
 }
 
-TEST_CASE("state store: a symlinked state file stays a link; stale temporaries go at start-up", "[unit][state_store]")
+TEST_CASE("state store: a symlinked state file stays a link, and stale temporaries go at start-up", "[unit][state_store]")
 {
     TempDir dir;
     write(dir.file("real.json"), R"({"apt0": {"k": "v"}})");
