@@ -75,7 +75,9 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
                          (1..100000; default 1000)
   --state-file FILE      keep what devices save in non-volatile memory (APT
                          MOT_SET_EEPROMPARAMS) in FILE across restarts; without it, saves
-                         last until the daemon exits
+                         last until the daemon exits. A FILE that cannot be read stops
+                         start-up; a symlink is written through; a FILE with damaged
+                         entries is kept as FILE.damaged at the next save
   --log-level LEVEL      trace, debug, info, warn, error, critical or off (default info);
   --log-level NAME=LEVEL   the level of one logger: a device name, or rigsimd
                          (may be repeated)

@@ -201,6 +201,32 @@ AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<s
 
 namespace {
 
+/// The parameter SETs MOT_SET_EEPROMPARAMS saves (p. 60: "the message containing the
+/// parameters to be saved"): the motor chapter's settings that rigsim's controllers act on.
+/// Not SET_POSCOUNTER or SET_ENCCOUNTER: the 'live' counts (p. 28), unknown at power-up.
+constexpr std::uint16_t kEepromSets[] = {
+    MGMSG_MOT_SET_VELPARAMS, MGMSG_MOT_SET_JOGPARAMS, MGMSG_MOT_SET_GENMOVEPARAMS, MGMSG_MOT_SET_MOVERELPARAMS,
+    MGMSG_MOT_SET_MOVEABSPARAMS, MGMSG_MOT_SET_HOMEPARAMS, MGMSG_MOT_SET_LIMSWITCHPARAMS, MGMSG_MOT_SET_DCPIDPARAMS,
+    MGMSG_MOT_SET_AVMODES, MGMSG_MOT_SET_POTPARAMS, MGMSG_MOT_SET_BUTTONPARAMS,
+    MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, MGMSG_MOT_SET_PMDTRACKSETTLEPARAMS,
+    MGMSG_MOT_SET_PMDPROFILEMODEPARAMS, MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS,
+    MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, MGMSG_MOT_SET_PMDSTAGEAXISPARAMS};
+
+bool saved_by_eeprom(std::uint16_t id)
+{
+    return std::find(std::begin(kEepromSets), std::end(kEepromSets), id) != std::end(kEepromSets);
+}
+
+/// The manual's name of message `id`, or its number if the table does not know it.
+std::string message_name(std::uint16_t id)
+{
+    if (const auto* info = find_message(id))
+        return std::string(info->name);
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "0x%04x", id);
+    return buf;
+}
+
 /// State file key of a saved SET message: "bay0/0x0413".
 std::string eeprom_key(std::size_t bay, std::uint16_t id)
 {
@@ -209,6 +235,34 @@ std::string eeprom_key(std::size_t bay, std::uint16_t id)
     for (int shift = 12; shift >= 0; shift -= 4)
         k += kHex[(id >> shift) & 0xf];
     return k;
+}
+
+/// The bay and message of a key exactly as eeprom_key writes it, or nullopt.
+std::optional<std::pair<std::size_t, std::uint16_t>> parse_eeprom_key(const std::string& key)
+{
+    constexpr std::size_t kMaxBayDigits = 3;
+    if (key.compare(0, 3, "bay") != 0)
+        return std::nullopt;
+    std::size_t i = 3;
+    std::size_t bay = 0;
+    while (i < key.size() && i - 3 < kMaxBayDigits && key[i] >= '0' && key[i] <= '9')
+        bay = bay * 10 + static_cast<std::size_t>(key[i++] - '0');
+    if (i == 3 || key.compare(i, 3, "/0x") != 0 || key.size() != i + 7)
+        return std::nullopt;
+    unsigned id = 0;
+    for (i += 3; i < key.size(); ++i) {
+        const char c = key[i];
+        if (c >= '0' && c <= '9')
+            id = id * 16 + static_cast<unsigned>(c - '0');
+        else if (c >= 'a' && c <= 'f')
+            id = id * 16 + static_cast<unsigned>(c - 'a' + 10);
+        else
+            return std::nullopt;
+    }
+    const auto parsed = std::make_pair(bay, static_cast<std::uint16_t>(id));
+    if (eeprom_key(parsed.first, parsed.second) != key)   // "bay00/...": one spelling per entry
+        return std::nullopt;
+    return parsed;
 }
 
 std::string to_hex(std::string_view data)
@@ -222,22 +276,43 @@ std::string to_hex(std::string_view data)
     return out;
 }
 
-std::optional<std::string> from_hex(const std::string& hex)
+/// `hex` (an even number of [0-9a-fA-F]) as bytes in `out`, or false and why not in `why`.
+bool from_hex(const std::string& hex, std::string& out, std::string& why)
 {
-    if (hex.size() % 2 != 0)
-        return std::nullopt;
-    std::string out;
-    for (std::size_t i = 0; i < hex.size(); i += 2) {
-        const auto v = std::stoi(hex.substr(i, 2), nullptr, 16);
-        out.push_back(static_cast<char>(v));
+    auto digit = [](char c) {
+        if (c >= '0' && c <= '9')
+            return c - '0';
+        if (c >= 'a' && c <= 'f')
+            return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F')
+            return c - 'A' + 10;
+        return -1;
+    };
+    for (std::size_t i = 0; i < hex.size(); ++i) {
+        if (digit(hex[i]) < 0) {
+            why = "data is not hex (character " + std::to_string(i + 1) + " is '" + printable(hex.substr(i, 1)) + "')";
+            return false;
+        }
     }
-    return out;
+    if (hex.size() % 2 != 0) {
+        why = "data has an odd number of hex digits (" + std::to_string(hex.size()) + ")";
+        return false;
+    }
+    out.clear();
+    for (std::size_t i = 0; i < hex.size(); i += 2)
+        out.push_back(static_cast<char>(digit(hex[i]) * 16 + digit(hex[i + 1])));
+    return true;
 }
 
 } // namespace
 
 void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer)
 {
+    if (!saved_by_eeprom(id)) {
+        log_->warn("{}: MOT_SET_EEPROMPARAMS for 0x{:04x} ({}): not a parameter SET it saves, nothing saved", peer, id,
+                   message_name(id));
+        return;
+    }
     const auto it = last_set_.find({bay, id});
     if (it == last_set_.end()) {
         log_->warn("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: no such parameters were set, nothing saved", peer, id);
@@ -247,12 +322,12 @@ void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_vi
         log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: kept until the daemon exits (no --state-file)", peer, id);
         return;
     }
-    try {
-        store_->set(config_.name, eeprom_key(bay, id), to_hex(it->second));
-        log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: saved", peer, id);
-    } catch (const std::exception& e) {
-        log_->error("{}: MOT_SET_EEPROMPARAMS: cannot save: {}", peer, e.what());
-    }
+    // Saved as the parameters of the bay's channel, whatever channel word the SET carried.
+    std::string data;
+    put_u16(data, kChan1);
+    data += it->second.substr(2);
+    store_->set(config_.name, eeprom_key(bay, id), to_hex(data));
+    log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: saved", peer, id);
 }
 
 std::string AptDevice::stage_axis_block(std::size_t bay) const
@@ -343,26 +418,53 @@ void AptDevice::restore_from_eeprom()
 {
     if (!store_)
         return;
-    for (const auto& [key, value] : store_->device_state(config_.name).items()) {
-        std::size_t bay = 0;
-        unsigned id = 0;
-        if (std::sscanf(key.c_str(), "bay%zu/0x%x", &bay, &id) != 2 || bay >= channels_.size() || !value.is_string())
-            continue;
-        const auto data = from_hex(value.get<std::string>());
-        const auto* info = find_message(static_cast<std::uint16_t>(id));
-        if (!data || !info || data->size() < 2)
-            continue;
+    // What this device's non-volatile memory can hold: a parameter SET that MOT_SET_EEPROMPARAMS
+    // saves, of one of its bays, as long as the table says, for the bay's channel, and accepted
+    // by the bay as if a client had sent it. Returns why an entry is none of that.
+    auto restore = [&](const std::string& key, const nlohmann::json& value) -> std::optional<std::string> {
+        const auto parsed = parse_eeprom_key(key);
+        if (!parsed)
+            return "the key is not bay<N>/0x<4 lower-case hex digits>";
+        const auto [bay, id] = *parsed;
+        if (bay >= channels_.size())
+            return "no bay " + std::to_string(bay) + " (the " + config_.model
+                   + (channels_.size() == 1 ? " has bay 0 only)" : " has bays 0 to " + std::to_string(channels_.size() - 1) + ")");
+        if (!saved_by_eeprom(id))
+            return message_name(id) + " is not a parameter SET that MOT_SET_EEPROMPARAMS saves";
+        if (!value.is_string())
+            return std::string("expected a string of hex digits, got ") + value.type_name();
+        std::string data;
+        std::string why;
+        if (!from_hex(value.get<std::string>(), data, why))
+            return why;
+        const auto* info = find_message(id);
+        if (data.size() != static_cast<std::size_t>(info->data_length))
+            return std::to_string(data.size()) + " data bytes, " + std::string(info->name) + " has "
+                   + std::to_string(info->data_length);
+        if (get_u16(data, 0) != kChan1)
+            return "channel " + std::to_string(get_u16(data, 0)) + " in the data; bay " + std::to_string(bay)
+                   + " is channel 1";
         Frame f;
-        f.id = static_cast<std::uint16_t>(id);
+        f.id = id;
         f.dest = address_of(bay);
         f.source = kHost;
         f.has_data = true;
-        f.data = *data;
+        f.data = data;
         f.info = info;
+        last_set_.erase({bay, id});
         std::string ignored;
         handle_bay(bay, f, "state file", ignored);
-        log_->info("restored 0x{:04x} of bay {} from the state file", id, bay);
-    }
+        const auto accepted = last_set_.find({bay, id});
+        if (accepted == last_set_.end() || accepted->second != data)
+            return "the bay ignores this " + std::string(info->name) + " (its warning says why)";
+        log_->info("restored {} of bay {} from the state file", info->name, bay);
+        return std::nullopt;
+    };
+    // A copy: reject() drops the entry from the store.
+    const nlohmann::json entries = store_->device_state(config_.name);
+    for (const auto& [key, value] : entries.items())
+        if (const auto why = restore(key, value))
+            store_->reject(config_.name, key, *why);
 }
 
 std::uint8_t AptDevice::address_of(std::size_t bay) const

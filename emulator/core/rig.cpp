@@ -91,7 +91,9 @@ struct Rig::Entry {
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
     : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale),
-      store_(options.state_file.empty() ? std::make_unique<StateStore>() : std::make_unique<StateStore>(options.state_file))
+      store_(options.state_file.empty()
+                 ? std::make_unique<StateStore>()
+                 : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels)))
 {
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
@@ -151,34 +153,6 @@ std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints)
         devices.push_back({{"name", e.name}, {"protocol", std::string(to_string(e.protocol))},
                            {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}});
     return nlohmann::json{{"devices", devices}}.dump(2) + "\n";
-}
-
-void write_file_atomically(const std::string& path, const std::string& text)
-{
-    const auto tmp = path + ".tmp" + std::to_string(::getpid());
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0)
-        throw std::system_error(errno, std::generic_category(), "cannot write " + tmp);
-    std::size_t done = 0;
-    while (done < text.size()) {
-        const auto n = ::write(fd, text.data() + done, text.size() - done);
-        if (n < 0) {
-            if (errno == EINTR)
-                continue;
-            const int e = errno;
-            ::close(fd);
-            ::unlink(tmp.c_str());
-            throw std::system_error(e, std::generic_category(), "cannot write " + tmp);
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    ::fsync(fd);
-    ::close(fd);
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int e = errno;
-        ::unlink(tmp.c_str());
-        throw std::system_error(e, std::generic_category(), "cannot rename " + tmp + " to " + path);
-    }
 }
 
 } // namespace rigsim

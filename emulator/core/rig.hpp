@@ -1,6 +1,7 @@
 #pragma once
 // A running rig: its clock, its devices and their endpoints, on one io_context.
 
+#include "emulator/core/atomic_file.hpp"
 #include "emulator/core/clock.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/logging.hpp"
@@ -70,7 +71,5 @@ std::string tcp_address_text(const boost::asio::ip::address& address, std::uint1
 
 /// The endpoints document: {"devices":[{"name","protocol","model","tcp","pty"}]}.
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints);
-/// Write `text` to `path` atomically (temporary file + rename); throws std::system_error.
-void write_file_atomically(const std::string& path, const std::string& text);
 
 } // namespace rigsim
