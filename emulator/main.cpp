@@ -1,6 +1,7 @@
 // rigsimd: emulated laboratory motion controllers on pseudo-terminals and TCP sockets.
 // Flags, config, the rig, the loop; exceptions stop here.
 
+#include "emulator/core/atomic_file.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig.hpp"
 #include "emulator/core/rig_config.hpp"
@@ -32,10 +33,11 @@ constexpr int kExitUsage = 2;   // bad flag or bad config
 /// that no pty symlink or endpoints file is left behind. SIGHUP has nothing to reload.
 constexpr int kShutdownSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM};
 
-/// A file the daemon wrote (--endpoints-json): removed at exit if it is still the one written.
+/// A file the daemon wrote (--endpoints-json): removed at exit if it is still the one written
+/// (through a symlink: the file the link points to, which is what was written).
 class OwnedFile {
 public:
-    explicit OwnedFile(std::string path) : path_(std::move(path))
+    explicit OwnedFile(const std::string& path) : path_(rigsim::resolve_symlinks(path))
     {
         struct stat st {};
         if (::lstat(path_.c_str(), &st) == 0) {
@@ -287,6 +289,8 @@ int main(int argc, char** argv)
                       << e.tcp << " pty " << e.pty << "\n";
         std::cout.flush();
         if (opts.endpoints_json) {
+            for (const auto& stale : rigsim::remove_stale_temporaries(*opts.endpoints_json))
+                log->info("removed {}, left by a daemon that was killed while writing it", stale);
             rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints()));
             endpoints_file.emplace(*opts.endpoints_json);
         }

@@ -126,7 +126,7 @@ TEST_CASE("status updates: none before START_UPDATEMSGS, every 100 ms after, 50 
     CHECK(h.take() == "");
 }
 
-TEST_CASE("parameters round-trip; out-of-range ones are ignored", "[device][apt]")
+TEST_CASE("parameters round-trip, out-of-range ones are ignored", "[device][apt]")
 {
     AptHarness h;
     CHECK(h.send("13 04 0E 00 D0 01 01 00 00 00 00 00 10 00 00 00 00 10 00 00") == "");
@@ -159,7 +159,7 @@ TEST_CASE("garbage and unknown messages are skipped without an answer", "[device
     CHECK(h.send("64 04 0E 00 50 01") == "");                      // a GET sent by a host: ignored
 }
 
-TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS) overshoots reverse moves", "[device][apt]")
+TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves, backlash (GENMOVEPARAMS) overshoots reverse moves", "[device][apt]")
 {
     AptHarness h;
     // Soft limits -0.5 mm .. +0.5 mm (17152 counts), profiled stop at limit (mode 3).
@@ -187,7 +187,7 @@ TEST_CASE("software limits (LIMSWITCHPARAMS) stop moves; backlash (GENMOVEPARAMS
     CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
 }
 
-TEST_CASE("single-channel units take channel 0 as their channel 1; answers carry channel 1", "[device][apt]")
+TEST_CASE("single-channel units take channel 0 as their channel 1, answers carry channel 1", "[device][apt]")
 {
     for (const char* model : {"TDC001", "KDC101"}) {
         INFO(model);
@@ -280,7 +280,7 @@ TEST_CASE("a built-in rack channel without a stage: bay occupied, card answers, 
     }
 }
 
-TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message; a new device restores it", "[device][apt][eeprom]")
+TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message, a new device restores it", "[device][apt][eeprom]")
 {
     char dir_template[] = "/tmp/rigsim-eeprom-XXXXXX";
     REQUIRE(::mkdtemp(dir_template));

@@ -54,7 +54,7 @@ struct RangeCase {
 
 } // namespace
 
-TEST_CASE("a frame cut short is dropped after the 50 ms inter-byte timeout; the next request is answered", "[device][apt][framing]")
+TEST_CASE("a frame cut short is dropped after the 50 ms inter-byte timeout, the next request is answered", "[device][apt][framing]")
 {
     AptHarness h;
     const auto vel = h.send("14 04 01 00 50 01");

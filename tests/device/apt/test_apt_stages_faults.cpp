@@ -73,7 +73,7 @@ TEST_CASE("a move past an ignored limit switch stalls the DC motor: KDC101 sends
     CHECK((status_of(done[0]) & status::kCurrentLimit) == 0);
 }
 
-TEST_CASE("TDC001 reports the stall with the manual's HW_RESPONSE; SUSPEND_ENDOFMOVEMSGS silences it", "[device][apt][fault]")
+TEST_CASE("TDC001 reports the stall with the manual's HW_RESPONSE, SUSPEND_ENDOFMOVEMSGS silences it", "[device][apt][fault]")
 {
     AptHarness h;   // TDC001 + MTS50-Z8: the end is +857,600 counts away
     CHECK(h.send(kIgnoreForwardSwitch) == "");

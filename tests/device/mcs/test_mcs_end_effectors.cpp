@@ -29,7 +29,7 @@ TEST_CASE("an end effector channel: type 1, 145 until SEET, SEET/GEET", "[device
     CHECK(h.send(":GP1\n:MPA1,0,0\n:SEET0,1,100,0\n:GFV1\n") == ":E1,7\n:E1,7\n:E0,7\n:FV1,9,1,5,0,9,1,5,0\n");
 }
 
-TEST_CASE("MGOA ramps the gripper voltage with status 8; MGOR is relative", "[device][mcs][end-effector]")
+TEST_CASE("MGOA ramps the gripper voltage with status 8, MGOR is relative", "[device][mcs][end-effector]")
 {
     McsHarness h(with_gripper());
     CHECK(h.send(":SEET1,1,10000,0\n:MGOA1,5000,50\n") == ":E-1,0\n:E1,0\n");
@@ -78,7 +78,7 @@ TEST_CASE("end effectors report completion (SRC) in async mode", "[device][mcs][
     CHECK(h.send(":S\n") == "");
 }
 
-TEST_CASE("K stops positioners only; R opens the gripper and keeps its type", "[device][mcs][end-effector]")
+TEST_CASE("K stops positioners only, R opens the gripper and keeps its type", "[device][mcs][end-effector]")
 {
     McsHarness h(with_gripper());
     CHECK(h.send(":SEET1,1,10000,0\n:K200\n:MGOA1,5000,10\n") == ":E-1,0\n:E-1,0\n:E1,0\n");

@@ -64,7 +64,7 @@ TEST_CASE("SESM/GESM set every channel's mode and unlock", "[device][mcs][estop]
     CHECK(h.send(":SESM3\n") == ":E-1,7\n");
 }
 
-TEST_CASE("command queue: ATC, TC, SRT, 151/152/153, CTCQ; sync mode gives 8", "[device][mcs][events]")
+TEST_CASE("command queue: ATC, TC, SRT, 151/152/153, CTCQ, sync mode gives 8", "[device][mcs][events]")
 {
     McsHarness h;
     CHECK(h.send(":ATC0,1792\n:TC0\n:CTCQ0\n:SRT0,1\n") == ":E-1,8\n:E-1,8\n:E-1,8\n:E-1,8\n");

@@ -210,7 +210,7 @@ TEST_CASE("SP on a rotary channel takes 0..359,999,999 and answers E<ch>,7 outsi
     CHECK(h.send(":SP0,0\n:GA0\n") == ":E0,0\n:A0,0,0\n");
 }
 
-TEST_CASE("goniometers have end stops; linear channels refuse angle commands", "[device][mcs][rotary]")
+TEST_CASE("goniometers have end stops, linear channels refuse angle commands", "[device][mcs][rotary]")
 {
     auto config = mcs_device_config(2);
     config.mcs.channels[0].sensor_type = "G605S";
