@@ -73,17 +73,20 @@ struct Rig::Entry {
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
     : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale),
-      store_(options.state_file.empty() ? std::make_unique<StateStore>() : std::make_unique<StateStore>(options.state_file))
+      store_(options.state_file.empty() ? std::make_unique<StateStore>() : std::make_unique<StateStore>(options.state_file)),
+      watcher_(io)
 {
+    tcp_budget_.max_total = options.max_connections;
+    tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
         e->device = make_device(dc, clock_, log, *store_);
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
-        e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log);
+        e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log, tcp_budget_);
         const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
-        e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log);
+        e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log, watcher_);
 
         const auto ep = e->tcp->local_endpoint();
         endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
@@ -102,6 +105,7 @@ Rig::~Rig()
 
 void Rig::start()
 {
+    watcher_.start();
     for (auto& e : entries_) {
         e->tcp->start();
         e->pty->start();
@@ -115,6 +119,7 @@ void Rig::stop()
         e->tcp->stop();
         e->pty->stop();
     }
+    watcher_.stop();
 }
 
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints)

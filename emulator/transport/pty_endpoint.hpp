@@ -8,12 +8,20 @@
 // serial line would. The serial line is one connection: one Session for all openers.
 //
 // Like a real serial port, what the device sends while no application has the port open
-// is lost: inotify reports opens and closes of the slave device, and when the last client
-// closes it, the answers it never read are flushed, so the next opener never reads stale
-// answers. Open events are drained before any input is handled, so a client that opens the
-// port and writes at once always gets its answer.
+// is lost: inotify reports opens and closes of the slave device (one inotify instance per
+// daemon, InotifyWatcher), and when the last client closes it, the answers it never read are
+// flushed, so the next opener never reads stale answers. Open events are drained before any
+// input is handled, so a client that opens the port and writes at once always gets its answer.
+// A process that opens the closed port starts from an empty framer: a fresh Session, so its
+// first bytes are never glued to a frame or line that the previous process left unfinished.
+//
+// A real serial line never echoes. A pty slave with ECHO set (a naive client that skips
+// cfmakeraw, `cat`) would send every answer back to the device as input, and the device
+// would answer its own answers: before each write the daemon clears ECHO and ECHONL on the
+// slave (it owns the line, as a UART does), leaving every other setting to the client.
 
 #include "emulator/core/device.hpp"
+#include "emulator/transport/inotify_watcher.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
@@ -32,9 +40,10 @@ public:
     /// Output that no client reads is dropped beyond this, as on an unread serial line.
     static constexpr std::size_t kMaxQueuedBytes = 1 << 20;
 
-    /// Creates the pty and the symlink at once (throws std::system_error if it cannot).
+    /// Creates the pty, its watch on `watcher` and the symlink at once (throws
+    /// std::system_error if it cannot). `watcher` must outlive the endpoint.
     PtyEndpoint(boost::asio::io_context& io, Device& device, std::string symlink_path,
-                std::shared_ptr<spdlog::logger> log);
+                std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher);
     ~PtyEndpoint();
     PtyEndpoint(const PtyEndpoint&) = delete;
     PtyEndpoint& operator=(const PtyEndpoint&) = delete;
@@ -42,16 +51,18 @@ public:
     const std::string& symlink_path() const { return symlink_path_; }
     const std::string& device_path() const { return slave_name_; }
     void start();
-    /// Stop I/O and remove the symlink.
+    /// Stop I/O, release the session and remove the symlink.
     void stop();
 
 private:
     void read();
     void send(std::string_view bytes);
     void write();
-    void watch_openers();
-    /// Apply pending open/close events of the slave device to openers_.
-    void drain_open_events();
+    /// One open or close of the slave device, from the watcher.
+    void on_open_event(std::uint32_t mask);
+    void open_session();
+    /// A UART does not echo: clears ECHO and ECHONL if the client set them.
+    void keep_echo_off();
 
     /// Faithful timing: a frame leaves once the line has had time to transmit it at the
     /// device's baud rate (10 bits per byte: 8N1).
@@ -59,10 +70,12 @@ private:
 
     Device& device_;
     boost::asio::posix::stream_descriptor master_;
-    boost::asio::posix::stream_descriptor inotify_;
+    InotifyWatcher& watcher_;
+    int watch_ = -1;
     boost::asio::steady_timer pacing_timer_;
     std::chrono::steady_clock::time_point line_free_{};
     int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
+    bool reopened_ = false;   ///< the port went from closed to open: a fresh session is due
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;
