@@ -1,5 +1,6 @@
 #include "emulator/transport/pty_endpoint.hpp"
 
+#include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
 #include <algorithm>
@@ -126,10 +127,8 @@ void PtyEndpoint::on_open_event(std::uint32_t mask)
     if (stopped_)
         return;
     if (mask & IN_OPEN) {
-        if (openers_++ == 0) {
-            reopened_ = true;
+        if (openers_++ == 0)
             log_->info("pty {}: opened", symlink_path_);
-        }
         return;
     }
     if (!(mask & IN_CLOSE))
@@ -141,11 +140,28 @@ void PtyEndpoint::on_open_event(std::uint32_t mask)
     // host port is closed. The front frame is being written; the rest never will be.
     ::tcflush(slave_fd_, TCIFLUSH);
     while (queue_.size() > 1) {
-        queued_bytes_ -= queue_.back().size();
+        queued_bytes_ -= queue_.back().size() + kQueuedFrameOverhead;
         queue_.pop_back();
     }
     dropping_ = false;
     log_->info("pty {}: closed", symlink_path_);
+    // What the process wrote before it closed the port is all in the master now (a read
+    // of a pty waits for the line discipline's pending input): take it here, before a next
+    // opener's bytes can follow it, and hand it to the process's session from the loop
+    // (this may run inside a call into the device).
+    char buf[4096];
+    while (leftover_.size() < kMaxQueuedBytes) {
+        const auto n = ::read(master_.native_handle(), buf, sizeof buf);
+        if (n <= 0)
+            break;
+        leftover_.append(buf, static_cast<std::size_t>(n));
+    }
+    port_closed_ = true;
+    std::weak_ptr<bool> alive = alive_;
+    asio::post(master_.get_executor(), [this, alive] {
+        if (alive.lock() && !stopped_)
+            take_input({});
+    });
 }
 
 void PtyEndpoint::stop()
@@ -160,6 +176,7 @@ void PtyEndpoint::stop()
     pacing_timer_.cancel();
     // The io_context may outlive the device: nothing may reach it after this.
     session_.reset();
+    leftover_.clear();
     queue_.clear();
     queued_bytes_ = 0;
     // Remove the symlink only if it is still ours.
@@ -167,6 +184,30 @@ void PtyEndpoint::stop()
     const auto n = ::readlink(symlink_path_.c_str(), target, sizeof target - 1);
     if (n > 0 && std::string(target, static_cast<std::size_t>(n)) == slave_name_)
         ::unlink(symlink_path_.c_str());
+}
+
+void PtyEndpoint::take_input(std::string_view bytes)
+{
+    finish_process();   // a close seen before these bytes were read ends the last process
+    watcher_.drain();   // an open always precedes the opener's first bytes
+    if (!bytes.empty())
+        session_->receive(bytes);
+    finish_process();   // a close seen now follows these bytes
+}
+
+void PtyEndpoint::finish_process()
+{
+    while (!leftover_.empty()) {
+        const auto bytes = std::move(leftover_);
+        leftover_.clear();
+        session_->receive(bytes);
+    }
+    if (!port_closed_)
+        return;
+    // Whatever the process left unfinished in the framer is not the start of the next
+    // opener's frame: the next one starts from an empty framer.
+    port_closed_ = false;
+    open_session();
 }
 
 void PtyEndpoint::read()
@@ -183,14 +224,7 @@ void PtyEndpoint::read()
                 log_->error("pty {}: read failed: {}", symlink_path_, ec.message());
                 return;
             }
-            watcher_.drain();   // an open always precedes the opener's first bytes
-            if (reopened_) {
-                // A new process opened the closed port: whatever the last one left
-                // unfinished in the framer is not the start of its frame.
-                reopened_ = false;
-                open_session();
-            }
-            session_->receive(std::string_view(buffer_.data(), n));
+            take_input(std::string_view(buffer_.data(), n));
             read();
         });
 }
@@ -205,14 +239,15 @@ void PtyEndpoint::send(std::string_view bytes)
     // close that is not yet seen stay in the pty until the close is seen and flushes them.)
     if (openers_ == 0)
         return;
-    if (queued_bytes_ + bytes.size() > kMaxQueuedBytes) {
+    const auto cost = bytes.size() + kQueuedFrameOverhead;
+    if (queued_bytes_ + cost > kMaxQueuedBytes) {
         if (!dropping_)
             log_->warn("pty {}: nobody reads the port, dropping output", symlink_path_);
         dropping_ = true;
         return;
     }
     dropping_ = false;
-    queued_bytes_ += bytes.size();
+    queued_bytes_ += cost;
     queue_.emplace_back(bytes);
     if (queue_.size() == 1)
         write();
@@ -268,7 +303,7 @@ void PtyEndpoint::paced_write()
                 queued_bytes_ = 0;
                 return;
             }
-            queued_bytes_ -= queue_.front().size();
+            queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
             queue_.pop_front();
             // The frame that was being written when the last client closed the port went
             // into the pty after the close flushed it: flush it too, for the next opener.

@@ -39,6 +39,9 @@ class PtyEndpoint {
 public:
     /// Output that no client reads is dropped beyond this, as on an unread serial line.
     static constexpr std::size_t kMaxQueuedBytes = 1 << 20;
+    /// What a queued frame costs beyond its bytes, counted against kMaxQueuedBytes so that
+    /// it bounds memory rather than payload.
+    static constexpr std::size_t kQueuedFrameOverhead = 64;
 
     /// Creates the pty, its watch on `watcher` and the symlink at once (throws
     /// std::system_error if it cannot). `watcher` must outlive the endpoint.
@@ -56,6 +59,10 @@ public:
 
 private:
     void read();
+    /// Hands input to the session, in order with the opens and closes of the port.
+    void take_input(std::string_view bytes);
+    /// Feeds leftover_ and, if the port was closed, replaces the session.
+    void finish_process();
     void send(std::string_view bytes);
     void write();
     /// One open or close of the slave device, from the watcher.
@@ -75,7 +82,8 @@ private:
     boost::asio::steady_timer pacing_timer_;
     std::chrono::steady_clock::time_point line_free_{};
     int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
-    bool reopened_ = false;   ///< the port went from closed to open: a fresh session is due
+    bool port_closed_ = false;   ///< the last client closed the port: a fresh session is due
+    std::string leftover_;       ///< input of the last client, read when it closed the port
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;

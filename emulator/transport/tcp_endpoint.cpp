@@ -102,7 +102,7 @@ private:
     {
         if (closed_)
             return;
-        queued_bytes_ += bytes.size();
+        queued_bytes_ += bytes.size() + TcpEndpoint::kQueuedFrameOverhead;
         if (queued_bytes_ > TcpEndpoint::kMaxQueuedBytes) {
             log_.warn("{}: client reads nothing ({} bytes queued): closing the connection", peer_, queued_bytes_);
             ++device_calls_;
@@ -135,7 +135,7 @@ private:
             end();
             return;
         }
-        queued_bytes_ -= queue_.front().size();
+        queued_bytes_ -= queue_.front().size() + TcpEndpoint::kQueuedFrameOverhead;
         queue_.pop_front();
         if (!queue_.empty())
             write();

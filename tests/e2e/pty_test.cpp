@@ -140,8 +140,8 @@ TEST_CASE("pty: a client that floods the port and exits without reading leaves t
     Daemon daemon;
     const Endpoint ep = daemon.endpoint();
     {
-        // More answers (4 bytes each) than the 1 MiB the daemon keeps for an unread port
-        // plus what the pty itself buffers.
+        // More answers than the 1 MiB the daemon keeps for an unread port plus what the pty
+        // itself buffers.
         PtyClient flood(ep.pty);
         std::string commands;
         for (int i = 0; i < 350000; ++i)
@@ -154,10 +154,23 @@ TEST_CASE("pty: a client that floods the port and exits without reading leaves t
         REQUIRE(daemon.log().find("dropping output") != std::string::npos);
     }
     REQUIRE(wait_for_close(daemon, ep.pty, 1));
-    // The queue was cut to the frame being written: its allowance must be whole again, so
-    // longer answers than the last one of the flood fit.
+    // The queue was cut to the frame being written: the allowance must be whole again. A
+    // burst of requests sent before reading any answer needs most of it (12000 answers of
+    // 11 bytes: more than the pty buffers, less than 1 MiB with the per-frame overhead).
     PtyClient p(ep.pty);
     CHECK(p.request(":GSI\n") == ":ID3118100\n");
+    std::string burst;
+    for (int i = 0; i < 12000; ++i)
+        burst += ":GSI\n";
+    p.send(burst);
+    int answers = 0;
+    while (auto line = p.read_line()) {
+        if (*line != ":ID3118100\n")
+            break;
+        if (++answers == 12000)
+            break;
+    }
+    CHECK(answers == 12000);
     CHECK(p.request(":GP0\n") == ":P0,0\n");
     CHECK(p.request(":GNC\n") == ":N3\n");
 }
