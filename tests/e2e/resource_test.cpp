@@ -171,3 +171,17 @@ TEST_CASE("resources: a rig of 200 ptys starts, on one inotify instance", "[e2e]
                          5000ms));
     }
 }
+
+TEST_CASE("resources: the connection limits are flags, listed by --help and checked",
+          "[e2e][cli][resources]")
+{
+    const auto help = run_rigsimd({"--help"});
+    CHECK(help.exit_code == 0);
+    CHECK(help.out.find("--max-connections N") != std::string::npos);
+    CHECK(help.out.find("--max-connections-per-device N") != std::string::npos);
+    for (const char* flag : {"--max-connections", "--max-connections-per-device"}) {
+        const auto r = run_rigsimd({flag, "0"});
+        CHECK(r.exit_code == 2);
+        CHECK(r.err == "rigsimd: " + std::string(flag) + ": expected an integer 1..65536, got \"0\"\n");
+    }
+}
