@@ -4,16 +4,19 @@
 // openpty + cfmakeraw + a stable symlink (simavr's uart_pty). The daemon keeps its own
 // descriptor of the slave side open for its whole life, so the master never sees a hang-up:
 // a client may open, close and reopen the port and change its termios settings (baud rate,
-// flow control) while the device and its session keep their state, as a controller on a real
-// serial line would. The serial line is one connection: one Session for all openers.
+// flow control) while the device keeps its state, as a controller on a real serial line
+// would. The serial line is one connection: one Session for all processes that have it open
+// at the same time.
 //
 // Like a real serial port, what the device sends while no application has the port open
 // is lost: inotify reports opens and closes of the slave device (one inotify instance per
 // daemon, InotifyWatcher), and when the last client closes it, the answers it never read are
 // flushed, so the next opener never reads stale answers. Open events are drained before any
 // input is handled, so a client that opens the port and writes at once always gets its answer.
-// A process that opens the closed port starts from an empty framer: a fresh Session, so its
-// first bytes are never glued to a frame or line that the previous process left unfinished.
+// When the last client closes the port, the bytes it wrote are still handed to its Session
+// (read from the master at once, before a next opener can add its own), then the Session is
+// replaced: the next opener starts from an empty framer, its first bytes never glued to a
+// frame or line that the previous process left unfinished.
 //
 // A real serial line never echoes. A pty slave with ECHO set (a naive client that skips
 // cfmakeraw, `cat`) would send every answer back to the device as input, and the device
