@@ -264,24 +264,24 @@ void TcpEndpoint::admit(tcp::socket socket)
 void TcpEndpoint::refuse(tcp::socket socket, const char* limit_name, std::size_t limit, std::size_t open)
 {
     boost::system::error_code ec;
-    const auto remote = socket.remote_endpoint(ec);
-    socket.close(ec);
     // One line per second at most, however many clients come: a flood of refused
-    // connections must not flood the log.
+    // connections must not flood the log. Logged before the close that the client sees.
     if (refusal_timer_armed_) {
         ++refusals_unreported_;
-        return;
+    } else {
+        const auto remote = socket.remote_endpoint(ec);
+        log_->warn("tcp {}:{}: connection refused: {} open, the limit ({} {})", remote.address().to_string(),
+                   remote.port(), open, limit_name, limit);
+        refusal_timer_armed_ = true;
+        refusal_timer_.expires_after(std::chrono::seconds(1));
+        std::weak_ptr<bool> alive = alive_;
+        refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
+            if (!alive.lock() || wait_ec)
+                return;
+            report_refusals();
+        });
     }
-    log_->warn("tcp {}:{}: connection refused: {} open, the limit ({} {})", remote.address().to_string(),
-               remote.port(), open, limit_name, limit);
-    refusal_timer_armed_ = true;
-    refusal_timer_.expires_after(std::chrono::seconds(1));
-    std::weak_ptr<bool> alive = alive_;
-    refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
-        if (!alive.lock() || wait_ec)
-            return;
-        report_refusals();
-    });
+    socket.close(ec);
 }
 
 void TcpEndpoint::report_refusals()

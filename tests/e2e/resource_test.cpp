@@ -3,6 +3,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
 #include <algorithm>
 #include <memory>
 #include <string>
@@ -21,6 +25,16 @@ std::size_t count_of(const std::string& text, const std::string& needle)
     for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
         ++n;
     return n;
+}
+
+/// The local port of a connected socket.
+int local_port(int fd)
+{
+    sockaddr_in addr{};
+    socklen_t len = sizeof addr;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0)
+        return -1;
+    return ntohs(addr.sin_port);
 }
 
 /// Opens a connection and checks that the daemon serves it (an MCS device answers GNC).
@@ -43,16 +57,18 @@ TEST_CASE("resources: a connection beyond the per-device limit is closed, the ot
         REQUIRE(clients.back()->request(":GNC\n") == ":N3\n");
     }
     TcpClient extra(ep);
+    const int extra_port = local_port(extra.fd());
     CHECK(extra.wait_for_eof(kAnswerTimeout));
     for (auto& c : clients)
         CHECK(c->request(":GSI\n") == ":ID3118100\n");
     // Another device has its own allowance.
     TcpClient apt(daemon.endpoint("tdc001"));
     CHECK_FALSE(apt.wait_for_eof(200ms));
+    const std::string line = "connection refused: 32 open, the limit (--max-connections-per-device 32)";
+    CHECK(wait_until([&] { return count_of(daemon.log(), line) == 1; }, kAnswerTimeout));
     const std::string log = daemon.log();
     INFO("log:\n" << log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
-    CHECK(count_of(log, "[mcs0] tcp 127.0.0.1:") > 0);
-    CHECK(count_of(log, "connection refused: 32 open, the limit (--max-connections-per-device 32)") == 1);
+    CHECK(log.find("[mcs0] tcp 127.0.0.1:" + std::to_string(extra_port) + ": " + line) != std::string::npos);
 
     // Once one closes, a new connection is accepted.
     clients.front()->close();
@@ -103,8 +119,9 @@ TEST_CASE("resources: --max-connections bounds the connections of all devices to
     REQUIRE_FALSE(c.wait_for_eof(200ms));
     TcpClient d(daemon.endpoint("kdc101"));
     CHECK(d.wait_for_eof(kAnswerTimeout));
+    CHECK(wait_until([&] { return count_of(daemon.log(), "the limit (--max-connections 3)") == 1; },
+                     kAnswerTimeout));
     CHECK(count_of(daemon.log(), "[kdc101] tcp 127.0.0.1:") == 1);
-    CHECK(count_of(daemon.log(), "the limit (--max-connections 3)") == 1);
     b.close();
     CHECK(wait_until([&] { return served(daemon.endpoint("mcs0")); }, 5000ms));
 }
