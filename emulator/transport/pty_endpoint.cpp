@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <climits>
+#include <cstring>
 #include <fcntl.h>
 #include <pty.h>
 #include <sys/inotify.h>
@@ -137,18 +138,27 @@ void PtyEndpoint::on_open_event(std::uint32_t mask)
     if (openers_ > 0)
         return;
     // Nobody listens any more: answers not read by now are lost, as on a serial line whose
-    // host port is closed. The front frame is being written; the rest never will be.
+    // host port is closed: flushed from the pty, dropped from the queue.
     ::tcflush(slave_fd_, TCIFLUSH);
     while (queue_.size() > 1) {
         queued_bytes_ -= queue_.back().size() + kQueuedFrameOverhead;
         queue_.pop_back();
     }
+    if (!queue_.empty()) {
+        // The front frame is waiting for the line or for room in the pty: cancel that
+        // wait rather than let it reach the next opener (the read is cancelled with it and
+        // started again by its handler).
+        abandon_front_ = true;
+        pacing_timer_.cancel();
+        boost::system::error_code ec;
+        master_.cancel(ec);
+    }
     dropping_ = false;
-    log_->info("pty {}: closed", symlink_path_);
     // What the process wrote before it closed the port is all in the master now (a read
     // of a pty waits for the line discipline's pending input): take it here, before a next
-    // opener's bytes can follow it, and hand it to the process's session from the loop
-    // (this may run inside a call into the device).
+    // opener's bytes can follow it (logging the close first would let a client that waits
+    // for the log line slip in), and hand it to the process's session from the loop (this
+    // may run inside a call into the device).
     char buf[4096];
     while (leftover_.size() < kMaxQueuedBytes) {
         const auto n = ::read(master_.native_handle(), buf, sizeof buf);
@@ -157,10 +167,11 @@ void PtyEndpoint::on_open_event(std::uint32_t mask)
         leftover_.append(buf, static_cast<std::size_t>(n));
     }
     port_closed_ = true;
+    log_->info("pty {}: closed", symlink_path_);
     std::weak_ptr<bool> alive = alive_;
     asio::post(master_.get_executor(), [this, alive] {
         if (alive.lock() && !stopped_)
-            take_input({});
+            finish_process();
     });
 }
 
@@ -186,15 +197,6 @@ void PtyEndpoint::stop()
         ::unlink(symlink_path_.c_str());
 }
 
-void PtyEndpoint::take_input(std::string_view bytes)
-{
-    finish_process();   // a close seen before these bytes were read ends the last process
-    watcher_.drain();   // an open always precedes the opener's first bytes
-    if (!bytes.empty())
-        session_->receive(bytes);
-    finish_process();   // a close seen now follows these bytes
-}
-
 void PtyEndpoint::finish_process()
 {
     while (!leftover_.empty()) {
@@ -212,21 +214,41 @@ void PtyEndpoint::finish_process()
 
 void PtyEndpoint::read()
 {
+    // Wait, then read here rather than let Asio read: the bytes must be taken after the
+    // pending opens and closes are applied, so that a closing process's bytes and a next
+    // opener's never meet in one read.
     std::weak_ptr<bool> alive = alive_;
-    master_.async_read_some(asio::buffer(buffer_),
-        [this, alive](const boost::system::error_code& ec, std::size_t n) {
+    master_.async_wait(asio::posix::stream_descriptor::wait_read,
+        [this, alive](const boost::system::error_code& ec) {
             if (!alive.lock() || stopped_)
                 return;
-            if (ec) {
-                if (ec == asio::error::operation_aborted)
-                    return;
-                // EIO cannot happen while slave_fd_ is open; anything else ends the pty.
-                log_->error("pty {}: read failed: {}", symlink_path_, ec.message());
+            if (ec == asio::error::operation_aborted) {
+                read();   // cancelled with an abandoned write (on_open_event)
                 return;
             }
-            take_input(std::string_view(buffer_.data(), n));
-            read();
+            if (ec) {
+                log_->error("pty {}: wait for input failed: {}", symlink_path_, ec.message());
+                return;
+            }
+            if (take_input())
+                read();
         });
+}
+
+bool PtyEndpoint::take_input()
+{
+    watcher_.drain();    // an open always precedes the opener's first bytes
+    finish_process();    // a close seen now: the closing process's bytes go to its session
+    const auto n = ::read(master_.native_handle(), buffer_.data(), buffer_.size());
+    if (n < 0 && errno != EAGAIN && errno != EINTR) {
+        // EIO cannot happen while slave_fd_ is open; anything else ends the pty.
+        log_->error("pty {}: read failed: {}", symlink_path_, std::strerror(errno));
+        return false;
+    }
+    if (n > 0)
+        session_->receive(std::string_view(buffer_.data(), static_cast<std::size_t>(n)));
+    finish_process();    // a close seen while the device answered
+    return true;
 }
 
 void PtyEndpoint::send(std::string_view bytes)
@@ -267,10 +289,24 @@ void PtyEndpoint::write()
     pacing_timer_.expires_at(line_free_);
     std::weak_ptr<bool> alive = alive_;
     pacing_timer_.async_wait([this, alive](const boost::system::error_code& ec) {
-        if (!alive.lock() || stopped_ || ec)
+        if (!alive.lock() || stopped_)
             return;
-        paced_write();
+        if (abandon_front_) {
+            drop_abandoned_front();
+            return;
+        }
+        if (!ec)
+            paced_write();
     });
+}
+
+void PtyEndpoint::drop_abandoned_front()
+{
+    abandon_front_ = false;
+    queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
+    queue_.pop_front();
+    if (!queue_.empty())
+        write();
 }
 
 void PtyEndpoint::keep_echo_off()
@@ -295,22 +331,27 @@ void PtyEndpoint::paced_write()
             if (!alive.lock() || stopped_)
                 return;
             if (ec) {
-                if (ec == asio::error::operation_aborted)
+                if (ec == asio::error::operation_aborted) {
+                    if (abandon_front_)
+                        drop_abandoned_front();
                     return;
+                }
                 // The pending frames are lost; an empty queue lets the next answer try again.
                 log_->error("pty {}: write failed: {}", symlink_path_, ec.message());
                 queue_.clear();
                 queued_bytes_ = 0;
+                abandon_front_ = false;
                 return;
             }
             queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
             queue_.pop_front();
-            // The frame that was being written when the last client closed the port went
-            // into the pty after the close flushed it: flush it too, for the next opener.
-            if (openers_ == 0)
-                watcher_.drain();
-            if (openers_ == 0)
+            // Written in part before the close cancelled it, the rest after the close
+            // flushed the pty: flush it too. A next opener may have the port already, but
+            // its answers queue behind this frame: nothing of its own is in the pty yet.
+            if (abandon_front_) {
+                abandon_front_ = false;
                 ::tcflush(slave_fd_, TCIFLUSH);
+            }
             if (!queue_.empty())
                 write();
         });

@@ -62,8 +62,9 @@ public:
 
 private:
     void read();
-    /// Hands input to the session, in order with the opens and closes of the port.
-    void take_input(std::string_view bytes);
+    /// Reads input into the session, in order with the opens and closes of the port;
+    /// false if the pty failed.
+    bool take_input();
     /// Feeds leftover_ and, if the port was closed, replaces the session.
     void finish_process();
     void send(std::string_view bytes);
@@ -77,6 +78,8 @@ private:
     /// Faithful timing: a frame leaves once the line has had time to transmit it at the
     /// device's baud rate (10 bits per byte: 8N1).
     void paced_write();
+    /// Drops the front frame, whose write the last client's close cancelled, and goes on.
+    void drop_abandoned_front();
 
     Device& device_;
     boost::asio::posix::stream_descriptor master_;
@@ -96,6 +99,7 @@ private:
     std::deque<std::string> queue_;
     std::size_t queued_bytes_ = 0;
     bool dropping_ = false;
+    bool abandon_front_ = false;   ///< the front frame was queued for a client now gone
     bool stopped_ = false;
     std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };
