@@ -71,6 +71,11 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
                          names a path (default /tmp/rigsim; created if missing)
   --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port)
   --bind ADDR            listen for TCP on ADDR (default 127.0.0.1)
+  --max-connections N    TCP connections open at once, all devices together; more are
+                         accepted and closed at once (1..65536; default 256)
+  --max-connections-per-device N
+                         TCP connections open at once on one device (1..65536;
+                         default 32)
   --time-scale X         run the physics X times faster than wall time (default 1;
                          0.001..1000)
   --tick-hz N            physics tick rate in Hz, overriding the config's tick_hz
@@ -198,7 +203,11 @@ std::optional<Options> parse_args(int argc, char** argv)
             o.rig.bind = boost::asio::ip::make_address(v, ec);
             if (ec)
                 throw UsageError{"--bind: expected an IP address, got " + echo(v)};
-        } else if (arg == "--time-scale")
+        } else if (arg == "--max-connections")
+            o.rig.max_connections = parse_uint(arg, value(), 1, 65536);
+        else if (arg == "--max-connections-per-device")
+            o.rig.max_connections_per_device = parse_uint(arg, value(), 1, 65536);
+        else if (arg == "--time-scale")
             o.rig.time_scale = parse_double(arg, value(), 0.001, 1000);
         else if (arg == "--state-file") {
             o.rig.state_file = value();

@@ -93,8 +93,11 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale),
       store_(options.state_file.empty()
                  ? std::make_unique<StateStore>()
-                 : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels)))
+                 : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
+      watcher_(io)
 {
+    tcp_budget_.max_total = options.max_connections;
+    tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
@@ -102,14 +105,14 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
         try {
-            e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log);
+            e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log, tcp_budget_);
         } catch (const std::exception& ex) {
             throw std::runtime_error("device \"" + dc.name + "\": cannot listen on tcp "
                                      + tcp_address_text(options.bind, port) + ": " + ex.what());
         }
         const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
         try {
-            e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log);
+            e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log, watcher_);
         } catch (const std::exception& ex) {
             throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
         }
@@ -131,6 +134,7 @@ Rig::~Rig()
 
 void Rig::start()
 {
+    watcher_.start();
     for (auto& e : entries_) {
         e->tcp->start();
         e->pty->start();
@@ -144,6 +148,7 @@ void Rig::stop()
         e->tcp->stop();
         e->pty->stop();
     }
+    watcher_.stop();
 }
 
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints)

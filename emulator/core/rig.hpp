@@ -8,6 +8,7 @@
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
 #include "emulator/core/ticker.hpp"
+#include "emulator/transport/inotify_watcher.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
 
@@ -27,6 +28,8 @@ struct RigOptions {
     double time_scale = 1.0;
     LogLevels log_levels;
     std::string state_file;                 ///< --state-file; empty: non-volatile saves last the run
+    std::size_t max_connections = 256;      ///< TCP connections open at once, all devices together
+    std::size_t max_connections_per_device = 32;   ///< TCP connections open at once on one device
 };
 
 /// Where a client reaches one device.
@@ -59,6 +62,9 @@ private:
     Clock clock_;
     Ticker ticker_;
     std::unique_ptr<StateStore> store_;
+    /// Shared by every endpoint, so declared before (destroyed after) the entries.
+    InotifyWatcher watcher_;
+    TcpConnectionBudget tcp_budget_;
     std::vector<std::unique_ptr<Entry>> entries_;
     std::vector<DeviceEndpoints> endpoints_;
 };

@@ -1,11 +1,13 @@
 #include "emulator/transport/pty_endpoint.hpp"
 
+#include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
 #include <algorithm>
 
 #include <cerrno>
 #include <climits>
+#include <cstring>
 #include <fcntl.h>
 #include <pty.h>
 #include <sys/inotify.h>
@@ -58,8 +60,9 @@ void replace_symlink(const std::string& target, const std::string& link)
 } // namespace
 
 PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
-                         std::shared_ptr<spdlog::logger> log)
-    : device_(device), master_(io), inotify_(io), pacing_timer_(io), symlink_path_(std::move(symlink_path)), log_(std::move(log))
+                         std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher)
+    : device_(device), master_(io), watcher_(watcher), pacing_timer_(io), symlink_path_(std::move(symlink_path)),
+      log_(std::move(log))
 {
     int master = -1;
     char name[PATH_MAX] = {};
@@ -67,7 +70,7 @@ PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symli
         throw_errno("openpty failed");
     slave_name_ = name;
     // Raw: no echo, no line editing, no CR/LF mapping. A client's own termios settings
-    // (it opens the slave) replace these; the daemon never resets them behind its back.
+    // (it opens the slave) replace these; the daemon resets only ECHO behind its back.
     struct termios tio {};
     ::tcgetattr(slave_fd_, &tio);
     ::cfmakeraw(&tio);
@@ -78,30 +81,21 @@ PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symli
     ::fcntl(slave_fd_, F_SETFD, FD_CLOEXEC);
     master_.assign(master);
     master_.non_blocking(true);
-    const int in = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
-    if (in < 0 || ::inotify_add_watch(in, slave_name_.c_str(), IN_OPEN | IN_CLOSE) < 0) {
-        const int e = errno;
-        if (in >= 0)
-            ::close(in);
-        ::close(slave_fd_);
-        errno = e;
-        throw_errno("cannot watch " + slave_name_);
-    }
-    inotify_.assign(in);
+    std::weak_ptr<bool> alive = alive_;
     try {
+        watch_ = watcher_.add(slave_name_, IN_OPEN | IN_CLOSE, [this, alive](std::uint32_t mask) {
+            if (alive.lock())
+                on_open_event(mask);
+        });
         make_parent_dirs(symlink_path_);
         replace_symlink(slave_name_, symlink_path_);
     } catch (...) {
+        watcher_.remove(watch_);
         ::close(slave_fd_);
+        slave_fd_ = -1;
         throw;
     }
-    std::weak_ptr<bool> alive = alive_;
-    session_ = device.open_session(
-        [this, alive](std::string_view bytes) {
-            if (alive.lock())
-                send(bytes);
-        },
-        "pty " + symlink_path_);
+    open_session();
 }
 
 PtyEndpoint::~PtyEndpoint()
@@ -112,50 +106,73 @@ PtyEndpoint::~PtyEndpoint()
         ::close(slave_fd_);
 }
 
+void PtyEndpoint::open_session()
+{
+    session_.reset();   // detach the old one from the device first
+    std::weak_ptr<bool> alive = alive_;
+    session_ = device_.open_session(
+        [this, alive](std::string_view bytes) {
+            if (alive.lock())
+                send(bytes);
+        },
+        "pty " + symlink_path_);
+}
+
 void PtyEndpoint::start()
 {
     read();
-    watch_openers();
 }
 
-void PtyEndpoint::watch_openers()
+void PtyEndpoint::on_open_event(std::uint32_t mask)
 {
-    std::weak_ptr<bool> alive = alive_;
-    inotify_.async_wait(asio::posix::stream_descriptor::wait_read,
-        [this, alive](const boost::system::error_code& ec) {
-            if (!alive.lock() || stopped_ || ec)
-                return;
-            drain_open_events();
-            watch_openers();
-        });
-}
-
-void PtyEndpoint::drain_open_events()
-{
-    alignas(inotify_event) char buf[4096];
-    while (true) {
-        const auto n = ::read(inotify_.native_handle(), buf, sizeof buf);
-        if (n <= 0)
-            return;   // EAGAIN: nothing pending
-        for (std::size_t off = 0; off + sizeof(inotify_event) <= static_cast<std::size_t>(n);) {
-            const auto* e = reinterpret_cast<const inotify_event*>(buf + off);
-            off += sizeof(inotify_event) + e->len;
-            if (e->mask & IN_OPEN) {
-                if (openers_++ == 0)
-                    log_->info("pty {}: opened", symlink_path_);
-            } else if (e->mask & IN_CLOSE) {
-                openers_ = std::max(0, openers_ - 1);
-                if (openers_ > 0)
-                    continue;
-                // Nobody listens any more: answers not read by now are lost, as on a
-                // serial line whose host port is closed.
-                ::tcflush(slave_fd_, TCIFLUSH);
-                if (queue_.size() > 1)
-                    queue_.erase(queue_.begin() + 1, queue_.end());
-                log_->info("pty {}: closed", symlink_path_);
-            }
-        }
+    if (stopped_)
+        return;
+    if (mask & IN_OPEN) {
+        if (openers_++ == 0)
+            log_->info("pty {}: opened", symlink_path_);
+        return;
     }
+    if (!(mask & IN_CLOSE))
+        return;
+    openers_ = std::max(0, openers_ - 1);
+    if (openers_ > 0)
+        return;
+    // Nobody listens any more: answers not read by now are lost, as on a serial line whose
+    // host port is closed: flushed from the pty, dropped from the queue.
+    ::tcflush(slave_fd_, TCIFLUSH);
+    while (queue_.size() > 1) {
+        queued_bytes_ -= queue_.back().size() + kQueuedFrameOverhead;
+        queue_.pop_back();
+    }
+    if (!queue_.empty()) {
+        // The front frame is waiting for the line or for room in the pty: cancel that
+        // wait rather than let it reach the next opener (the read is cancelled with it and
+        // started again by its handler).
+        abandon_front_ = true;
+        pacing_timer_.cancel();
+        boost::system::error_code ec;
+        master_.cancel(ec);
+    }
+    dropping_ = false;
+    // What the process wrote before it closed the port is all in the master now (a read
+    // of a pty waits for the line discipline's pending input): take it here, before a next
+    // opener's bytes can follow it (logging the close first would let a client that waits
+    // for the log line slip in), and hand it to the process's session from the loop (this
+    // may run inside a call into the device).
+    char buf[4096];
+    while (leftover_.size() < kMaxQueuedBytes) {
+        const auto n = ::read(master_.native_handle(), buf, sizeof buf);
+        if (n <= 0)
+            break;
+        leftover_.append(buf, static_cast<std::size_t>(n));
+    }
+    port_closed_ = true;
+    log_->info("pty {}: closed", symlink_path_);
+    std::weak_ptr<bool> alive = alive_;
+    asio::post(master_.get_executor(), [this, alive] {
+        if (alive.lock() && !stopped_)
+            finish_process();
+    });
 }
 
 void PtyEndpoint::stop()
@@ -166,8 +183,13 @@ void PtyEndpoint::stop()
     boost::system::error_code ec;
     master_.cancel(ec);
     master_.close(ec);
-    inotify_.close(ec);
+    watcher_.remove(watch_);
     pacing_timer_.cancel();
+    // The io_context may outlive the device: nothing may reach it after this.
+    session_.reset();
+    leftover_.clear();
+    queue_.clear();
+    queued_bytes_ = 0;
     // Remove the symlink only if it is still ours.
     char target[PATH_MAX] = {};
     const auto n = ::readlink(symlink_path_.c_str(), target, sizeof target - 1);
@@ -175,24 +197,58 @@ void PtyEndpoint::stop()
         ::unlink(symlink_path_.c_str());
 }
 
+void PtyEndpoint::finish_process()
+{
+    while (!leftover_.empty()) {
+        const auto bytes = std::move(leftover_);
+        leftover_.clear();
+        session_->receive(bytes);
+    }
+    if (!port_closed_)
+        return;
+    // Whatever the process left unfinished in the framer is not the start of the next
+    // opener's frame: the next one starts from an empty framer.
+    port_closed_ = false;
+    open_session();
+}
+
 void PtyEndpoint::read()
 {
+    // Wait, then read here rather than let Asio read: the bytes must be taken after the
+    // pending opens and closes are applied, so that a closing process's bytes and a next
+    // opener's never meet in one read.
     std::weak_ptr<bool> alive = alive_;
-    master_.async_read_some(asio::buffer(buffer_),
-        [this, alive](const boost::system::error_code& ec, std::size_t n) {
+    master_.async_wait(asio::posix::stream_descriptor::wait_read,
+        [this, alive](const boost::system::error_code& ec) {
             if (!alive.lock() || stopped_)
                 return;
-            if (ec) {
-                if (ec == asio::error::operation_aborted)
-                    return;
-                // EIO cannot happen while slave_fd_ is open; anything else ends the pty.
-                log_->error("pty {}: read failed: {}", symlink_path_, ec.message());
+            if (ec == asio::error::operation_aborted) {
+                read();   // cancelled with an abandoned write (on_open_event)
                 return;
             }
-            drain_open_events();   // an open always precedes the opener's first bytes
-            session_->receive(std::string_view(buffer_.data(), n));
-            read();
+            if (ec) {
+                log_->error("pty {}: wait for input failed: {}", symlink_path_, ec.message());
+                return;
+            }
+            if (take_input())
+                read();
         });
+}
+
+bool PtyEndpoint::take_input()
+{
+    watcher_.drain();    // an open always precedes the opener's first bytes
+    finish_process();    // a close seen now: the closing process's bytes go to its session
+    const auto n = ::read(master_.native_handle(), buffer_.data(), buffer_.size());
+    if (n < 0 && errno != EAGAIN && errno != EINTR) {
+        // EIO cannot happen while slave_fd_ is open; anything else ends the pty.
+        log_->error("pty {}: read failed: {}", symlink_path_, std::strerror(errno));
+        return false;
+    }
+    if (n > 0)
+        session_->receive(std::string_view(buffer_.data(), static_cast<std::size_t>(n)));
+    finish_process();    // a close seen while the device answered
+    return true;
 }
 
 void PtyEndpoint::send(std::string_view bytes)
@@ -200,19 +256,20 @@ void PtyEndpoint::send(std::string_view bytes)
     if (stopped_)
         return;
     if (openers_ == 0)
-        drain_open_events();
+        watcher_.drain();
     // Nobody has the port open: lost, as on a real serial line. (Bytes sent just before a
     // close that is not yet seen stay in the pty until the close is seen and flushes them.)
     if (openers_ == 0)
         return;
-    if (queued_bytes_ + bytes.size() > kMaxQueuedBytes) {
+    const auto cost = bytes.size() + kQueuedFrameOverhead;
+    if (queued_bytes_ + cost > kMaxQueuedBytes) {
         if (!dropping_)
             log_->warn("pty {}: nobody reads the port, dropping output", symlink_path_);
         dropping_ = true;
         return;
     }
     dropping_ = false;
-    queued_bytes_ += bytes.size();
+    queued_bytes_ += cost;
     queue_.emplace_back(bytes);
     if (queue_.size() == 1)
         write();
@@ -232,26 +289,69 @@ void PtyEndpoint::write()
     pacing_timer_.expires_at(line_free_);
     std::weak_ptr<bool> alive = alive_;
     pacing_timer_.async_wait([this, alive](const boost::system::error_code& ec) {
-        if (!alive.lock() || stopped_ || ec)
+        if (!alive.lock() || stopped_)
             return;
-        paced_write();
+        if (abandon_front_) {
+            drop_abandoned_front();
+            return;
+        }
+        if (!ec)
+            paced_write();
     });
+}
+
+void PtyEndpoint::drop_abandoned_front()
+{
+    abandon_front_ = false;
+    queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
+    queue_.pop_front();
+    if (!queue_.empty())
+        write();
+}
+
+void PtyEndpoint::keep_echo_off()
+{
+    struct termios tio {};
+    if (::tcgetattr(slave_fd_, &tio) != 0 || !(tio.c_lflag & (ECHO | ECHONL)))
+        return;
+    tio.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL);
+    if (::tcsetattr(slave_fd_, TCSANOW, &tio) == 0)
+        log_->info("pty {}: the client turned echo on; turned it off (a serial line does not echo)",
+                   symlink_path_);
 }
 
 void PtyEndpoint::paced_write()
 {
+    // Checked before every write: a client may change its termios at any time, and the
+    // echo of this write would come back as input.
+    keep_echo_off();
     std::weak_ptr<bool> alive = alive_;
     asio::async_write(master_, asio::buffer(queue_.front()),
         [this, alive](const boost::system::error_code& ec, std::size_t) {
             if (!alive.lock() || stopped_)
                 return;
             if (ec) {
-                if (ec != asio::error::operation_aborted)
-                    log_->error("pty {}: write failed: {}", symlink_path_, ec.message());
+                if (ec == asio::error::operation_aborted) {
+                    if (abandon_front_)
+                        drop_abandoned_front();
+                    return;
+                }
+                // The pending frames are lost; an empty queue lets the next answer try again.
+                log_->error("pty {}: write failed: {}", symlink_path_, ec.message());
+                queue_.clear();
+                queued_bytes_ = 0;
+                abandon_front_ = false;
                 return;
             }
-            queued_bytes_ -= queue_.front().size();
+            queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
             queue_.pop_front();
+            // Written in part before the close cancelled it, the rest after the close
+            // flushed the pty: flush it too. A next opener may have the port already, but
+            // its answers queue behind this frame: nothing of its own is in the pty yet.
+            if (abandon_front_) {
+                abandon_front_ = false;
+                ::tcflush(slave_fd_, TCIFLUSH);
+            }
             if (!queue_.empty())
                 write();
         });

@@ -4,16 +4,27 @@
 // openpty + cfmakeraw + a stable symlink (simavr's uart_pty). The daemon keeps its own
 // descriptor of the slave side open for its whole life, so the master never sees a hang-up:
 // a client may open, close and reopen the port and change its termios settings (baud rate,
-// flow control) while the device and its session keep their state, as a controller on a real
-// serial line would. The serial line is one connection: one Session for all openers.
+// flow control) while the device keeps its state, as a controller on a real serial line
+// would. The serial line is one connection: one Session for all processes that have it open
+// at the same time.
 //
 // Like a real serial port, what the device sends while no application has the port open
-// is lost: inotify reports opens and closes of the slave device, and when the last client
-// closes it, the answers it never read are flushed, so the next opener never reads stale
-// answers. Open events are drained before any input is handled, so a client that opens the
-// port and writes at once always gets its answer.
+// is lost: inotify reports opens and closes of the slave device (one inotify instance per
+// daemon, InotifyWatcher), and when the last client closes it, the answers it never read are
+// flushed, so the next opener never reads stale answers. Open events are drained before any
+// input is handled, so a client that opens the port and writes at once always gets its answer.
+// When the last client closes the port, the bytes it wrote are still handed to its Session
+// (read from the master at once, before a next opener can add its own), then the Session is
+// replaced: the next opener starts from an empty framer, its first bytes never glued to a
+// frame or line that the previous process left unfinished.
+//
+// A real serial line never echoes. A pty slave with ECHO set (a naive client that skips
+// cfmakeraw, `cat`) would send every answer back to the device as input, and the device
+// would answer its own answers: before each write the daemon clears ECHO and ECHONL on the
+// slave (it owns the line, as a UART does), leaving every other setting to the client.
 
 #include "emulator/core/device.hpp"
+#include "emulator/transport/inotify_watcher.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/posix/stream_descriptor.hpp>
@@ -31,10 +42,14 @@ class PtyEndpoint {
 public:
     /// Output that no client reads is dropped beyond this, as on an unread serial line.
     static constexpr std::size_t kMaxQueuedBytes = 1 << 20;
+    /// What a queued frame costs beyond its bytes, counted against kMaxQueuedBytes so that
+    /// it bounds memory rather than payload.
+    static constexpr std::size_t kQueuedFrameOverhead = 64;
 
-    /// Creates the pty and the symlink at once (throws std::system_error if it cannot).
+    /// Creates the pty, its watch on `watcher` and the symlink at once (throws
+    /// std::system_error if it cannot). `watcher` must outlive the endpoint.
     PtyEndpoint(boost::asio::io_context& io, Device& device, std::string symlink_path,
-                std::shared_ptr<spdlog::logger> log);
+                std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher);
     ~PtyEndpoint();
     PtyEndpoint(const PtyEndpoint&) = delete;
     PtyEndpoint& operator=(const PtyEndpoint&) = delete;
@@ -42,27 +57,39 @@ public:
     const std::string& symlink_path() const { return symlink_path_; }
     const std::string& device_path() const { return slave_name_; }
     void start();
-    /// Stop I/O and remove the symlink.
+    /// Stop I/O, release the session and remove the symlink.
     void stop();
 
 private:
     void read();
+    /// Reads input into the session, in order with the opens and closes of the port;
+    /// false if the pty failed.
+    bool take_input();
+    /// Feeds leftover_ and, if the port was closed, replaces the session.
+    void finish_process();
     void send(std::string_view bytes);
     void write();
-    void watch_openers();
-    /// Apply pending open/close events of the slave device to openers_.
-    void drain_open_events();
+    /// One open or close of the slave device, from the watcher.
+    void on_open_event(std::uint32_t mask);
+    void open_session();
+    /// A UART does not echo: clears ECHO and ECHONL if the client set them.
+    void keep_echo_off();
 
     /// Faithful timing: a frame leaves once the line has had time to transmit it at the
     /// device's baud rate (10 bits per byte: 8N1).
     void paced_write();
+    /// Drops the front frame, whose write the last client's close cancelled, and goes on.
+    void drop_abandoned_front();
 
     Device& device_;
     boost::asio::posix::stream_descriptor master_;
-    boost::asio::posix::stream_descriptor inotify_;
+    InotifyWatcher& watcher_;
+    int watch_ = -1;
     boost::asio::steady_timer pacing_timer_;
     std::chrono::steady_clock::time_point line_free_{};
     int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
+    bool port_closed_ = false;   ///< the last client closed the port: a fresh session is due
+    std::string leftover_;       ///< input of the last client, read when it closed the port
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;
@@ -72,6 +99,7 @@ private:
     std::deque<std::string> queue_;
     std::size_t queued_bytes_ = 0;
     bool dropping_ = false;
+    bool abandon_front_ = false;   ///< the front frame was queued for a client now gone
     bool stopped_ = false;
     std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };

@@ -2,6 +2,7 @@
 
 #include <boost/asio/write.hpp>
 
+#include <algorithm>
 #include <array>
 #include <deque>
 
@@ -11,11 +12,14 @@ namespace asio = boost::asio;
 using asio::ip::tcp;
 
 /// One client connection: reads into the session, writes each queued frame in one write.
+///
+/// The session is released as soon as the connection ends, never later: the io_context may
+/// outlive the device, and handlers still pending then must not reach it. It is never
+/// released from inside a call into the device (its receive, or a send the device makes),
+/// which may be iterating its sessions; such an end is finished by the pending read's
+/// handler, or by TcpEndpoint::stop.
 class TcpConnection : public std::enable_shared_from_this<TcpConnection> {
 public:
-    /// A client that reads nothing while answers pile up beyond this is dropped.
-    static constexpr std::size_t kMaxQueuedBytes = 4 << 20;
-
     TcpConnection(tcp::socket socket, TcpEndpoint& endpoint, spdlog::logger& log)
         : socket_(std::move(socket)), endpoint_(endpoint), log_(log)
     {
@@ -39,7 +43,17 @@ public:
         read();
     }
 
+    /// Closes the socket and releases the session; the endpoint has forgotten this
+    /// connection (or is about to), so no handler reports back to it.
     void close()
+    {
+        close_socket();
+        finished_ = true;
+        session_.reset();
+    }
+
+private:
+    void close_socket()
     {
         if (closed_)
             return;
@@ -49,7 +63,6 @@ public:
         socket_.close(ec);
     }
 
-private:
     void read()
     {
         socket_.async_read_some(asio::buffer(buffer_),
@@ -60,6 +73,10 @@ private:
 
     void on_read(const boost::system::error_code& ec, std::size_t n)
     {
+        if (closed_) {
+            finish();
+            return;
+        }
         if (ec) {
             if (ec != asio::error::operation_aborted) {
                 if (ec == asio::error::eof)
@@ -70,19 +87,27 @@ private:
             end();
             return;
         }
+        ++device_calls_;
         session_->receive(std::string_view(buffer_.data(), n));
-        if (!closed_)
-            read();
+        --device_calls_;
+        if (closed_) {
+            finish();
+            return;
+        }
+        read();
     }
 
+    /// Called by the device (from the session's receive, or on its own for unprompted output).
     void send(std::string_view bytes)
     {
         if (closed_)
             return;
-        queued_bytes_ += bytes.size();
-        if (queued_bytes_ > kMaxQueuedBytes) {
+        queued_bytes_ += bytes.size() + TcpEndpoint::kQueuedFrameOverhead;
+        if (queued_bytes_ > TcpEndpoint::kMaxQueuedBytes) {
             log_.warn("{}: client reads nothing ({} bytes queued): closing the connection", peer_, queued_bytes_);
+            ++device_calls_;
             end();
+            --device_calls_;
             return;
         }
         queue_.emplace_back(bytes);
@@ -100,21 +125,37 @@ private:
 
     void on_write(const boost::system::error_code& ec)
     {
+        if (closed_) {
+            finish();
+            return;
+        }
         if (ec) {
             if (ec != asio::error::operation_aborted)
                 log_.warn("{}: write failed: {}", peer_, ec.message());
             end();
             return;
         }
-        queued_bytes_ -= queue_.front().size();
+        queued_bytes_ -= queue_.front().size() + TcpEndpoint::kQueuedFrameOverhead;
         queue_.pop_front();
         if (!queue_.empty())
             write();
     }
 
+    /// The connection ends on its own (client gone, error, client reads nothing).
     void end()
     {
-        close();
+        close_socket();
+        if (device_calls_ == 0)
+            finish();
+    }
+
+    /// Releases the session and leaves the endpoint, once.
+    void finish()
+    {
+        if (finished_)
+            return;
+        finished_ = true;
+        session_.reset();
         endpoint_.forget(shared_from_this());
     }
 
@@ -126,12 +167,15 @@ private:
     std::array<char, 4096> buffer_{};
     std::deque<std::string> queue_;
     std::size_t queued_bytes_ = 0;
-    bool closed_ = false;
+    int device_calls_ = 0;   ///< nesting depth of calls into or from the device
+    bool closed_ = false;    ///< the socket is closed
+    bool finished_ = false;  ///< the session is released and the endpoint told
 };
 
 TcpEndpoint::TcpEndpoint(asio::io_context& io, Device& device, const asio::ip::address& bind,
-                         std::uint16_t port, std::shared_ptr<spdlog::logger> log)
-    : io_(io), device_(device), acceptor_(io), log_(std::move(log))
+                         std::uint16_t port, std::shared_ptr<spdlog::logger> log, TcpConnectionBudget& budget)
+    : io_(io), device_(device), acceptor_(io), log_(std::move(log)), budget_(budget), backoff_timer_(io),
+      refusal_timer_(io)
 {
     const tcp::endpoint ep(bind, port);
     acceptor_.open(ep.protocol());
@@ -144,6 +188,7 @@ TcpEndpoint::TcpEndpoint(asio::io_context& io, Device& device, const asio::ip::a
 TcpEndpoint::~TcpEndpoint()
 {
     stop();
+    alive_.reset();
 }
 
 tcp::endpoint TcpEndpoint::local_endpoint() const
@@ -158,24 +203,109 @@ void TcpEndpoint::start()
 
 void TcpEndpoint::accept()
 {
-    acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
+    std::weak_ptr<bool> alive = alive_;
+    acceptor_.async_accept([this, alive](const boost::system::error_code& ec, tcp::socket socket) {
+        if (!alive.lock() || stopped_ || ec == asio::error::operation_aborted)
+            return;
         if (ec) {
-            if (ec == asio::error::operation_aborted || stopped_)
-                return;
-            log_->warn("tcp: accept failed: {}", ec.message());
-        } else {
-            auto c = std::make_shared<TcpConnection>(std::move(socket), *this, *log_);
-            log_->info("{}: connected", c->peer());
-            connections_.insert(c);
-            c->start(device_);
+            on_accept_failed(ec);
+            return;
         }
+        if (accept_failures_ > 0)
+            log_->info("tcp: accepting again after {} failed accept(s)", accept_failures_);
+        accept_failures_ = 0;
+        backoff_ = std::chrono::milliseconds{0};
+        admit(std::move(socket));
         accept();
+    });
+}
+
+void TcpEndpoint::on_accept_failed(const boost::system::error_code& ec)
+{
+    ++accept_failures_;
+    // A client that gave up before we took it: nothing wrong here, take the next one.
+    if (ec == asio::error::connection_aborted || ec == asio::error::connection_reset) {
+        log_->info("tcp: accept failed: {}", ec.message());
+        accept();
+        return;
+    }
+    // Out of descriptors or memory (EMFILE, ENFILE, ENOBUFS, ENOMEM), or anything else
+    // that would fail again at once: the pending connection stays in the backlog and the
+    // acceptor stays readable, so retrying now would spin. Retry after a growing delay.
+    backoff_ = std::clamp(backoff_ * 2, kAcceptBackoffMin, kAcceptBackoffMax);
+    log_->warn("tcp: accept failed {} time(s) in a row: {}; retrying in {} ms", accept_failures_,
+               ec.message(), backoff_.count());
+    backoff_timer_.expires_after(backoff_);
+    std::weak_ptr<bool> alive = alive_;
+    backoff_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
+        if (!alive.lock() || stopped_ || wait_ec)
+            return;
+        accept();
+    });
+}
+
+void TcpEndpoint::admit(tcp::socket socket)
+{
+    if (connections_.size() >= budget_.max_per_device) {
+        refuse(std::move(socket), "--max-connections-per-device", budget_.max_per_device, connections_.size());
+        return;
+    }
+    if (budget_.open_total >= budget_.max_total) {
+        refuse(std::move(socket), "--max-connections", budget_.max_total, budget_.open_total);
+        return;
+    }
+    auto c = std::make_shared<TcpConnection>(std::move(socket), *this, *log_);
+    log_->info("{}: connected", c->peer());
+    connections_.insert(c);
+    ++budget_.open_total;
+    c->start(device_);
+}
+
+void TcpEndpoint::refuse(tcp::socket socket, const char* limit_name, std::size_t limit, std::size_t open)
+{
+    boost::system::error_code ec;
+    // One line per second at most, however many clients come: a flood of refused
+    // connections must not flood the log. Logged before the close that the client sees.
+    if (refusal_timer_armed_) {
+        ++refusals_unreported_;
+    } else {
+        const auto remote = socket.remote_endpoint(ec);
+        log_->warn("tcp {}:{}: connection refused: {} open, the limit ({} {})", remote.address().to_string(),
+                   remote.port(), open, limit_name, limit);
+        refusal_timer_armed_ = true;
+        refusal_timer_.expires_after(std::chrono::seconds(1));
+        std::weak_ptr<bool> alive = alive_;
+        refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
+            if (!alive.lock() || wait_ec)
+                return;
+            report_refusals();
+        });
+    }
+    socket.close(ec);
+}
+
+void TcpEndpoint::report_refusals()
+{
+    if (refusals_unreported_ == 0 || stopped_) {
+        refusal_timer_armed_ = false;
+        return;
+    }
+    log_->warn("tcp: refused {} more connection(s) in the last second (limits: {} per device, {} in all)",
+               refusals_unreported_, budget_.max_per_device, budget_.max_total);
+    refusals_unreported_ = 0;
+    refusal_timer_.expires_after(std::chrono::seconds(1));
+    std::weak_ptr<bool> alive = alive_;
+    refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
+        if (!alive.lock() || wait_ec)
+            return;
+        report_refusals();
     });
 }
 
 void TcpEndpoint::forget(const std::shared_ptr<TcpConnection>& c)
 {
-    connections_.erase(c);
+    if (connections_.erase(c) > 0)
+        --budget_.open_total;
 }
 
 void TcpEndpoint::stop()
@@ -185,8 +315,11 @@ void TcpEndpoint::stop()
     stopped_ = true;
     boost::system::error_code ec;
     acceptor_.close(ec);
+    backoff_timer_.cancel();
+    refusal_timer_.cancel();
     for (const auto& c : connections_)
         c->close();
+    budget_.open_total -= connections_.size();
     connections_.clear();
 }
 

@@ -13,6 +13,7 @@
 #ifdef __linux__
 #include <sys/prctl.h>
 #endif
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cctype>
@@ -73,8 +74,10 @@ private:
 /// In the child after fork: die with the test process, default signal handling, stdio
 /// redirected, then exec. Only async-signal-safe calls.
 [[noreturn]] void exec_child(char* const* argv, int in_fd, int out_fd, int err_fd,
-                             pid_t parent)
+                             pid_t parent, const rlimit* max_open_files = nullptr)
 {
+    if (max_open_files && ::setrlimit(RLIMIT_NOFILE, max_open_files) != 0)
+        ::_exit(127);
 #ifdef __linux__
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent)
@@ -329,10 +332,12 @@ ProcessResult run_rigsimd(const std::vector<std::string>& args, Millis timeout)
 
 Daemon::Daemon() : Daemon(Options{}) {}
 
-Daemon::Daemon(Options options)
+Daemon::Daemon(Options options) : Daemon(std::move(options), Limits{}) {}
+
+Daemon::Daemon(Options options, Limits limits)
 {
     try {
-        start(options);
+        start(options, limits);
         wait_for_endpoints();
     } catch (...) {
         if (pid_ > 0 && !wait_status_) {
@@ -356,7 +361,7 @@ Daemon::~Daemon()
     ::waitpid(pid_, &status, 0);
 }
 
-void Daemon::start(const Options& options)
+void Daemon::start(const Options& options, const Limits& limits)
 {
     std::vector<std::string> args{
         "--ephemeral-ports",
@@ -379,10 +384,14 @@ void Daemon::start(const Options& options)
                         O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (in_fd < 0 || out_fd < 0 || err_fd < 0)
         throw std::runtime_error(errno_text("open daemon stdio in " + dir_.path()));
+    rlimit limit{};
+    if (limits.max_open_files)
+        limit.rlim_cur = limit.rlim_max = *limits.max_open_files;
     const pid_t parent = ::getpid();
     pid_t pid = ::fork();
     if (pid == 0)
-        exec_child(argv.get(), in_fd, out_fd, err_fd, parent);
+        exec_child(argv.get(), in_fd, out_fd, err_fd, parent,
+                   limits.max_open_files ? &limit : nullptr);
     ::close(in_fd);
     ::close(out_fd);
     ::close(err_fd);
@@ -631,6 +640,20 @@ bool poll_status_until(LineClient& client, int channel, int state, Millis timeou
             return answer == wanted;
         },
         timeout);
+}
+
+std::vector<std::string> open_fds(pid_t pid)
+{
+    std::vector<std::string> targets;
+    std::error_code ec;
+    const std::string dir = "/proc/" + std::to_string(pid) + "/fd";
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        std::error_code link_ec;
+        const auto target = std::filesystem::read_symlink(entry.path(), link_ec);
+        if (!link_ec)
+            targets.push_back(target.string());
+    }
+    return targets;
 }
 
 std::string fixture(const std::string& name)

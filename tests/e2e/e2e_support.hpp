@@ -103,9 +103,15 @@ public:
         /// Further flags (e.g. {"--time-scale", "10"}).
         std::vector<std::string> extra_args;
     };
+    /// Resource limits the daemon process starts with (setrlimit before exec).
+    struct Limits {
+        /// If set, RLIMIT_NOFILE (soft and hard).
+        std::optional<unsigned long> max_open_files;
+    };
 
     Daemon();
     explicit Daemon(Options options);
+    Daemon(Options options, Limits limits);
     ~Daemon();
     Daemon(const Daemon&) = delete;
     Daemon& operator=(const Daemon&) = delete;
@@ -128,7 +134,7 @@ public:
     std::optional<int> stop(int signal, Millis timeout = kShutdownTimeout);
 
 private:
-    void start(const Options& options);
+    void start(const Options& options, const Limits& limits);
     void wait_for_endpoints();
     /// waitpid(WNOHANG); records the status when the child has ended.
     bool reap_nohang();
@@ -201,6 +207,10 @@ public:
 /// within `timeout`. Every answer received is appended to `seen` if given.
 bool poll_status_until(LineClient& client, int channel, int state, Millis timeout,
                        std::vector<std::string>* seen = nullptr);
+
+/// The targets of the descriptors `pid` has open (readlink of /proc/<pid>/fd/*), such as
+/// "anon_inode:inotify", "socket:[1234]", "/dev/pts/3".
+std::vector<std::string> open_fds(pid_t pid);
 
 /// A file of the e2e fixture directory (tests/e2e/<name>).
 std::string fixture(const std::string& name);

@@ -3,6 +3,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <termios.h>
+#include <unistd.h>
+
 #include <string>
 #include <vector>
 
@@ -108,4 +111,136 @@ TEST_CASE("pty: faithful timing paces answers at the controller's baud rate", "[
     CHECK(fast < 410);
     TcpClient t(ep);                                          // TCP is not a serial line
     CHECK(t.request(":GNC\n") == ":N3\n");
+}
+
+namespace {
+
+/// Occurrences of `needle` in `text`.
+std::size_t count_of(const std::string& text, const std::string& needle)
+{
+    std::size_t n = 0;
+    for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+        ++n;
+    return n;
+}
+
+/// Waits until the daemon has logged the close of `pty` for the `nth` time.
+bool wait_for_close(const Daemon& daemon, const std::string& pty, std::size_t nth)
+{
+    return wait_until([&] { return count_of(daemon.log(), "pty " + pty + ": closed") >= nth; },
+                      5000ms);
+}
+
+} // namespace
+
+TEST_CASE("pty: a client that floods the port and exits without reading leaves the next one "
+          "its whole output allowance",
+          "[e2e][pty]")
+{
+    Daemon daemon;
+    const Endpoint ep = daemon.endpoint();
+    {
+        // More answers than the 1 MiB the daemon keeps for an unread port plus what the pty
+        // itself buffers.
+        PtyClient flood(ep.pty);
+        std::string commands;
+        for (int i = 0; i < 350000; ++i)
+            commands += ":GNC\n";
+        commands += ":SCLS0,1234\n";
+        flood.send(commands, 30000ms);
+        // Once the last command shows over TCP, the daemon has handled the whole flood.
+        TcpClient t(ep);
+        REQUIRE(wait_until([&] { return t.request(":GCLS0\n") == ":CLS0,1234\n"; }, 30000ms));
+        REQUIRE(daemon.log().find("dropping output") != std::string::npos);
+    }
+    REQUIRE(wait_for_close(daemon, ep.pty, 1));
+    // The queue was cut to the frame being written: the allowance must be whole again. A
+    // burst of requests sent before reading any answer needs most of it (12000 answers of
+    // 11 bytes: more than the pty buffers, less than 1 MiB with the per-frame overhead).
+    PtyClient p(ep.pty);
+    CHECK(p.request(":GSI\n") == ":ID3118100\n");
+    std::string burst;
+    for (int i = 0; i < 12000; ++i)
+        burst += ":GSI\n";
+    p.send(burst);
+    int answers = 0;
+    while (auto line = p.read_line()) {
+        if (*line != ":ID3118100\n")
+            break;
+        if (++answers == 12000)
+            break;
+    }
+    CHECK(answers == 12000);
+    CHECK(p.request(":GP0\n") == ":P0,0\n");
+    CHECK(p.request(":GNC\n") == ":N3\n");
+}
+
+TEST_CASE("pty: a process that opens the closed port starts from an empty framer", "[e2e][pty]")
+{
+    Daemon daemon;
+
+    SECTION("APT: a frame cut short by the last process does not swallow the next request")
+    {
+        const Endpoint ep = daemon.endpoint("tdc001");
+        {
+            // MOT_SET_VELPARAMS (0x0413, 14 data bytes): the header and 2 bytes of data.
+            PtyClient a(ep.pty);
+            a.send(std::string("\x13\x04\x0e\x00\xd0\x01\x01\x00", 8));
+        }
+        REQUIRE(wait_for_close(daemon, ep.pty, 1));
+        PtyClient b(ep.pty);
+        // HW_REQ_INFO (0x0005) is answered with HW_GET_INFO (0x0006, 84 data bytes).
+        b.send(std::string("\x05\x00\x00\x00\x50\x01", 6));
+        std::string answer;
+        REQUIRE(wait_until(
+            [&] {
+                char buf[256];
+                const auto n = ::read(b.fd(), buf, sizeof buf);
+                if (n > 0)
+                    answer.append(buf, static_cast<std::size_t>(n));
+                return answer.size() >= 90;
+            },
+            kAnswerTimeout));
+        CHECK(answer.substr(0, 2) == std::string("\x06\x00", 2));
+        CHECK(answer.size() == 90);
+    }
+
+    SECTION("MCS: a line without its newline is not the start of the next process's line")
+    {
+        const Endpoint ep = daemon.endpoint("mcs0");
+        {
+            PtyClient a(ep.pty);
+            a.send(":GN");
+        }
+        REQUIRE(wait_for_close(daemon, ep.pty, 1));
+        PtyClient b(ep.pty);
+        CHECK(b.request("C\n:GSI\n") == ":ID3118100\n");   // "C\n" alone is no command
+        CHECK(b.request(":GNC\n") == ":N3\n");
+    }
+}
+
+TEST_CASE("pty: a client that leaves ECHO on gets each answer once, with no echo storm",
+          "[e2e][pty]")
+{
+    Daemon daemon;
+    const Endpoint ep = daemon.endpoint();
+    PtyClient p(ep.pty);
+    // A naive client: canonical mode with echo, as a terminal leaves the line.
+    termios t{};
+    REQUIRE(::tcgetattr(p.fd(), &t) == 0);
+    t.c_lflag |= ECHO | ICANON;
+    REQUIRE(::tcsetattr(p.fd(), TCSANOW, &t) == 0);
+
+    CHECK(p.request(":GNC\n") == ":N3\n");
+    // An echoed answer would come back to the device as a command, and its error answer
+    // would be echoed in turn: every further line read here would be one of those.
+    std::vector<std::string> extra;
+    const auto deadline = SteadyClock::now() + 500ms;
+    while (SteadyClock::now() < deadline)
+        if (auto line = p.read_line(50ms))
+            extra.push_back(*line);
+    INFO("first extra line: " << (extra.empty() ? std::string("none") : extra.front()));
+    CHECK(extra.empty());
+    CHECK(p.request(":GSI\n") == ":ID3118100\n");
+    CHECK(daemon.log().find("error 2") == std::string::npos);
 }
