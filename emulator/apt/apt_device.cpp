@@ -654,7 +654,7 @@ bool AptDevice::handle_system(const Frame& f, std::string_view peer)
 {
     switch (f.id) {
     case MGMSG_MOD_IDENTIFY:
-        ++identify_count_;   // the front panel LED flashes; the back door can read the count
+        ++identify_count_;   // the front panel LED flashes: counted (identify_count()) and logged
         log_->info("{}: MOD_IDENTIFY: front panel flashes", peer);
         return true;
     case MGMSG_HW_DISCONNECT:

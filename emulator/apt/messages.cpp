@@ -16,7 +16,7 @@ constexpr Group M = Group::Motor;
 constexpr bool kShortFormToo = true;
 constexpr bool kLaterIssue = true;
 
-// Page numbers are the manual's ("Page N of 138"). The rule of ERRATA.md: the detailed
+// Page numbers are the manual's ("Page N of 138"). The rule of the errata (docs/protocol/errata.md): the detailed
 // section beats the summary tables and the examples; where the detailed section is garbled,
 // the byte layout its own field list and stated packet length imply wins.
 constexpr MessageInfo kTable[] = {

@@ -6,8 +6,8 @@
 // message-entry table: an ID the table does not know, or a data packet of another length
 // than the table's, is not a frame.
 //
-// IDs and lengths follow the detailed section of each message, corrected by
-// /work/shared/specs/ERRATA.md where that section is itself wrong; every choice made where
+// IDs and lengths follow the detailed section of each message, corrected by the errata
+// (docs/protocol/errata.md) where that section is itself wrong; every choice made where
 // the manual is ambiguous is a comment at the message's entry in messages.cpp.
 
 #include <cstddef>

@@ -100,7 +100,8 @@ TEST_CASE("cli: --help lists every flag and exits 0", "[e2e][cli]")
     REQUIRE(r.exited);
     CHECK(r.exit_code == 0);
     for (const char* flag : {"--config", "--check-config", "--endpoints-json", "--pty-dir",
-                             "--ephemeral-ports", "--bind", "--time-scale", "--tick-hz", "--state-file",
+                             "--ephemeral-ports", "--bind", "--max-connections", "--max-connections-per-device",
+                             "--time-scale", "--tick-hz", "--state-file",
                              "--log-level", "--help"}) {
         INFO("flag " << flag);
         CHECK(r.out.find(flag) != std::string::npos);
