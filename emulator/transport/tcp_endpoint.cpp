@@ -273,15 +273,20 @@ void TcpEndpoint::refuse(tcp::socket socket, const char* limit_name, std::size_t
         log_->warn("tcp {}:{}: connection refused: {} open, the limit ({} {})", remote.address().to_string(),
                    remote.port(), open, limit_name, limit);
         refusal_timer_armed_ = true;
-        refusal_timer_.expires_after(std::chrono::seconds(1));
-        std::weak_ptr<bool> alive = alive_;
-        refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
-            if (!alive.lock() || wait_ec)
-                return;
-            report_refusals();
-        });
+        arm_refusal_timer();
     }
     socket.close(ec);
+}
+
+void TcpEndpoint::arm_refusal_timer()
+{
+    refusal_timer_.expires_after(std::chrono::seconds(1));
+    std::weak_ptr<bool> alive = alive_;
+    refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
+        if (!alive.lock() || wait_ec)
+            return;
+        report_refusals();
+    });
 }
 
 void TcpEndpoint::report_refusals()
@@ -293,13 +298,7 @@ void TcpEndpoint::report_refusals()
     log_->warn("tcp: refused {} more connection(s) in the last second (limits: {} per device, {} in all)",
                refusals_unreported_, budget_.max_per_device, budget_.max_total);
     refusals_unreported_ = 0;
-    refusal_timer_.expires_after(std::chrono::seconds(1));
-    std::weak_ptr<bool> alive = alive_;
-    refusal_timer_.async_wait([this, alive](const boost::system::error_code& wait_ec) {
-        if (!alive.lock() || wait_ec)
-            return;
-        report_refusals();
-    });
+    arm_refusal_timer();
 }
 
 void TcpEndpoint::forget(const std::shared_ptr<TcpConnection>& c)

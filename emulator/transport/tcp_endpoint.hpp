@@ -70,6 +70,8 @@ private:
     void refuse(boost::asio::ip::tcp::socket socket, const char* limit_name, std::size_t limit,
                 std::size_t open);
     void report_refusals();
+    /// report_refusals() in one second.
+    void arm_refusal_timer();
 
     boost::asio::io_context& io_;
     Device& device_;

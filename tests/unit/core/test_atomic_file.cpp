@@ -1,6 +1,8 @@
 // write_file_atomically and its helpers: whole files or nothing, never through a planted link.
 #include "emulator/core/atomic_file.hpp"
 
+#include "tests/support/temp_dir.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <dirent.h>
@@ -15,53 +17,11 @@
 #include <vector>
 
 using namespace rigsim;
+using rigsim::test::TempDir;
+using rigsim::test::read;
+using rigsim::test::write;
 
 namespace {
-
-class TempDir {
-public:
-    TempDir()
-    {
-        char t[] = "/tmp/rigsim-atomic-XXXXXX";
-        REQUIRE(::mkdtemp(t));
-        path_ = t;
-    }
-    ~TempDir()
-    {
-        for (const auto& name : entries())
-            ::unlink((path_ + "/" + name).c_str());
-        ::rmdir(path_.c_str());
-    }
-    std::string file(const std::string& name) const { return path_ + "/" + name; }
-    std::vector<std::string> entries() const
-    {
-        std::vector<std::string> names;
-        if (DIR* d = ::opendir(path_.c_str())) {
-            while (const dirent* e = ::readdir(d))
-                if (std::string(e->d_name) != "." && std::string(e->d_name) != "..")
-                    names.push_back(e->d_name);
-            ::closedir(d);
-        }
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-private:
-    std::string path_;
-};
-
-std::string read(const std::string& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void write(const std::string& path, const std::string& text)
-{
-    std::ofstream(path) << text;
-}
 
 bool is_symlink(const std::string& path)
 {

@@ -4,6 +4,8 @@
 
 #include "emulator/core/atomic_file.hpp"
 
+#include "tests/support/temp_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <spdlog/sinks/ostream_sink.h>
 
@@ -21,56 +23,11 @@
 #include <vector>
 
 using namespace rigsim;
+using rigsim::test::TempDir;
+using rigsim::test::read;
+using rigsim::test::write;
 
 namespace {
-
-class TempDir {
-public:
-    TempDir()
-    {
-        char t[] = "/tmp/rigsim-store-XXXXXX";
-        REQUIRE(::mkdtemp(t));
-        path_ = t;
-    }
-    ~TempDir()
-    {
-        for (const auto& name : entries()) {
-            const auto p = file(name);
-            if (::unlink(p.c_str()) != 0)
-                ::rmdir(p.c_str());
-        }
-        ::rmdir(path_.c_str());
-    }
-    std::string file(const std::string& name) const { return path_ + "/" + name; }
-    std::vector<std::string> entries() const
-    {
-        std::vector<std::string> names;
-        if (DIR* d = ::opendir(path_.c_str())) {
-            while (const dirent* e = ::readdir(d))
-                if (std::string(e->d_name) != "." && std::string(e->d_name) != "..")
-                    names.push_back(e->d_name);
-            ::closedir(d);
-        }
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-private:
-    std::string path_;
-};
-
-std::string read(const std::string& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void write(const std::string& path, const std::string& text)
-{
-    std::ofstream(path) << text;
-}
 
 struct CapturedLog {
     std::ostringstream text;
