@@ -226,38 +226,9 @@ std::optional<Options> parse_args(int argc, char** argv)
     return o;
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/// Runs the rig until a shutdown signal; the exit status.
+int run(const rigsim::RigConfig& config, const Options& opts)
 {
-    std::optional<Options> parsed;
-    try {
-        parsed = parse_args(argc, argv);
-    } catch (const UsageError& e) {
-        std::cerr << "rigsimd: " << e.message << "\n";
-        return kExitUsage;
-    }
-    if (!parsed)
-        return 0;
-    auto& opts = *parsed;
-
-    rigsim::RigConfig config;
-    try {
-        if (opts.check_config) {
-            config = rigsim::load_rig_config(*opts.check_config);
-            rigsim::resolve_pty_paths(config, opts.rig.pty_dir, *opts.check_config);
-            std::cout << *opts.check_config << ": valid\n";
-            return 0;
-        }
-        config = opts.config ? rigsim::load_rig_config(*opts.config) : rigsim::default_rig_config();
-        rigsim::resolve_pty_paths(config, opts.rig.pty_dir, opts.config ? *opts.config : "built-in default rig");
-    } catch (const rigsim::ConfigError& e) {
-        std::cerr << e.what() << "\n";
-        return kExitUsage;
-    }
-    if (opts.tick_hz)
-        config.tick_hz = *opts.tick_hz;
-
     auto log = rigsim::make_logger("rigsimd", opts.rig.log_levels);
     // Summaries of rate-limited warnings appear within a second of their window's end.
     spdlog::flush_every(std::chrono::seconds(1));
@@ -322,4 +293,38 @@ int main(int argc, char** argv)
         return status;
     log->info("stopped");
     return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    std::optional<Options> parsed;
+    try {
+        parsed = parse_args(argc, argv);
+    } catch (const UsageError& e) {
+        std::cerr << "rigsimd: " << e.message << "\n";
+        return kExitUsage;
+    }
+    if (!parsed)
+        return 0;
+    auto& opts = *parsed;
+
+    rigsim::RigConfig config;
+    try {
+        if (opts.check_config) {
+            config = rigsim::load_rig_config(*opts.check_config);
+            rigsim::resolve_pty_paths(config, opts.rig.pty_dir, *opts.check_config);
+            std::cout << *opts.check_config << ": valid\n";
+            return 0;
+        }
+        config = opts.config ? rigsim::load_rig_config(*opts.config) : rigsim::default_rig_config();
+        rigsim::resolve_pty_paths(config, opts.rig.pty_dir, opts.config ? *opts.config : "built-in default rig");
+    } catch (const rigsim::ConfigError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitUsage;
+    }
+    if (opts.tick_hz)
+        config.tick_hz = *opts.tick_hz;
+    return run(config, opts);
 }
