@@ -9,6 +9,7 @@
 #include "emulator/apt/motor_channel.hpp"
 #include "emulator/core/clock.hpp"
 #include "emulator/core/device.hpp"
+#include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
 
 #include <spdlog/logger.h>
@@ -43,7 +44,6 @@ public:
     AptDevice(const AptDevice&) = delete;
     AptDevice& operator=(const AptDevice&) = delete;
 
-    const DeviceConfig& config() const override { return config_; }
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
 
     /// Handle one frame from a connection; answers go to `reply`.

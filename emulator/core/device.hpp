@@ -3,8 +3,6 @@
 // connection, a Session that it feeds bytes; the session answers through `send`.
 // Neither side knows the other's details.
 
-#include "emulator/core/rig_config.hpp"
-
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -29,7 +27,6 @@ public:
 class Device {
 public:
     virtual ~Device() = default;
-    virtual const DeviceConfig& config() const = 0;
     /// A new connection; `peer` names it in logs ("tcp 127.0.0.1:53122", "pty").
     virtual std::unique_ptr<Session> open_session(SendFn send, std::string peer) = 0;
     /// Baud rate at which the serial port (pty) paces the device's output; 0 = no pacing

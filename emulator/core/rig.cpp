@@ -22,7 +22,6 @@ class PacedDevice : public Device {
 public:
     PacedDevice(Device& inner, Ticker& ticker) : inner_(inner), ticker_(ticker) {}
 
-    const DeviceConfig& config() const override { return inner_.config(); }
     std::uint32_t serial_baud() const override { return inner_.serial_baud(); }
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override

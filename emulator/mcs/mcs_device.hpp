@@ -4,6 +4,7 @@
 
 #include "emulator/core/clock.hpp"
 #include "emulator/core/device.hpp"
+#include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/controller.hpp"
 #include "emulator/mcs/handler.hpp"
 
@@ -23,7 +24,6 @@ public:
     McsDevice(const McsDevice&) = delete;
     McsDevice& operator=(const McsDevice&) = delete;
 
-    const DeviceConfig& config() const override { return config_; }
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
     /// With `faithful_timing`, the serial line runs at the controller's baud rate (1.2, CB).
     std::uint32_t serial_baud() const override
