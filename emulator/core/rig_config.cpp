@@ -394,24 +394,25 @@ private:
         }
         if (find(v, "mcs"))
             fail(pointer_to(pointer, "mcs"), "an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
-        const auto* controller = apt::find_controller(d.model);
-        if (!find(v, "model") || !controller)
+        d.apt = load_apt(v, pointer, d.model);
+        return d;
+    }
+
+    /// The "apt" object of an APT device whose model is `model`.
+    AptConfig load_apt(const json& device, const std::string& pointer, const std::string& model) const
+    {
+        AptConfig apt;
+        const auto* controller = apt::find_controller(model);
+        if (!find(device, "model") || !controller)
             fail(pointer_to(pointer, "model"), "expected an APT controller model (" + std::string(apt::controller_names())
-                                                  + "), got " + (find(v, "model") ? quote(d.model) : std::string("nothing")));
+                                                  + "), got " + (find(device, "model") ? quote(model) : std::string("nothing")));
         const auto apt_pointer = pointer_to(pointer, "apt");
-        const auto& a = require(v, pointer, "apt");
+        const auto& a = require(device, pointer, "apt");
         if (!a.is_object())
             fail(apt_pointer, "expected an object, got " + describe(a));
         check_keys(a, apt_pointer, kAptKeys);
-        if (const auto* st = find(a, "stage")) {
-            d.apt.stage = get_string(*st, pointer_to(apt_pointer, "stage"));
-            const auto* model = apt::find_stage(d.apt.stage);
-            if (!model)
-                fail(pointer_to(apt_pointer, "stage"), "unknown stage " + quote(d.apt.stage) + " (expected one of "
-                                                           + std::string(apt::stage_names()) + ")");
-            if (model->motor != controller->motor)
-                fail(pointer_to(apt_pointer, "stage"), "stage " + quote(d.apt.stage) + " has another kind of motor than a " + d.model);
-        }
+        if (const auto* st = find(a, "stage"))
+            apt.stage = load_apt_stage(*st, pointer_to(apt_pointer, "stage"), *controller, model);
         if (controller->rack) {
             if (find(a, "stage"))
                 fail(pointer_to(apt_pointer, "stage"), "a rack controller names a stage per bay in \"bays\"");
@@ -420,29 +421,33 @@ private:
             const auto max = static_cast<std::size_t>(controller->max_bays);
             if (!bays.is_array() || bays.empty() || bays.size() > max)
                 fail(bays_pointer, "expected an array of 1.." + std::to_string(max) + " stages, got " + describe(bays));
-            for (std::size_t i = 0; i < bays.size(); ++i) {
-                const auto bay_pointer = pointer_to(bays_pointer, i);
-                auto stage = get_string(bays[i], bay_pointer);
-                const auto* model = apt::find_stage(stage);
-                if (!model)
-                    fail(bay_pointer, "unknown stage " + quote(stage) + " (expected one of "
-                                          + std::string(apt::stage_names()) + ")");
-                if (model->motor != controller->motor)
-                    fail(bay_pointer, "stage " + quote(stage) + " has another kind of motor than a " + d.model);
-                d.apt.bays.push_back(std::move(stage));
-            }
+            for (std::size_t i = 0; i < bays.size(); ++i)
+                apt.bays.push_back(load_apt_stage(bays[i], pointer_to(bays_pointer, i), *controller, model));
         } else if (find(a, "bays")) {
-            fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + d.model + " names one \"stage\"");
-        } else if (!find(a, "stage") && apt::find_stage(d.apt.stage)->motor != controller->motor) {
-            fail(pointer_to(apt_pointer, "stage"), "required key missing (the default " + d.apt.stage
-                                                       + " is not a stage for a " + d.model + ")");
+            fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + model + " names one \"stage\"");
+        } else if (!find(a, "stage") && apt::find_stage(apt.stage)->motor != controller->motor) {
+            fail(pointer_to(apt_pointer, "stage"), "required key missing (the default " + apt.stage
+                                                       + " is not a stage for a " + model + ")");
         }
         if (const auto* sn = find(a, "serial_number")) {
             const std::int64_t lo = controller->serial_prefix * 1'000'000LL;
-            d.apt.serial_number = static_cast<std::uint32_t>(get_int(*sn, pointer_to(apt_pointer, "serial_number"), lo,
-                                                                     lo + 999'999, " (the model's serial prefix)"));
+            apt.serial_number = static_cast<std::uint32_t>(get_int(*sn, pointer_to(apt_pointer, "serial_number"), lo,
+                                                                   lo + 999'999, " (the model's serial prefix)"));
         }
-        return d;
+        return apt;
+    }
+
+    /// A stage of the catalogue whose motor suits `controller` (a single unit's "stage", or one of a rack's "bays").
+    std::string load_apt_stage(const json& v, const std::string& pointer, const apt::ControllerModel& controller,
+                               const std::string& model) const
+    {
+        auto stage = get_string(v, pointer);
+        const auto* found = apt::find_stage(stage);
+        if (!found)
+            fail(pointer, "unknown stage " + quote(stage) + " (expected one of " + std::string(apt::stage_names()) + ")");
+        if (found->motor != controller.motor)
+            fail(pointer, "stage " + quote(stage) + " has another kind of motor than a " + model);
+        return stage;
     }
 
     /// Record that device `owner` uses `value`; a second user is an error at `pointer`.

@@ -378,69 +378,74 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
         search_speed_ = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed())
                                             : std::min(1'000'000.0, top_speed());
         const double here = state_[0];
-        const double step = static_cast<double>(config_.coded_mark_spacing);
-        const double mark = static_cast<double>(config_.reference_position);
         // End stops and range limits both turn the search around (2.3.4).
         const auto [lo, hi] = physical_limit();
-        reference_legs_.clear();
-        reference_found_ = false;
         // End-stop types ignore the direction parameter and use the safe direction (SSD).
         const double dir = sensor_->reference == ReferenceType::EndStop ? (safe_direction_ == 0 ? 1.0 : -1.0)
                                                                         : (direction == 0 ? 1.0 : -1.0);
-        const double end_ahead = dir > 0 ? hi : lo;
-        const double end_behind = dir > 0 ? lo : hi;
-        switch (sensor_->reference) {
-        case ReferenceType::None:
-            break;
-        case ReferenceType::EndStop:
-            reference_legs_ = {end_ahead};
-            reference_found_ = true;
-            reference_point_ = end_ahead;
-            break;
-        case ReferenceType::Mark:
-            if (endless()) {   // a mark every revolution: at most one turn away
-                const double turn = 360'000'000.0;
-                const double k = dir > 0 ? std::ceil((here - mark) / turn) : std::floor((here - mark) / turn);
-                reference_point_ = mark + k * turn;
-                reference_legs_ = {reference_point_};
-                reference_found_ = true;
-            } else if (mark >= lo && mark <= hi) {
-                if ((mark - here) * dir < 0)
-                    reference_legs_.push_back(end_ahead);   // reverse at the end stop
-                reference_legs_.push_back(mark);
-                reference_point_ = mark;
-                reference_found_ = true;
-            } else {
-                reference_legs_ = {end_ahead, end_behind};   // the mark lies outside: 144
-            }
-            break;
-        case ReferenceType::DistanceCodedMarks: {
-            // Two neighbouring marks give the position (2.3.3): stop at the second one met.
-            auto second_mark = [&](double from, double d, double bound) -> std::optional<double> {
-                double first = d > 0 ? mark + std::floor((from - mark) / step + 1) * step
-                                     : mark + std::ceil((from - mark) / step - 1) * step;
-                const double second = first + d * step;
-                if (std::isinf(bound) || (second - bound) * d <= 0)
-                    return second;
-                return std::nullopt;
-            };
-            if (auto m = second_mark(here, dir, end_ahead)) {
-                reference_legs_ = {*m};
-            } else if (auto back = second_mark(end_ahead, -dir, end_behind)) {
-                reference_legs_ = {end_ahead, *back};
-            } else {
-                reference_legs_ = {end_ahead, end_behind};
-                break;
-            }
-            reference_point_ = mark;   // the marks' code gives the absolute position
-            reference_found_ = true;
-            break;
-        }
-        }
+        plan_reference_search(here, dir, lo, hi);
         motion_ = Motion::Referencing;
         next_reference_leg(now);
     });
     return std::nullopt;
+}
+
+void Channel::plan_reference_search(double here, double dir, double lo, double hi)
+{
+    const double step = static_cast<double>(config_.coded_mark_spacing);
+    const double mark = static_cast<double>(config_.reference_position);
+    reference_legs_.clear();
+    reference_found_ = false;
+    const double end_ahead = dir > 0 ? hi : lo;
+    const double end_behind = dir > 0 ? lo : hi;
+    switch (sensor_->reference) {
+    case ReferenceType::None:
+        break;
+    case ReferenceType::EndStop:
+        reference_legs_ = {end_ahead};
+        reference_found_ = true;
+        reference_point_ = end_ahead;
+        break;
+    case ReferenceType::Mark:
+        if (endless()) {   // a mark every revolution: at most one turn away
+            const double turn = 360'000'000.0;
+            const double k = dir > 0 ? std::ceil((here - mark) / turn) : std::floor((here - mark) / turn);
+            reference_point_ = mark + k * turn;
+            reference_legs_ = {reference_point_};
+            reference_found_ = true;
+        } else if (mark >= lo && mark <= hi) {
+            if ((mark - here) * dir < 0)
+                reference_legs_.push_back(end_ahead);   // reverse at the end stop
+            reference_legs_.push_back(mark);
+            reference_point_ = mark;
+            reference_found_ = true;
+        } else {
+            reference_legs_ = {end_ahead, end_behind};   // the mark lies outside: 144
+        }
+        break;
+    case ReferenceType::DistanceCodedMarks: {
+        // Two neighbouring marks give the position (2.3.3): stop at the second one met.
+        auto second_mark = [&](double from, double d, double bound) -> std::optional<double> {
+            double first = d > 0 ? mark + std::floor((from - mark) / step + 1) * step
+                                 : mark + std::ceil((from - mark) / step - 1) * step;
+            const double second = first + d * step;
+            if (std::isinf(bound) || (second - bound) * d <= 0)
+                return second;
+            return std::nullopt;
+        };
+        if (auto m = second_mark(here, dir, end_ahead)) {
+            reference_legs_ = {*m};
+        } else if (auto back = second_mark(end_ahead, -dir, end_behind)) {
+            reference_legs_ = {end_ahead, *back};
+        } else {
+            reference_legs_ = {end_ahead, end_behind};
+            break;
+        }
+        reference_point_ = mark;   // the marks' code gives the absolute position
+        reference_found_ = true;
+        break;
+    }
+    }
 }
 
 void Channel::next_reference_leg(Ticks now)

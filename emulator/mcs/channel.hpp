@@ -186,6 +186,9 @@ private:
     void start_leg(double to, double speed, Ticks now);
     void sample(Ticks now);
     void arrive(Ticks now);
+    /// The legs of a reference search from physical `here` in direction `dir` (+1/-1) between
+    /// the turning points `lo` and `hi`: sets reference_legs_, reference_found_, reference_point_.
+    void plan_reference_search(double here, double dir, double lo, double hi);
     void next_reference_leg(Ticks now);
     void finish_movement();
     void become_known(double reference_physical, bool auto_zero);
