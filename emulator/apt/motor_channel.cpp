@@ -192,8 +192,8 @@ void MotorChannel::start_profile(double target_physical, double v, double a, Mot
     }
     // S-curve when MOT_SET_PMDPROFILEMODEPARAMS asks for it (p. 69); jerk scaling of 7.1.
     const double j = controller_.jerk_per_count_s3 > 0 ? jerk / controller_.jerk_per_count_s3 : 0;
-    profile_ = profile_mode == 2 && j > 0 ? models::TrapezoidProfile::plan_s_curve(state_, target, v, a, j)
-                                          : models::TrapezoidProfile::plan(state_, target, v, a);
+    profile_ = profile_mode == 2 && j > 0 ? models::MotionProfile::plan_s_curve(state_, target, v, a, j)
+                                          : models::MotionProfile::plan(state_, target, v, a);
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motion_ = motion;
@@ -309,7 +309,7 @@ void MotorChannel::stop(bool immediate)
     const double v = state_[1];
     const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
     // An end on the way stops the axis first (enforce_ends()).
-    profile_ = models::TrapezoidProfile::plan(state_, stop_at, std::max(std::abs(v), 1.0), a);
+    profile_ = models::MotionProfile::plan(state_, stop_at, std::max(std::abs(v), 1.0), a);
     profile_slip_ = 0;
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));

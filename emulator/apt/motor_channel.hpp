@@ -4,7 +4,7 @@
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/core/clock.hpp"
-#include "models/trapezoid.hpp"
+#include "models/motion_profile.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -163,7 +163,7 @@ private:
     double counter_offset_;          ///< physical counts that read 0 on the position counter
     double encoder_offset_;
     models::AxisState state_;        ///< physical position (counts from the reverse limit), velocity
-    models::TrapezoidProfile profile_;
+    models::MotionProfile profile_;
     Motion motion_ = Motion::Idle;
     Ticks start_ = 0;
     Ticks end_ = 0;

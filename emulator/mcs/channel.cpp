@@ -305,7 +305,7 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
         limit_hit_ = false;
     const double speed = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed()) : top_speed();
     const double acceleration = acceleration_um_per_s2_ * 1000.0;   // µm/s² (m°/s²) -> nm/s² (µ°/s²)
-    profile_ = models::TrapezoidProfile::plan(state_, clamped, speed, acceleration);
+    profile_ = models::MotionProfile::plan(state_, clamped, speed, acceleration);
     move_start_ = now;
     move_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motion_ = Motion::Targeting;
@@ -315,7 +315,7 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
 
 void Channel::start_leg(double to, double speed, Ticks now)
 {
-    profile_ = models::TrapezoidProfile::plan(models::AxisState(state_[0], 0.0), to, speed, 0.0);
+    profile_ = models::MotionProfile::plan(models::AxisState(state_[0], 0.0), to, speed, 0.0);
     move_start_ = now;
     move_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
 }
@@ -469,7 +469,7 @@ void Channel::next_reference_leg(Ticks now)
         return;
     }
     become_known(endless() ? reference_point_ : reference_point_, auto_zero_);
-    profile_ = models::TrapezoidProfile::plan(state_, state_[0], 1.0, 0.0);
+    profile_ = models::MotionProfile::plan(state_, state_[0], 1.0, 0.0);
     end_stop_hit_ = false;
     limit_hit_ = false;
     arrive(now);

@@ -8,7 +8,7 @@
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/codec.hpp"
 #include "emulator/mcs/sensor_types.hpp"
-#include "models/trapezoid.hpp"
+#include "models/motion_profile.hpp"
 
 #include <array>
 #include <cstdint>
@@ -248,7 +248,7 @@ private:
     std::function<void(Ticks)> pending_start_;   ///< movement waiting for the sensor
     Ticks delay_until_ = 0;
     models::AxisState state_;        ///< physical position (nm), velocity (nm/s)
-    models::TrapezoidProfile profile_;
+    models::MotionProfile profile_;
     Ticks move_start_ = 0;
     Ticks move_end_ = 0;             ///< tick at which the profile is done
     Ticks hold_until_ = 0;           ///< kNever: hold until stopped

@@ -1,4 +1,4 @@
-#include "models/trapezoid.hpp"
+#include "models/motion_profile.hpp"
 
 #include <cmath>
 
@@ -14,7 +14,7 @@ AxisState integrate(const AxisState& s, double a, double j, double t)
     return AxisState{s[0] + s[1] * t + 0.5 * a * t * t + j * t * t * t / 6, s[1] + a * t + 0.5 * j * t * t};
 }
 
-void TrapezoidProfile::append(double duration, const AxisState& start, double acceleration, double jerk)
+void MotionProfile::append(double duration, const AxisState& start, double acceleration, double jerk)
 {
     if (duration <= 0)
         return;
@@ -49,12 +49,12 @@ Ramp s_ramp(double v, double a, double j)
 
 } // namespace
 
-TrapezoidProfile TrapezoidProfile::plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
+MotionProfile MotionProfile::plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
                                                 double j_max)
 {
     if (a_max <= 0 || j_max <= 0 || from[1] != 0 || v_max <= 0)
         return plan(from, target, v_max, a_max);
-    TrapezoidProfile p;
+    MotionProfile p;
     p.target_ = target;
     const double d = target - from[0];
     if (d == 0)
@@ -90,10 +90,10 @@ TrapezoidProfile TrapezoidProfile::plan_s_curve(const AxisState& from, double ta
     return p;
 }
 
-TrapezoidProfile TrapezoidProfile::plan(const AxisState& from, double target, double v_max,
+MotionProfile MotionProfile::plan(const AxisState& from, double target, double v_max,
                                         double a_max)
 {
-    TrapezoidProfile p;
+    MotionProfile p;
     p.target_ = target;
     if (v_max <= 0)
         return p;   // cannot move: the caller refuses such moves before planning
@@ -101,7 +101,7 @@ TrapezoidProfile TrapezoidProfile::plan(const AxisState& from, double target, do
     return p;
 }
 
-void TrapezoidProfile::plan_from(AxisState s, double v_max, double a_max)
+void MotionProfile::plan_from(AxisState s, double v_max, double a_max)
 {
     // Each pass either finishes the plan or brings the axis to a simpler state
     // (at rest, or moving toward the target no faster than v_max); three passes suffice.
@@ -157,12 +157,12 @@ void TrapezoidProfile::plan_from(AxisState s, double v_max, double a_max)
     }
 }
 
-double TrapezoidProfile::duration() const
+double MotionProfile::duration() const
 {
     return segments_.empty() ? 0.0 : segments_.back().t0 + segments_.back().duration;
 }
 
-AxisState TrapezoidProfile::sample(double t) const
+AxisState MotionProfile::sample(double t) const
 {
     if (segments_.empty() || t >= duration())
         return AxisState{target_, 0.0};

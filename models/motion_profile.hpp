@@ -1,5 +1,6 @@
 #pragma once
-// Trapezoidal (bang-coast-bang) and jerk-limited S-curve point-to-point motion in one axis.
+// Point-to-point motion profiles in one axis: trapezoidal (bang-coast-bang) and
+// jerk-limited S-curve.
 //
 // A profile is planned once, from the axis state (position, velocity) at the moment a
 // move is commanded, as a list of constant-acceleration segments; it is then sampled at
@@ -24,16 +25,16 @@ struct Segment {
     double jerk = 0;
 };
 
-class TrapezoidProfile {
+class MotionProfile {
 public:
     /// Plan a move from `from` to `target`. `v_max` > 0; `a_max` == 0 means unlimited
     /// acceleration (the axis jumps to v_max). A start velocity pointing away from the
     /// target, or too fast to stop in time, is first braked to rest.
-    static TrapezoidProfile plan(const AxisState& from, double target, double v_max, double a_max);
+    static MotionProfile plan(const AxisState& from, double target, double v_max, double a_max);
     /// Plan a jerk-limited (S-curve) move: acceleration ramps from 0 to at most `a_max` at
     /// `j_max` and back, the same in reverse to stop at the target (seven segments, fewer
     /// for short moves). From a moving start, or with `a_max` or `j_max` <= 0, this is plan().
-    static TrapezoidProfile plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
+    static MotionProfile plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
                                          double j_max);
 
     /// State at `t` seconds after planning; the target at rest from duration() on.
