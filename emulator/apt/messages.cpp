@@ -13,6 +13,8 @@ namespace {
 constexpr std::int16_t H = -1;   // header-only
 constexpr Group G = Group::Generic;
 constexpr Group M = Group::Motor;
+constexpr Group P = Group::Piezo;
+constexpr Group S = Group::StrainGauge;
 constexpr bool kShortFormToo = true;
 constexpr bool kLaterIssue = true;
 
@@ -205,9 +207,107 @@ constexpr MessageInfo kTable[] = {
     {RIGSIM_APT_MSG(MGMSG_MOT_REQ_SOL_STATE), H, M},
     {RIGSIM_APT_MSG(MGMSG_MOT_GET_SOL_STATE), H, M},
 
+    // ---- Piezo Control Messages (pages 93-129) ----
+    // p.94: header-only, param1 = channel, param2 = mode.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_POSCONTROLMODE), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_POSCONTROLMODE), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_POSCONTROLMODE), H, P},
+    // p.96: 4 bytes: chan word, voltage short.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTVOLTS), 4, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTVOLTS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTVOLTS), 4, P},
+    // p.97: 4 bytes: chan word, PositionSW word. The example's explanation names header
+    // "43, 06" and value "33, 13" against its bytes "46, 06" / "66, 26" (ERRATA): the
+    // bytes are right; neither changes the length.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTPOS), 4, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTPOS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTPOS), 4, P},
+    // p.98: 4 bytes: chan word, VoltSrc word (the SET table labels it PositionSW, ERRATA).
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_INPUTVOLTSSRC), 4, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_INPUTVOLTSSRC), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_INPUTVOLTSSRC), 4, P},
+    // p.100: 6 bytes: chan, PropConst, IntConst (words). The explanation's header
+    // "55, 06, 05, 00" contradicts its own bytes "55, 06, 06, 00": 6 wins.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_PICONSTS), 6, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_PICONSTS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_PICONSTS), 6, P},
+    // p.101: GET 6 bytes: chan word, status dword.
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_PZSTATUSBITS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_PZSTATUSBITS), 6, P},
+    // p.103: the byte table prints "91 04 0E 00" (MOT_GET_DCSTATUSUPDATE's) under a
+    // "16 bytes ... 10 byte data packet" heading; the field list (chan word, OPVoltage
+    // short, Position short, status dword) makes 10 bytes: 0x0661, length 10 (ERRATA).
+    // The contents print the ID "0x00661". The manual has no REQ for it.
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_PZSTATUSUPDATE), 10, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_ACK_PZSTATUSUPDATE), H, P},   // p.105: params 0
+    // p.106: 6 bytes: chan, Index (words), Output short. The REQ table prints "1 07"
+    // (0x0701).
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTLUT), 6, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTLUT), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTLUT), 6, P},
+    // p.108: 30 bytes (0x1E): chan, Mode, CycleLength (words), NumCycles, DelayTime,
+    // PreCycleRest, PostCycleRest (longs), OPTrigStart word, OPTrigWidth long,
+    // TrigRepeatCycle word. The example (p.111) prints header length "06" and its values
+    // most-significant byte first (ERRATA): 30 wins. The GET table prints "03 07"; the ID
+    // is 0x0705.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTLUTPARAMS), 30, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTLUTPARAMS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTLUTPARAMS), 30, P},
+    // p.112: header-only, param1 = channel. The headings give no IDs; the contents and
+    // the cross-references (p.131) give 0x0706/0x0707, as do the tables' "06 07"/"07 07".
+    {RIGSIM_APT_MSG(MGMSG_PZ_START_LUTOUTPUT), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_STOP_LUTOUTPUT), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_EEPROMPARAMS), 4, P},   // p.113: chan word + MsgID word
+    // p.114: 2 bytes: DispIntensity word (no channel). REQ is header-only (param1 1).
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_TPZ_DISPSETTINGS), 2, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TPZ_DISPSETTINGS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_TPZ_DISPSETTINGS), 2, P},
+    // p.115: the heading gives no IDs: 0x07D4/0x07D5/0x07D6 from the contents and the
+    // REQ table "D5 07"; the GET table prints "D4 07" (0x07D6 wins). Both tables print
+    // length "0E" under "16 bytes ... 10 byte data packet"; the field list (chan,
+    // VoltageLimit, HubAnalogInput, two future-use words) makes 10: 10 wins.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_TPZ_IOSETTINGS), 10, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TPZ_IOSETTINGS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_TPZ_IOSETTINGS), 10, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_ZERO), H, P},   // p.117: header-only, param1 = channel
+    // p.118: GET 4 bytes: chan word, Travel word (100 nm steps).
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_MAXTRAVEL), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_MAXTRAVEL), 4, P},
+    // p.119: tables print length "0E" under "16 bytes ... 10 byte data packet"; the field
+    // list (chan, AmpCurrentLim, AmpLPFilter, FeedbackSig, BNCTrigORLVOut words) makes
+    // 10: 10 wins.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_IOSETTINGS), 10, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_IOSETTINGS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_IOSETTINGS), 10, P},
+    // p.121: 6 bytes: chan, Voltage, Flags (words). The SET table prints length "0C"; the
+    // "12 bytes ... 6 byte data packet" heading, the field list, the GET table and both
+    // examples ("80, 06, 06, 00") make 6: 6 wins.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTMAXVOLTS), 6, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTMAXVOLTS), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTMAXVOLTS), 6, P},
+    // p.123: 6 bytes: chan, SlewOpen, SlewClosed (words). The BPC30x cross-reference
+    // (p.132) spells them PZ_SET/REQ/GET_SLEWRATES; the section's TPZ_ names are kept.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_TPZ_SLEWRATES), 6, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TPZ_SLEWRATES), H, P},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_TPZ_SLEWRATES), 6, P},
     // p.125 (piezo chapter): header-only. The table prints "58 06" (PZ_SET_ZERO); the
     // heading and the BPC30x cross-reference (p.132) give 0x0686.
     {RIGSIM_APT_MSG(MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS), H, M},
+    // p.126: header-only, param1 = LUTType; its "Data Structure" (char) describes param1.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_LUTVALUETYPE), H, P},
+
+    // ---- Strain gauge reader (TSG001; pages 127-129, in the piezo chapter) ----
+    // p.127: SET says "20 bytes ... 14 byte data packet", both tables print length "0E"
+    // and byte positions up to 19; GET's "16 bytes ... 10 byte data packet" is wrong: 14
+    // wins. The field list (chan, HubAnalogueOutput, DisplayMode, ForceCalib words) names
+    // 8 bytes; the rest is future use. The SET example carries 13 data bytes and is ignored.
+    {RIGSIM_APT_MSG(MGMSG_PZ_SET_TSG_IOSETTINGS), 14, S},
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TSG_IOSETTINGS), H, S},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_TSG_IOSETTINGS), 14, S},
+    // p.129: GET 6 bytes: chan word, Reading short, Smoothed word (the table labels the
+    // last 4 bytes StatusBits; the field list and the example win).
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TSG_READING), H, S},
+    {RIGSIM_APT_MSG(MGMSG_PZ_GET_TSG_READING), 6, S},
 };
 
 #undef RIGSIM_APT_MSG

@@ -1,7 +1,9 @@
 #pragma once
-// The APT message table (Thorlabs APT protocol, issue 3, 2012: "Generic System Control
-// Messages" and "Motor Control Messages", including the solenoid messages, which the
-// manual files under the motor controllers, and MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS).
+// The APT message table (Thorlabs APT protocol, issue 3, 2012): every message of its
+// "Generic System Control Messages", "Motor Control Messages" (including the solenoid
+// messages, which the manual files under the motor controllers) and "Piezo Control
+// Messages" (including the TSG001 strain gauge reader's, which the manual files under the
+// piezo controllers).
 // The frame framer checks every header against it, as MAVLink's framer checks its
 // message-entry table: an ID the table does not know, or a data packet of another length
 // than the table's, is not a frame.
@@ -18,8 +20,10 @@ namespace rigsim::apt {
 
 /// The chapter a message belongs to.
 enum class Group : std::uint8_t {
-    Generic,   ///< MOD_*, HW_*, RACK_*, HUB_* ("Generic System Control Messages")
-    Motor,     ///< MOT_* ("Motor Control Messages", "Solenoid Control Messages")
+    Generic,       ///< MOD_*, HW_*, RACK_*, HUB_* ("Generic System Control Messages")
+    Motor,         ///< MOT_* ("Motor Control Messages", "Solenoid Control Messages")
+    Piezo,         ///< PZ_* ("Piezo Control Messages") except the strain gauge reader's
+    StrainGauge,   ///< PZ_*TSG_* (the TSG001's messages, in "Piezo Control Messages")
 };
 
 /// One message of the table.
@@ -172,5 +176,60 @@ constexpr std::uint16_t MGMSG_MOT_REQ_SOL_STATE = 0x04CC;
 constexpr std::uint16_t MGMSG_MOT_GET_SOL_STATE = 0x04CD;
 // A MOT_ message printed in the piezo chapter (TX structure, page 125).
 constexpr std::uint16_t MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS = 0x0686;
+
+// ---- Piezo Control Messages ----
+constexpr std::uint16_t MGMSG_PZ_SET_POSCONTROLMODE = 0x0640;
+constexpr std::uint16_t MGMSG_PZ_REQ_POSCONTROLMODE = 0x0641;
+constexpr std::uint16_t MGMSG_PZ_GET_POSCONTROLMODE = 0x0642;
+constexpr std::uint16_t MGMSG_PZ_SET_OUTPUTVOLTS = 0x0643;
+constexpr std::uint16_t MGMSG_PZ_REQ_OUTPUTVOLTS = 0x0644;
+constexpr std::uint16_t MGMSG_PZ_GET_OUTPUTVOLTS = 0x0645;
+constexpr std::uint16_t MGMSG_PZ_SET_OUTPUTPOS = 0x0646;
+constexpr std::uint16_t MGMSG_PZ_REQ_OUTPUTPOS = 0x0647;
+constexpr std::uint16_t MGMSG_PZ_GET_OUTPUTPOS = 0x0648;
+constexpr std::uint16_t MGMSG_PZ_SET_INPUTVOLTSSRC = 0x0652;
+constexpr std::uint16_t MGMSG_PZ_REQ_INPUTVOLTSSRC = 0x0653;
+constexpr std::uint16_t MGMSG_PZ_GET_INPUTVOLTSSRC = 0x0654;
+constexpr std::uint16_t MGMSG_PZ_SET_PICONSTS = 0x0655;
+constexpr std::uint16_t MGMSG_PZ_REQ_PICONSTS = 0x0656;
+constexpr std::uint16_t MGMSG_PZ_GET_PICONSTS = 0x0657;
+constexpr std::uint16_t MGMSG_PZ_REQ_PZSTATUSBITS = 0x065B;
+constexpr std::uint16_t MGMSG_PZ_GET_PZSTATUSBITS = 0x065C;
+constexpr std::uint16_t MGMSG_PZ_GET_PZSTATUSUPDATE = 0x0661;
+constexpr std::uint16_t MGMSG_PZ_ACK_PZSTATUSUPDATE = 0x0662;
+constexpr std::uint16_t MGMSG_PZ_SET_OUTPUTLUT = 0x0700;
+constexpr std::uint16_t MGMSG_PZ_REQ_OUTPUTLUT = 0x0701;
+constexpr std::uint16_t MGMSG_PZ_GET_OUTPUTLUT = 0x0702;
+constexpr std::uint16_t MGMSG_PZ_SET_OUTPUTLUTPARAMS = 0x0703;
+constexpr std::uint16_t MGMSG_PZ_REQ_OUTPUTLUTPARAMS = 0x0704;
+constexpr std::uint16_t MGMSG_PZ_GET_OUTPUTLUTPARAMS = 0x0705;
+constexpr std::uint16_t MGMSG_PZ_START_LUTOUTPUT = 0x0706;
+constexpr std::uint16_t MGMSG_PZ_STOP_LUTOUTPUT = 0x0707;
+constexpr std::uint16_t MGMSG_PZ_SET_EEPROMPARAMS = 0x07D0;
+constexpr std::uint16_t MGMSG_PZ_SET_TPZ_DISPSETTINGS = 0x07D1;
+constexpr std::uint16_t MGMSG_PZ_REQ_TPZ_DISPSETTINGS = 0x07D2;
+constexpr std::uint16_t MGMSG_PZ_GET_TPZ_DISPSETTINGS = 0x07D3;
+constexpr std::uint16_t MGMSG_PZ_SET_TPZ_IOSETTINGS = 0x07D4;
+constexpr std::uint16_t MGMSG_PZ_REQ_TPZ_IOSETTINGS = 0x07D5;
+constexpr std::uint16_t MGMSG_PZ_GET_TPZ_IOSETTINGS = 0x07D6;
+constexpr std::uint16_t MGMSG_PZ_SET_ZERO = 0x0658;
+constexpr std::uint16_t MGMSG_PZ_REQ_MAXTRAVEL = 0x0650;
+constexpr std::uint16_t MGMSG_PZ_GET_MAXTRAVEL = 0x0651;
+constexpr std::uint16_t MGMSG_PZ_SET_IOSETTINGS = 0x0670;
+constexpr std::uint16_t MGMSG_PZ_REQ_IOSETTINGS = 0x0671;
+constexpr std::uint16_t MGMSG_PZ_GET_IOSETTINGS = 0x0672;
+constexpr std::uint16_t MGMSG_PZ_SET_OUTPUTMAXVOLTS = 0x0680;
+constexpr std::uint16_t MGMSG_PZ_REQ_OUTPUTMAXVOLTS = 0x0681;
+constexpr std::uint16_t MGMSG_PZ_GET_OUTPUTMAXVOLTS = 0x0682;
+constexpr std::uint16_t MGMSG_PZ_SET_TPZ_SLEWRATES = 0x0683;
+constexpr std::uint16_t MGMSG_PZ_REQ_TPZ_SLEWRATES = 0x0684;
+constexpr std::uint16_t MGMSG_PZ_GET_TPZ_SLEWRATES = 0x0685;
+constexpr std::uint16_t MGMSG_PZ_SET_LUTVALUETYPE = 0x0708;
+// The TSG001 strain gauge reader (filed under the piezo controllers, p. 93).
+constexpr std::uint16_t MGMSG_PZ_SET_TSG_IOSETTINGS = 0x07DA;
+constexpr std::uint16_t MGMSG_PZ_REQ_TSG_IOSETTINGS = 0x07DB;
+constexpr std::uint16_t MGMSG_PZ_GET_TSG_IOSETTINGS = 0x07DC;
+constexpr std::uint16_t MGMSG_PZ_REQ_TSG_READING = 0x07DD;
+constexpr std::uint16_t MGMSG_PZ_GET_TSG_READING = 0x07DE;
 
 } // namespace rigsim::apt

@@ -286,6 +286,29 @@ TEST_CASE("apt framer accepts both forms of MOVE_RELATIVE and MOVE_ABSOLUTE", "[
                   "0453 d=50 s=01 p=01,00", "0453 d=50 s=01 [01 00 E0 B1 FF FF]"});
 }
 
+TEST_CASE("apt framer recognises piezo and strain gauge frames", "[unit][apt][framer]")
+{
+    // Until the table had the piezo chapter, these were dropped as garbage.
+    std::string status;
+    put_u16(status, 1);
+    put_i16(status, 0x7777);   // OPVoltage
+    put_i16(status, 0x1333);   // Position
+    put_u32(status, 0x00000401);
+    const std::string garbage = bytes({0x00, 0x07, 0xFF});
+    const std::string input = garbage + encode_header_only(MGMSG_PZ_REQ_OUTPUTVOLTS, 1, 0, kGenericUsb, kHost)
+        + encode_with_data(MGMSG_PZ_GET_PZSTATUSUPDATE, kHost, kGenericUsb, status) + garbage
+        + encode_header_only(MGMSG_PZ_REQ_TSG_READING, 1, 0, kGenericUsb, kHost) + kReqInfo;
+    const std::vector<std::string> expected{"0644 d=50 s=01 p=01,00",
+                                            "0661 d=01 s=50 [01 00 77 77 33 13 01 04 00 00]",
+                                            "07DD d=50 s=01 p=01,00", kReqInfoSeen};
+    for (std::size_t chunk = 1; chunk <= input.size(); ++chunk) {
+        INFO("chunk " << chunk);
+        std::size_t dropped = 0;
+        CHECK(frame(input, chunk, &dropped) == expected);
+        CHECK(dropped == 2 * garbage.size());
+    }
+}
+
 TEST_CASE("apt framer survives 10 MB of garbage", "[unit][apt][framer]")
 {
     SECTION("one repeated byte")

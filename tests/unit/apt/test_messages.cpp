@@ -88,6 +88,12 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
         CHECK(m.name.substr(0, 6) == "MGMSG_");
         if (m.group == Group::Motor) {
             CHECK(m.name.substr(0, 10) == "MGMSG_MOT_");
+        } else if (m.group == Group::Piezo) {
+            CHECK(m.name.substr(0, 9) == "MGMSG_PZ_");
+            CHECK(m.name.find("_TSG_") == std::string_view::npos);
+        } else if (m.group == Group::StrainGauge) {
+            CHECK(m.name.substr(0, 9) == "MGMSG_PZ_");
+            CHECK(m.name.find("_TSG_") != std::string_view::npos);
         } else {
             const auto kind = m.name.substr(6, m.name.find('_', 6) - 6);
             CHECK((kind == "MOD" || kind == "HW" || kind == "RACK" || kind == "HUB"));
@@ -100,10 +106,79 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
     }
     CHECK(count(Group::Generic) == 22);
     CHECK(count(Group::Motor) == 92);
-    CHECK(all_messages().size() == 114);
+    CHECK(count(Group::Piezo) == 47);
+    CHECK(count(Group::StrainGauge) == 5);
+    CHECK(all_messages().size() == 166);
     CHECK(find_message(0x0000) == nullptr);
     CHECK(find_message(0xFFFF) == nullptr);
-    CHECK(find_message(0x0640) == nullptr);   // piezo messages are not in this table
+    CHECK(find_message(0x0660) == nullptr);   // a REQ for PZ_GET_PZSTATUSUPDATE: not in the manual
+    CHECK(find_message(0x0640) == &all_messages()[113]);   // the piezo chapter follows the 22 + 79 + 12
+}
+
+TEST_CASE("apt message table applies the ERRATA to the piezo and strain gauge messages", "[unit][apt][messages]")
+{
+    struct Expect {
+        std::uint16_t id;
+        std::string_view name;
+        int data_length;
+        Group group;
+    };
+    const std::vector<Expect> expected{
+        // p.103: table "91 04 0E 00"; ERRATA: 0x0661, 10 bytes.
+        {0x0661, "MGMSG_PZ_GET_PZSTATUSUPDATE", 10, Group::Piezo},
+        {0x0662, "MGMSG_PZ_ACK_PZSTATUSUPDATE", -1, Group::Piezo},
+        // p.108: example header length "06"; ERRATA: 30 (0x1E).
+        {0x0703, "MGMSG_PZ_SET_OUTPUTLUTPARAMS", 30, Group::Piezo},
+        {0x0705, "MGMSG_PZ_GET_OUTPUTLUTPARAMS", 30, Group::Piezo},
+        // The choices at the entries of messages.cpp.
+        {0x0643, "MGMSG_PZ_SET_OUTPUTVOLTS", 4, Group::Piezo},
+        {0x0644, "MGMSG_PZ_REQ_OUTPUTVOLTS", -1, Group::Piezo},
+        {0x0646, "MGMSG_PZ_SET_OUTPUTPOS", 4, Group::Piezo},
+        {0x0652, "MGMSG_PZ_SET_INPUTVOLTSSRC", 4, Group::Piezo},
+        {0x0655, "MGMSG_PZ_SET_PICONSTS", 6, Group::Piezo},
+        {0x065C, "MGMSG_PZ_GET_PZSTATUSBITS", 6, Group::Piezo},
+        {0x0701, "MGMSG_PZ_REQ_OUTPUTLUT", -1, Group::Piezo},
+        {0x0706, "MGMSG_PZ_START_LUTOUTPUT", -1, Group::Piezo},
+        {0x0707, "MGMSG_PZ_STOP_LUTOUTPUT", -1, Group::Piezo},
+        {0x07D0, "MGMSG_PZ_SET_EEPROMPARAMS", 4, Group::Piezo},
+        {0x07D1, "MGMSG_PZ_SET_TPZ_DISPSETTINGS", 2, Group::Piezo},
+        {0x07D4, "MGMSG_PZ_SET_TPZ_IOSETTINGS", 10, Group::Piezo},
+        {0x07D6, "MGMSG_PZ_GET_TPZ_IOSETTINGS", 10, Group::Piezo},
+        {0x0658, "MGMSG_PZ_SET_ZERO", -1, Group::Piezo},
+        {0x0651, "MGMSG_PZ_GET_MAXTRAVEL", 4, Group::Piezo},
+        {0x0670, "MGMSG_PZ_SET_IOSETTINGS", 10, Group::Piezo},
+        {0x0680, "MGMSG_PZ_SET_OUTPUTMAXVOLTS", 6, Group::Piezo},
+        {0x0683, "MGMSG_PZ_SET_TPZ_SLEWRATES", 6, Group::Piezo},
+        {0x0708, "MGMSG_PZ_SET_LUTVALUETYPE", -1, Group::Piezo},
+        {0x0686, "MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS", -1, Group::Motor},
+        {0x07DA, "MGMSG_PZ_SET_TSG_IOSETTINGS", 14, Group::StrainGauge},
+        {0x07DC, "MGMSG_PZ_GET_TSG_IOSETTINGS", 14, Group::StrainGauge},
+        {0x07DD, "MGMSG_PZ_REQ_TSG_READING", -1, Group::StrainGauge},
+        {0x07DE, "MGMSG_PZ_GET_TSG_READING", 6, Group::StrainGauge},
+    };
+    for (const auto& e : expected) {
+        INFO(e.name);
+        const auto* m = find_message(e.id);
+        REQUIRE(m != nullptr);
+        CHECK(m->name == e.name);
+        CHECK(m->data_length == e.data_length);
+        CHECK(m->group == e.group);
+        CHECK_FALSE(m->later_issue);
+        CHECK_FALSE(m->header_only_allowed);
+    }
+    // The ERRATA's PZSTATUSUPDATE header, and the manual's misprinted one (a DC status header).
+    const auto p = parse_all(unhex("61 06 0A 00 81 50 01 00 77 77 33 13 01 04 00 00"), 1);
+    REQUIRE(p.frames.size() == 1);
+    CHECK(p.frames[0].id == MGMSG_PZ_GET_PZSTATUSUPDATE);
+    CHECK(get_i16(p.data[0], 2) == 0x7777);   // OPVoltage
+    CHECK(get_i16(p.data[0], 4) == 0x1333);   // Position
+    CHECK(get_u32(p.data[0], 6) == 0x00000401);
+    check_rejected(unhex("61 06 0E 00 81 50 01 00 77 77 33 13 01 04 00 00 00 00 00 00"));
+    // The OUTPUTLUTPARAMS example's header ("03, 07, 06, 00") over its 30 bytes: no frame.
+    check_rejected(unhex("03 07 06 00 D0 01") + std::string(30, '\0'));
+    // Examples printed with an impossible address (p.129: source 0x00; p.118: d and s swapped).
+    check_rejected(unhex("DE 07 06 00 D0 00 01 00 52 00 50 00"));
+    check_rejected(unhex("51 06 04 00 01 A2 01 00 C8 00"));
 }
 
 TEST_CASE("apt message table applies the ERRATA", "[unit][apt][messages]")
@@ -346,6 +421,31 @@ TEST_CASE("apt manual examples decode as documented", "[unit][apt][messages]")
         {"MOT_SET_SOL_STATE p.91", "CB 04 01 01 50 01", 0x04CB, 0x50, 0x01, "01 01"},
         {"MOT_REQ_SOL_STATE p.92", "CC 04 01 00 50 01", 0x04CC, 0x50, 0x01, "01 00"},
         {"MOT_GET_SOL_STATE p.92", "CD 04 01 01 01 50", 0x04CD, 0x01, 0x50, "01 01"},
+        {"PZ_SET_POSCONTROLMODE p.94", "40 06 01 02 50 01", 0x0640, 0x50, 0x01, "01 02"},
+        {"PZ_REQ_POSCONTROLMODE p.94", "41 06 01 00 50 01", 0x0641, 0x50, 0x01, "01 00"},
+        {"PZ_GET_POSCONTROLMODE p.95", "42 06 01 02 01 50", 0x0642, 0x01, 0x50, "01 02"},
+        {"PZ_SET_OUTPUTVOLTS p.96", "43 06 04 00 D0 01 01 00 77 77", 0x0643, 0x50, 0x01, "01 00 77 77"},
+        {"PZ_SET_OUTPUTPOS p.97", "46 06 04 00 D0 01 01 00 66 26", 0x0646, 0x50, 0x01, "01 00 66 26"},
+        {"PZ_SET_INPUTVOLTSSRC p.98", "52 06 04 00 D0 01 01 00 02 00", 0x0652, 0x50, 0x01, "01 00 02 00"},
+        {"PZ_SET_PICONSTS p.100", "55 06 06 00 D0 01 01 00 64 00 0F 00", 0x0655, 0x50, 0x01,
+         "01 00 64 00 0F 00"},
+        {"PZ_ACK_PZSTATUSUPDATE p.105", "62 06 00 00 50 01", 0x0662, 0x50, 0x01, "00 00"},
+        {"PZ_SET_OUTPUTLUT p.107", "00 07 06 00 D0 01 01 00 02 00 88 08", 0x0700, 0x50, 0x01,
+         "01 00 02 00 88 08"},
+        {"PZ_SET_EEPROMPARAMS p.113", "D0 07 04 00 D0 01 01 00 03 07", 0x07D0, 0x50, 0x01, "01 00 03 07"},
+        {"PZ_SET_TPZ_DISPSETTINGS p.114", "D1 07 02 00 D0 01 64 00", 0x07D1, 0x50, 0x01, "64 00"},
+        {"PZ_REQ_TPZ_DISPSETTINGS p.114", "D2 07 01 00 50 01", 0x07D2, 0x50, 0x01, "01 00"},
+        {"PZ_REQ_MAXTRAVEL p.118", "50 06 01 00 22 01", 0x0650, 0x22, 0x01, "01 00"},
+        {"PZ_GET_MAXTRAVEL p.118 (header as explained; the TX line swaps d and s)", "51 06 04 00 A2 01 01 00 C8 00", 0x0651, 0x22, 0x01, "01 00 C8 00"},
+        {"PZ_SET_OUTPUTMAXVOLTS p.121", "80 06 06 00 D0 01 01 00 E8 03 08 00", 0x0680, 0x50, 0x01,
+         "01 00 E8 03 08 00"},
+        {"PZ_GET_OUTPUTMAXVOLTS p.122", "82 06 06 00 D0 01 01 00 E8 03 08 00", 0x0682, 0x50, 0x01,
+         "01 00 E8 03 08 00"},
+        {"PZ_SET_TPZ_SLEWRATES p.123", "83 06 06 00 D0 01 01 00 F2 04 F2 04", 0x0683, 0x50, 0x01,
+         "01 00 F2 04 F2 04"},
+        {"PZ_SET_LUTVALUETYPE p.126", "08 07 01 00 50 01", 0x0708, 0x50, 0x01, "01 00"},
+        {"PZ_GET_TSG_READING p.129 (source 0x01 as its explanation says)", "DE 07 06 00 D0 01 01 00 52 00 50 00",
+         0x07DE, 0x50, 0x01, "01 00 52 00 50 00"},
         {"HW_NO_FLASH_PROGRAMMING later issues", "18 00 00 00 50 01", 0x0018, 0x50, 0x01, "00 00"},
     };
     std::string all;
