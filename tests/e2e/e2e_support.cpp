@@ -661,4 +661,12 @@ std::string fixture(const std::string& name)
     return std::string(RIGSIM_E2E_DIR) + "/" + name;
 }
 
+std::size_t count_of(const std::string& text, const std::string& needle)
+{
+    std::size_t n = 0;
+    for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+        ++n;
+    return n;
+}
+
 } // namespace rigsim::e2e

@@ -212,6 +212,9 @@ bool poll_status_until(LineClient& client, int channel, int state, Millis timeou
 /// "anon_inode:inotify", "socket:[1234]", "/dev/pts/3".
 std::vector<std::string> open_fds(pid_t pid);
 
+/// Occurrences of `needle` in `text` (log lines, answers).
+std::size_t count_of(const std::string& text, const std::string& needle);
+
 /// A file of the e2e fixture directory (tests/e2e/<name>).
 std::string fixture(const std::string& name);
 

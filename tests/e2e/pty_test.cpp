@@ -115,15 +115,6 @@ TEST_CASE("pty: faithful timing paces answers at the controller's baud rate", "[
 
 namespace {
 
-/// Occurrences of `needle` in `text`.
-std::size_t count_of(const std::string& text, const std::string& needle)
-{
-    std::size_t n = 0;
-    for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
-        ++n;
-    return n;
-}
-
 /// Waits until the daemon has logged the close of `pty` for the `nth` time.
 bool wait_for_close(const Daemon& daemon, const std::string& pty, std::size_t nth)
 {

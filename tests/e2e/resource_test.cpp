@@ -19,13 +19,6 @@ using namespace std::chrono_literals;
 
 namespace {
 
-std::size_t count_of(const std::string& text, const std::string& needle)
-{
-    std::size_t n = 0;
-    for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
-        ++n;
-    return n;
-}
 
 /// The local port of a connected socket.
 int local_port(int fd)
