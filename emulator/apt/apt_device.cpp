@@ -189,11 +189,15 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
       serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1),
       store_(store)
 {
+    // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
+    // of a rack (addresses 0x21..).
+    const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
     if (model_.rack)
         for (const auto& stage : config.apt.bays)
-            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock_));
+            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), world,
+                                                               key(channels_.size())));
     else
-        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock_));
+        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), world, key(0)));
     last_move_.assign(channels_.size(), 0);
     restore_from_eeprom();
     clock_.add(this);
