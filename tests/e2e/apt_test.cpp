@@ -1,6 +1,6 @@
 // APT through the real daemon: a standard-library client over TCP and over the pty homes,
-// moves, jogs and starts status updates (--time-scale 10 to keep the homing short). How long
-// each takes on the clock is tested on the stepped clock (tests/device/apt).
+// moves, jogs and starts status updates, at --time-scale 100 (the 25 mm homing run takes
+// 0.25 s). How long each takes on the clock is tested on the stepped clock (tests/device/apt).
 #include <catch2/catch.hpp>
 
 #include <poll.h>
@@ -145,7 +145,7 @@ void session(LineClient& c)
 TEST_CASE("APT over TCP: info, home, move, jog, status updates", "[e2e][apt]")
 {
     Daemon::Options options;
-    options.extra_args = {"--time-scale", "10"};
+    options.extra_args = {"--time-scale", "100"};
     Daemon daemon(options);
     TcpClient c(daemon.endpoint("tdc001"));
     session(c);
@@ -154,7 +154,7 @@ TEST_CASE("APT over TCP: info, home, move, jog, status updates", "[e2e][apt]")
 TEST_CASE("APT over the pty: info, home, move, jog, status updates", "[e2e][apt]")
 {
     Daemon::Options options;
-    options.extra_args = {"--time-scale", "10"};
+    options.extra_args = {"--time-scale", "100"};
     Daemon daemon(options);
     PtyClient c(daemon.endpoint("tdc001").pty);
     session(c);
