@@ -4,7 +4,7 @@
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig.hpp"
-#include "emulator/core/rig_config.hpp"
+#include "emulator/core/rig_families.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
@@ -265,7 +265,7 @@ int run(const rigsim::RigConfig& config, const Options& opts)
 
         rig->start();
         for (const auto& e : rig->endpoints())
-            std::cout << e.name << " (" << rigsim::to_string(e.protocol) << " " << e.model << "): tcp "
+            std::cout << e.name << " (" << e.protocol << " " << e.model << "): tcp "
                       << e.tcp << " pty " << e.pty << "\n";
         std::cout.flush();
         if (opts.endpoints_json) {

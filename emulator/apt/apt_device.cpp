@@ -1,4 +1,5 @@
 #include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/config.hpp"
 
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
@@ -186,18 +187,18 @@ private:
 AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      StateStore* store)
     : config_(config), clock_(world.clock()), log_(std::move(log)), model_(*find_controller(config.model)),
-      serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1),
+      serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       store_(store)
 {
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).
     const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
     if (model_.rack)
-        for (const auto& stage : config.apt.bays)
+        for (const auto& stage : config_of(config).bays)
             channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), world,
                                                                key(channels_.size())));
     else
-        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), world, key(0)));
+        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config_of(config).stage), world, key(0)));
     last_move_.assign(channels_.size(), 0);
     restore_from_eeprom();
     clock_.add(this);

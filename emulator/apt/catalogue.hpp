@@ -1,5 +1,6 @@
 #pragma once
 // APT controllers and stages that a rig may name (manual 2.2 serial prefixes, 7.1 scaling).
+// Every field has a default; the catalogue (catalogue.cpp) sets each model's fields by name.
 
 #include <cstdint>
 #include <string_view>
@@ -11,14 +12,14 @@ enum class MotorKind { DcServo, Stepper, Brushless };
 /// An APT controller model.
 struct ControllerModel {
     std::string_view name;          ///< e.g. "TDC001"
-    std::uint32_t serial_prefix;    ///< first two digits of the 8-digit serial number (2.2)
-    std::uint16_t hw_type;          ///< HW_GET_INFO "type" field
-    MotorKind motor;
+    std::uint32_t serial_prefix = 0;    ///< first two digits of the 8-digit serial number (2.2)
+    std::uint16_t hw_type = 0;          ///< HW_GET_INFO "type" field
+    MotorKind motor = MotorKind::DcServo;
     std::string_view notes;         ///< HW_GET_INFO notes
     /// Velocity/acceleration sample-time scaling of 7.1 (APT units per encoder count/s and
     /// per count/s²).
-    double velocity_per_count_s;
-    double acceleration_per_count_s2;
+    double velocity_per_count_s = 0;
+    double acceleration_per_count_s2 = 0;
     /// Card-slot (rack) system: a motherboard at 0x11 and bays at 0x21 + n (section 4).
     bool rack = false;
     int max_bays = 1;
@@ -34,13 +35,13 @@ struct ControllerModel {
 /// A stage (actuator) the controller drives.
 struct StageModel {
     std::string_view name;          ///< e.g. "MTS50-Z8"
-    MotorKind motor;
-    double travel_mm;
-    double counts_per_mm;           ///< encoder counts (DC servo) or microsteps (stepper)
-    double max_velocity_mm_s;       ///< power-up VELPARAMS
-    double acceleration_mm_s2;
-    double home_velocity_mm_s;
-    double home_offset_mm;          ///< back-off distance from the limit switch
+    MotorKind motor = MotorKind::DcServo;
+    double travel_mm = 0;
+    double counts_per_mm = 0;           ///< encoder counts (DC servo) or microsteps (stepper)
+    double max_velocity_mm_s = 0;       ///< power-up VELPARAMS
+    double acceleration_mm_s2 = 0;
+    double home_velocity_mm_s = 0;
+    double home_offset_mm = 0;          ///< back-off distance from the limit switch
     /// Velocity/acceleration scaling of the stage itself when the manual gives it per mm
     /// (7.1, MLS203 with BBDxxx); 0: derived from the controller's per-count factors.
     double velocity_per_mm_s = 0;

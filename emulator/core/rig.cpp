@@ -1,7 +1,6 @@
 #include "emulator/core/rig.hpp"
 
-#include "emulator/apt/apt_device.hpp"
-#include "emulator/mcs/mcs_device.hpp"
+#include "emulator/core/rig_families.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -53,13 +52,10 @@ private:
 std::unique_ptr<Device> make_device(const DeviceConfig& config, models::World& world,
                                     std::shared_ptr<spdlog::logger> log, StateStore& store)
 {
-    switch (config.protocol) {
-    case Protocol::Mcs:
-        return std::make_unique<mcs::McsDevice>(config, world, std::move(log));
-    case Protocol::Apt:
-        return std::make_unique<apt::AptDevice>(config, world, std::move(log), &store);
-    }
-    throw ConfigError("device \"" + config.name + "\": unknown protocol");
+    const auto* family = rig_families().find(config.protocol);
+    if (!family)
+        throw ConfigError("device \"" + config.name + "\": unknown protocol \"" + config.protocol + "\"");
+    return family->make(config, DeviceContext{world, std::move(log), store});
 }
 
 } // namespace
@@ -154,7 +150,7 @@ std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints)
 {
     auto devices = nlohmann::json::array();
     for (const auto& e : endpoints)
-        devices.push_back({{"name", e.name}, {"protocol", std::string(to_string(e.protocol))},
+        devices.push_back({{"name", e.name}, {"protocol", e.protocol},
                            {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}});
     return nlohmann::json{{"devices", devices}}.dump(2) + "\n";
 }

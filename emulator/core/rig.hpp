@@ -36,7 +36,7 @@ struct RigOptions {
 /// Where a client reaches one device.
 struct DeviceEndpoints {
     std::string name;
-    Protocol protocol;
+    std::string protocol;   ///< the family: "mcs", "apt"
     std::string model;
     std::string tcp;   ///< "127.0.0.1:40100", "[::1]:40100" (where a local client connects)
     std::string pty;   ///< symlink path

@@ -1,7 +1,7 @@
 #include "emulator/core/rig_config.hpp"
 
-#include "emulator/apt/catalogue.hpp"
-#include "emulator/mcs/sensor_types.hpp"
+#include "emulator/core/config_reader.hpp"
+#include "emulator/core/family_registry.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -10,7 +10,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -28,66 +27,17 @@ using nlohmann::json;
 constexpr std::size_t kMaxNameLength = 64;
 /// A rig file larger than this is refused (the largest example is a few kB).
 constexpr std::size_t kMaxConfigBytes = 4 << 20;
-constexpr std::size_t kMaxChannels = 255;
-constexpr std::int64_t kTravelLimitNm = 2'000'000'000;
-constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 
-// The keys each object may hold; anything else is an error.
+// The keys each object may hold; anything else is an error. A device also holds the section
+// of each family, under the family's name.
 constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
-constexpr std::array<std::string_view, 8> kDeviceKeys{
-    "name", "protocol", "model", "tcp_port", "pty", "faithful_timing", "mcs", "apt"};
-constexpr std::array<std::string_view, 3> kAptKeys{"stage", "bays", "serial_number"};
-constexpr std::array<std::string_view, 3> kMcsKeys{"system_id", "interface_version", "channels"};
-constexpr std::array<std::string_view, 16> kChannelKeys{
-    "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
-    "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
-    "reference_position", "coded_mark_spacing", "calibration_ms", "step_width_nm",
-    "step_jitter_percent", "scan_range_nm"};
-
-/// A channel integer whose range does not depend on other keys.
-struct ChannelIntKey {
-    std::string_view key;
-    std::int64_t min;
-    std::int64_t max;
-    std::int64_t McsChannelConfig::*member;
-};
-
-constexpr std::array<ChannelIntKey, 11> kChannelIntKeys{{
-    {"gripper_contact_cv", 0, 22'500, &McsChannelConfig::gripper_contact_cv},
-    {"gripper_stiffness_dun_per_cv", 1, 100'000, &McsChannelConfig::gripper_stiffness_dun_per_cv},
-    {"step_width_nm", 1, 100'000, &McsChannelConfig::step_width_nm},
-    {"step_jitter_percent", 0, 50, &McsChannelConfig::step_jitter_percent},
-    {"scan_range_nm", 1, 1'000'000, &McsChannelConfig::scan_range_nm},
-    {"reference_position", -2'000'000'000, 2'000'000'000, &McsChannelConfig::reference_position},
-    {"coded_mark_spacing", 1'000, 100'000'000, &McsChannelConfig::coded_mark_spacing},
-    {"calibration_ms", 0, 60'000, &McsChannelConfig::calibration_ms},
-    {"max_speed_nm_per_s", 1, 100'000'000, &McsChannelConfig::max_speed_nm_per_s},
-    {"closed_loop_speed_nm_per_s", 0, 100'000'000, &McsChannelConfig::closed_loop_speed_nm_per_s},
-    {"closed_loop_acceleration_um_per_s2", 0, 10'000'000,
-     &McsChannelConfig::closed_loop_acceleration_um_per_s2},
-}};
+constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
 
 /// [A-Za-z0-9_.-]: safe in a file name and a logger name.
 bool is_name_char(char c)
 {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
            c == '.' || c == '-';
-}
-
-/// Echoed values and keys longer than this are cut in messages.
-constexpr std::size_t kMaxEcho = 80;
-
-/// `text` cut to kMaxEcho bytes (on a UTF-8 character boundary), marked as cut.
-std::string cut(std::string text)
-{
-    if (text.size() <= kMaxEcho)
-        return text;
-    const auto total = text.size();
-    std::size_t end = kMaxEcho;
-    while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80)
-        --end;
-    text.resize(end);
-    return text + "... (" + std::to_string(total) + " characters)";
 }
 
 /// What kind of file a non-regular st_mode is, for messages.
@@ -104,61 +54,6 @@ std::string file_kind(mode_t mode)
     if (S_ISSOCK(mode))
         return "a socket";
     return "not a regular file";
-}
-
-/// `value` as compact JSON, cut to a sane length; never throws on odd UTF-8.
-std::string dump(const json& value)
-{
-    return cut(value.dump(-1, ' ', false, json::error_handler_t::replace));
-}
-
-/// `s` as a JSON string literal (quoted, escaped).
-std::string quote(std::string_view s)
-{
-    return dump(json(std::string(s)));
-}
-
-/// A value for "got ..." in a message: scalars as JSON, containers by kind and size.
-std::string describe(const json& value)
-{
-    if (value.is_array()) {
-        if (value.empty())
-            return "[]";
-        return "an array of " + std::to_string(value.size()) +
-               (value.size() == 1 ? " element" : " elements");
-    }
-    if (value.is_object())
-        return value.empty() ? "{}" : "an object";
-    return dump(value);
-}
-
-/// `parent` extended by an object key, escaped as RFC 6901 says (`~` -> `~0`, `/` -> `~1`).
-std::string pointer_to(const std::string& parent, std::string_view key)
-{
-    std::string p = parent + '/';
-    for (char c : key) {
-        if (c == '~')
-            p += "~0";
-        else if (c == '/')
-            p += "~1";
-        else
-            p += c;
-    }
-    return p;
-}
-
-/// `parent` extended by an array index.
-std::string pointer_to(const std::string& parent, std::size_t index)
-{
-    return parent + '/' + std::to_string(index);
-}
-
-/// Throw the one error format: `<source>: <pointer>: <what>`; the root shows as "/".
-[[noreturn]] void fail(std::string_view source, const std::string& pointer, const std::string& what)
-{
-    constexpr std::size_t kMaxPointer = 160;
-    const auto shown = pointer.size() <= kMaxPointer ? pointer : pointer.substr(0, kMaxPointer) + "...";
-    throw ConfigError(std::string(source) + ": " + (pointer.empty() ? "/" : shown) + ": " + what);
 }
 
 /// 1-based line and column of nlohmann's 1-based byte position in `text`.
@@ -259,10 +154,16 @@ private:
     std::vector<Frame> stack_;
 };
 
-/// Validates a parsed document into a RigConfig, one object kind per function.
-class RigLoader {
+/// Validates a parsed document into a RigConfig: the generic device fields here, each
+/// device's section by its family.
+class RigLoader : private ConfigReader {
 public:
-    explicit RigLoader(std::string_view source) : source_(source) {}
+    RigLoader(std::string_view source, const FamilyRegistry& families)
+        : ConfigReader(source), families_(families), device_keys_(kDeviceKeys.begin(), kDeviceKeys.end())
+    {
+        for (const auto& f : families.all())
+            device_keys_.push_back(f.name);
+    }
 
     RigConfig load(const json& root)
     {
@@ -281,89 +182,17 @@ public:
     }
 
 private:
-    [[noreturn]] void fail(const std::string& pointer, const std::string& what) const
-    {
-        rigsim::fail(source_, pointer, what);
-    }
-
-    /// `value` must be an object holding no key outside `allowed`.
-    template <std::size_t N>
-    void check_keys(const json& value, const std::string& pointer,
-                    const std::array<std::string_view, N>& allowed) const
-    {
-        if (!value.is_object())
-            fail(pointer, "expected an object, got " + describe(value));
-        for (const auto& item : value.items()) {
-            bool known = false;
-            for (auto key : allowed)
-                known = known || item.key() == key;
-            if (known)
-                continue;
-            std::string list;
-            for (auto key : allowed)
-                list += (list.empty() ? "" : ", ") + std::string(key);
-            fail(pointer, "unknown key " + quote(item.key()) + " (allowed: " + list + ")");
-        }
-    }
-
-    /// The value of an optional key, or nullptr.
-    static const json* find(const json& object, std::string_view key)
-    {
-        const auto it = object.find(std::string(key));
-        return it == object.end() ? nullptr : &*it;
-    }
-
-    /// The value of a required key; the error names the missing key's pointer.
-    const json& require(const json& object, const std::string& pointer, std::string_view key) const
-    {
-        const auto* v = find(object, key);
-        if (!v)
-            fail(pointer_to(pointer, key), "required key missing");
-        return *v;
-    }
-
-    /// An integer in min..max; floats and booleans are type errors.
-    std::int64_t get_int(const json& v, const std::string& pointer, std::int64_t min,
-                         std::int64_t max, std::string_view note = {}) const
-    {
-        bool ok = false;
-        std::int64_t n = 0;
-        if (v.is_number_unsigned()) {
-            // nlohmann reads every non-negative integer as unsigned.
-            const auto u = v.get<std::uint64_t>();
-            n = static_cast<std::int64_t>(u);
-            ok = max >= 0 && u <= static_cast<std::uint64_t>(max) && n >= min;
-        } else if (v.is_number_integer()) {
-            n = v.get<std::int64_t>();
-            ok = n >= min && n <= max;
-        }
-        if (!ok)
-            fail(pointer, "expected an integer " + std::to_string(min) + ".." +
-                              std::to_string(max) + std::string(note) + ", got " + describe(v));
-        return n;
-    }
-
-    /// A non-empty string; `expected` completes "expected ..." in the error.
-    const std::string& get_string(const json& v, const std::string& pointer,
-                                  std::string_view expected = "a non-empty string") const
-    {
-        if (!v.is_string() || v.get_ref<const std::string&>().empty())
-            fail(pointer, "expected " + std::string(expected) + ", got " + describe(v));
-        return v.get_ref<const std::string&>();
-    }
-
     DeviceConfig load_device(const json& v, const std::string& pointer)
     {
         DeviceConfig d;
-        check_keys(v, pointer, kDeviceKeys);
+        check_keys(v, pointer, device_keys_.data(), device_keys_.size());
 
         const auto name_pointer = pointer_to(pointer, "name");
         d.name = load_name(require(v, pointer, "name"), name_pointer);
         claim(names_, d.name, name_pointer, pointer, "name " + quote(d.name));
 
-        d.protocol =
-            load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
-        d.model = DeviceConfig{}.model;
+        const auto& family = load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
+        d.protocol = family.name;
         if (const auto* m = find(v, "model"))
             d.model = get_string(*m, pointer_to(pointer, "model"));
         if (const auto* p = find(v, "tcp_port")) {
@@ -386,68 +215,12 @@ private:
                 fail(pointer_to(pointer, "faithful_timing"), "expected true or false, got " + describe(*t));
             d.faithful_timing = t->get<bool>();
         }
-        if (d.protocol == Protocol::Mcs) {
-            if (find(v, "apt"))
-                fail(pointer_to(pointer, "apt"), "an \"apt\" object belongs to an APT device, not to protocol \"mcs\"");
-            d.mcs = load_mcs(require(v, pointer, "mcs"), pointer_to(pointer, "mcs"));
-            return d;
-        }
-        if (find(v, "mcs"))
-            fail(pointer_to(pointer, "mcs"), "an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
-        d.apt = load_apt(v, pointer, d.model);
+        for (const auto& other : families_.all())
+            if (other.name != family.name && find(v, other.name))
+                fail(pointer_to(pointer, other.name), "an " + quote(other.name) + " object belongs to " +
+                                                          other.device_noun + ", not to protocol " + quote(family.name));
+        family.load(*this, v, pointer, d);
         return d;
-    }
-
-    /// The "apt" object of an APT device whose model is `model`.
-    AptConfig load_apt(const json& device, const std::string& pointer, const std::string& model) const
-    {
-        AptConfig apt;
-        const auto* controller = apt::find_controller(model);
-        if (!find(device, "model") || !controller)
-            fail(pointer_to(pointer, "model"), "expected an APT controller model (" + std::string(apt::controller_names())
-                                                  + "), got " + (find(device, "model") ? quote(model) : std::string("nothing")));
-        const auto apt_pointer = pointer_to(pointer, "apt");
-        const auto& a = require(device, pointer, "apt");
-        if (!a.is_object())
-            fail(apt_pointer, "expected an object, got " + describe(a));
-        check_keys(a, apt_pointer, kAptKeys);
-        if (const auto* st = find(a, "stage"))
-            apt.stage = load_apt_stage(*st, pointer_to(apt_pointer, "stage"), *controller, model);
-        if (controller->rack) {
-            if (find(a, "stage"))
-                fail(pointer_to(apt_pointer, "stage"), "a rack controller names a stage per bay in \"bays\"");
-            const auto bays_pointer = pointer_to(apt_pointer, "bays");
-            const auto& bays = require(a, apt_pointer, "bays");
-            const auto max = static_cast<std::size_t>(controller->max_bays);
-            if (!bays.is_array() || bays.empty() || bays.size() > max)
-                fail(bays_pointer, "expected an array of 1.." + std::to_string(max) + " stages, got " + describe(bays));
-            for (std::size_t i = 0; i < bays.size(); ++i)
-                apt.bays.push_back(load_apt_stage(bays[i], pointer_to(bays_pointer, i), *controller, model));
-        } else if (find(a, "bays")) {
-            fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + model + " names one \"stage\"");
-        } else if (!find(a, "stage") && apt::find_stage(apt.stage)->motor != controller->motor) {
-            fail(pointer_to(apt_pointer, "stage"), "required key missing (the default " + apt.stage
-                                                       + " is not a stage for a " + model + ")");
-        }
-        if (const auto* sn = find(a, "serial_number")) {
-            const std::int64_t lo = controller->serial_prefix * 1'000'000LL;
-            apt.serial_number = static_cast<std::uint32_t>(get_int(*sn, pointer_to(apt_pointer, "serial_number"), lo,
-                                                                   lo + 999'999, " (the model's serial prefix)"));
-        }
-        return apt;
-    }
-
-    /// A stage of the catalogue whose motor suits `controller` (a single unit's "stage", or one of a rack's "bays").
-    std::string load_apt_stage(const json& v, const std::string& pointer, const apt::ControllerModel& controller,
-                               const std::string& model) const
-    {
-        auto stage = get_string(v, pointer);
-        const auto* found = apt::find_stage(stage);
-        if (!found)
-            fail(pointer, "unknown stage " + quote(stage) + " (expected one of " + std::string(apt::stage_names()) + ")");
-        if (found->motor != controller.motor)
-            fail(pointer, "stage " + quote(stage) + " has another kind of motor than a " + model);
-        return stage;
     }
 
     /// Record that device `owner` uses `value`; a second user is an error at `pointer`.
@@ -478,117 +251,18 @@ private:
         return v.get<std::string>();
     }
 
-    Protocol load_protocol(const json& v, const std::string& pointer) const
+    const Family& load_protocol(const json& v, const std::string& pointer) const
     {
         if (!v.is_string())
             fail(pointer, "expected a string, got " + describe(v));
         const auto& s = v.get_ref<const std::string&>();
-        if (s == "mcs")
-            return Protocol::Mcs;
-        if (s == "apt")
-            return Protocol::Apt;
-        fail(pointer, "unknown protocol " + quote(s) + " (expected \"mcs\" or \"apt\")");
+        if (const auto* family = families_.find(s))
+            return *family;
+        fail(pointer, "unknown protocol " + quote(s) + " (expected " + families_.quoted_names() + ")");
     }
 
-    McsConfig load_mcs(const json& v, const std::string& pointer) const
-    {
-        McsConfig mcs;
-        check_keys(v, pointer, kMcsKeys);
-        if (const auto* id = find(v, "system_id"))
-            mcs.system_id = static_cast<std::uint32_t>(
-                get_int(*id, pointer_to(pointer, "system_id"), 0, kMaxSystemId));
-        if (const auto* iv = find(v, "interface_version"))
-            mcs.interface_version = load_interface_version(*iv, pointer_to(pointer, "interface_version"));
-        const auto channels_pointer = pointer_to(pointer, "channels");
-        const auto& channels = require(v, pointer, "channels");
-        const std::string expected =
-            "expected an array of 1.." + std::to_string(kMaxChannels) + " channels, got ";
-        if (!channels.is_array())
-            fail(channels_pointer, expected + describe(channels));
-        if (channels.empty() || channels.size() > kMaxChannels)
-            fail(channels_pointer, expected + std::to_string(channels.size()) + " channels");
-        for (std::size_t i = 0; i < channels.size(); ++i)
-            mcs.channels.push_back(load_channel(channels[i], pointer_to(channels_pointer, i)));
-        return mcs;
-    }
-
-    /// "<high>.<low>.<update>", each 0..65535: the GIV answer (MCS manual 3.1).
-    McsInterfaceVersion load_interface_version(const json& v, const std::string& pointer) const
-    {
-        const std::string expected = "expected a version \"<high>.<low>.<update>\" of three numbers 0..65535, got ";
-        if (!v.is_string())
-            fail(pointer, expected + describe(v));
-        const auto text = v.get<std::string>();
-        std::int64_t parts[3] = {0, 0, 0};
-        std::size_t part = 0, digits = 0;
-        for (const char c : text) {
-            if (c == '.' && digits > 0 && part < 2) {
-                ++part;
-                digits = 0;
-            } else if (c >= '0' && c <= '9' && digits < 5) {
-                parts[part] = parts[part] * 10 + (c - '0');
-                ++digits;
-            } else {
-                fail(pointer, expected + describe(v));
-            }
-        }
-        if (part != 2 || digits == 0 || parts[0] > 65535 || parts[1] > 65535 || parts[2] > 65535)
-            fail(pointer, expected + describe(v));
-        return {parts[0], parts[1], parts[2]};
-    }
-
-    McsChannelConfig load_channel(const json& v, const std::string& pointer) const
-    {
-        McsChannelConfig c;
-        check_keys(v, pointer, kChannelKeys);
-        if (const auto* k = find(v, "kind")) {
-            const auto kind_pointer = pointer_to(pointer, "kind");
-            if (!k->is_string() || (k->get<std::string>() != "positioner" && k->get<std::string>() != "end_effector"))
-                fail(kind_pointer, "expected \"positioner\" or \"end_effector\", got " + describe(*k));
-            c.kind = k->get<std::string>();
-        }
-        if (const auto* t = find(v, "sensor_type")) {
-            const auto type_pointer = pointer_to(pointer, "sensor_type");
-            const std::string symbols(mcs::sensor_type_symbols());
-            if (!t->is_string())
-                fail(type_pointer, "expected a string, got " + describe(*t));
-            c.sensor_type = t->get<std::string>();
-            if (c.sensor_type != "none" && !mcs::sensor_type_by_symbol(c.sensor_type))
-                fail(type_pointer, "unknown sensor type " + quote(c.sensor_type) +
-                                       " (expected one of " + symbols + ", or \"none\")");
-        }
-        if (const auto* t = find(v, "travel_nm")) {
-            const auto travel_pointer = pointer_to(pointer, "travel_nm");
-            if (!t->is_array() || t->size() != 2)
-                fail(travel_pointer, "expected [min, max], two integers, got " + describe(*t));
-            c.travel_min_nm =
-                get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
-            c.travel_max_nm =
-                get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
-            if (c.travel_min_nm >= c.travel_max_nm)
-                fail(travel_pointer, "expected min < max, got " + dump(*t));
-        }
-        if (const auto* t = find(v, "travel_udeg")) {
-            const auto travel_pointer = pointer_to(pointer, "travel_udeg");
-            if (!t->is_array() || t->size() != 2)
-                fail(travel_pointer, "expected [min, max], two integers, got " + describe(*t));
-            c.travel_min_udeg =
-                get_int((*t)[0], pointer_to(travel_pointer, 0), -kTravelLimitNm, kTravelLimitNm);
-            c.travel_max_udeg =
-                get_int((*t)[1], pointer_to(travel_pointer, 1), -kTravelLimitNm, kTravelLimitNm);
-            if (c.travel_min_udeg >= c.travel_max_udeg)
-                fail(travel_pointer, "expected min < max, got " + dump(*t));
-        }
-        if (const auto* p = find(v, "start_position_nm"))
-            c.start_position_nm = get_int(*p, pointer_to(pointer, "start_position_nm"),
-                                          c.travel_min_nm, c.travel_max_nm, " (within travel_nm)");
-        for (const auto& k : kChannelIntKeys)
-            if (const auto* n = find(v, k.key))
-                c.*k.member = get_int(*n, pointer_to(pointer, k.key), k.min, k.max);
-        return c;
-    }
-
-    std::string_view source_;
+    const FamilyRegistry& families_;
+    std::vector<std::string_view> device_keys_;  ///< generic keys, then one section per family
     std::map<std::string, std::string> names_;  ///< name -> pointer of the device using it
     std::map<std::string, std::string> ports_;  ///< non-zero tcp_port -> device pointer
     std::map<std::string, std::string> ptys_;   ///< explicit pty path -> device pointer
@@ -596,7 +270,7 @@ private:
 
 } // namespace
 
-RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
+RigConfig parse_rig_config(std::string_view json_text, std::string_view source, const FamilyRegistry& families)
 {
     DuplicateKeyCheck duplicates{source};
     try {
@@ -605,7 +279,7 @@ RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
             [&duplicates](int, json::parse_event_t event, json& parsed) {
                 return duplicates.on_event(event, parsed);
             });
-        return RigLoader{source}.load(root);
+        return RigLoader{source, families}.load(root);
     } catch (const json::parse_error& e) {
         const auto [line, column] = line_column(json_text, e.byte);
         throw ConfigError(std::string(source) + ": line " + std::to_string(line) + ", column " +
@@ -622,7 +296,7 @@ RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
     }
 }
 
-RigConfig load_rig_config(const std::string& path)
+RigConfig load_rig_config(const std::string& path, const FamilyRegistry& families)
 {
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"),
                                                                &std::fclose};
@@ -647,23 +321,7 @@ RigConfig load_rig_config(const std::string& path)
     }
     if (std::ferror(file.get()))
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));
-    return parse_rig_config(text, path);
-}
-
-RigConfig default_rig_config()
-{
-    return parse_rig_config(default_rig_json(), "built-in default rig");
-}
-
-std::string_view to_string(Protocol p)
-{
-    switch (p) {
-    case Protocol::Mcs:
-        return "mcs";
-    case Protocol::Apt:
-        return "apt";
-    }
-    return "unknown";
+    return parse_rig_config(text, path, families);
 }
 
 } // namespace rigsim

@@ -5,7 +5,7 @@
 // controller to deliver.
 
 #include "models/clock.hpp"
-#include "emulator/core/rig_config.hpp"
+#include "emulator/mcs/config.hpp"
 #include "emulator/mcs/codec.hpp"
 #include "emulator/mcs/sensor_types.hpp"
 #include "models/motion_profile.hpp"

@@ -5,7 +5,7 @@
 #include "models/clock.hpp"
 #include "models/world.hpp"
 #include "emulator/core/device.hpp"
-#include "emulator/core/rig_config.hpp"
+#include "emulator/mcs/config.hpp"
 #include "emulator/mcs/controller.hpp"
 #include "emulator/mcs/handler.hpp"
 

@@ -8,7 +8,7 @@
 #include "emulator/apt/wire.hpp"
 #include "models/clock.hpp"
 #include "models/world.hpp"
-#include "emulator/core/rig_config.hpp"
+#include "emulator/apt/config.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
@@ -29,9 +29,9 @@ inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
 {
     DeviceConfig c;
     c.name = "cube";
-    c.protocol = Protocol::Apt;
+    c.protocol = "apt";
     c.model = model;
-    c.apt.stage = stage;
+    config_of(c).stage = stage;
     return c;
 }
 
@@ -40,9 +40,9 @@ inline DeviceConfig apt_rack(const std::string& model, std::vector<std::string> 
 {
     DeviceConfig c;
     c.name = "rack";
-    c.protocol = Protocol::Apt;
+    c.protocol = "apt";
     c.model = model;
-    c.apt.bays = std::move(bays);
+    config_of(c).bays = std::move(bays);
     return c;
 }
 

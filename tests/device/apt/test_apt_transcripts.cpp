@@ -37,7 +37,7 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
     std::istringstream s(spec);
     rigsim::DeviceConfig c;
     c.name = "transcript";
-    c.protocol = rigsim::Protocol::Apt;
+    c.protocol = "apt";
     s >> c.model;
     const auto* model = rigsim::apt::find_controller(c.model);
     if (!model)
@@ -48,11 +48,11 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
     if (stages.empty())
         FAIL(where << ": '@ " << spec << "' names no stage");
     if (model->rack) {
-        c.apt.bays = stages;
+        rigsim::apt::config_of(c).bays = stages;
     } else {
         if (stages.size() != 1)
             FAIL(where << ": a single unit drives one stage, not " << stages.size());
-        c.apt.stage = stages.front();
+        rigsim::apt::config_of(c).stage = stages.front();
     }
     return c;
 }

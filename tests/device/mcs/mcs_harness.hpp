@@ -4,7 +4,7 @@
 
 #include "models/clock.hpp"
 #include "models/world.hpp"
-#include "emulator/core/rig_config.hpp"
+#include "emulator/mcs/config.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 
 #include <spdlog/sinks/null_sink.h>
@@ -20,10 +20,11 @@ inline DeviceConfig mcs_device_config(std::size_t channels = 3)
 {
     DeviceConfig c;
     c.name = "mcs-test";
-    c.protocol = Protocol::Mcs;
+    c.protocol = "mcs";
     c.model = "MCS-3D";
-    c.mcs.system_id = 3118100;
-    c.mcs.channels.resize(channels);
+    auto& section = mcs::config_of(c);
+    section.system_id = 3118100;
+    section.channels.resize(channels);
     return c;
 }
 

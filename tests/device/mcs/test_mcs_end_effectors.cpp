@@ -12,7 +12,7 @@ namespace {
 rigsim::DeviceConfig with_gripper()
 {
     auto c = mcs_device_config(2);
-    c.mcs.channels[1].kind = "end_effector";
+    rigsim::mcs::config_of(c).channels[1].kind = "end_effector";
     return c;
 }
 

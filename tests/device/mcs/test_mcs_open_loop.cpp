@@ -11,7 +11,7 @@ namespace {
 rigsim::DeviceConfig exact_steps()
 {
     auto c = mcs_device_config(2);
-    for (auto& ch : c.mcs.channels)
+    for (auto& ch : rigsim::mcs::config_of(c).channels)
         ch.step_jitter_percent = 0;   // every step exactly as wide: positions comparable
     return c;
 }

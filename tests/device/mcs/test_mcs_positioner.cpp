@@ -21,7 +21,7 @@ TEST_CASE("initialization commands answer with the configured system", "[device]
 TEST_CASE("GIV answers the configured interface version", "[device][mcs]")
 {
     auto config = mcs_device_config();
-    config.mcs.interface_version = {2, 0, 7};
+    rigsim::mcs::config_of(config).interface_version = {2, 0, 7};
     McsHarness h(config);
     CHECK(h.send(":GIV\n") == ":IV2,0,7\n");
     CHECK(h.send(":GFV0\n") == ":FV0,2,1,5,0,3,1,5,0\n");   // firmware versions are not the interface version
@@ -118,7 +118,7 @@ TEST_CASE("a target beyond the end stop stops the stage at the stop, status 0", 
 TEST_CASE("start position reads as zero at power-up and end stops are physical", "[device][mcs]")
 {
     auto config = mcs_device_config(1);
-    config.mcs.channels[0].start_position_nm = 10'000'000;
+    rigsim::mcs::config_of(config).channels[0].start_position_nm = 10'000'000;
     McsHarness h(config);
     CHECK(h.send(":GP0\n") == ":P0,0\n");
     CHECK(h.send(":MPA0,1000000,0\n") == ":E0,0\n");
@@ -143,8 +143,8 @@ TEST_CASE("SCLS/SCLA dependency chain (2.5.1) and ranges", "[device][mcs]")
 TEST_CASE("sensor types: rotary channels refuse GP and MPA, no sensor gives 129", "[device][mcs]")
 {
     auto config = mcs_device_config(3);
-    config.mcs.channels[1].sensor_type = "SR";
-    config.mcs.channels[2].sensor_type = "none";
+    rigsim::mcs::config_of(config).channels[1].sensor_type = "SR";
+    rigsim::mcs::config_of(config).channels[2].sensor_type = "none";
     McsHarness h(config);
     CHECK(h.send(":GST1\n") == ":ST1,2\n");
     CHECK(h.send(":GP1\n") == ":E1,143\n");

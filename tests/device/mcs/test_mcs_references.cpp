@@ -2,6 +2,8 @@
 // FRM, CS, GPPK, SP/SSC after referencing, MAA/MAR/GA, SPL/GPL, SAL/GAL.
 #include "mcs_harness.hpp"
 
+#include "emulator/core/rig_families.hpp"
+
 #include <catch2/catch.hpp>
 
 using rigsim::test::McsHarness;
@@ -13,8 +15,8 @@ namespace {
 rigsim::DeviceConfig one_channel(const char* sensor, std::int64_t start = -3'000'000)
 {
     auto c = mcs_device_config(1);
-    c.mcs.channels[0].sensor_type = sensor;
-    c.mcs.channels[0].start_position_nm = start;
+    rigsim::mcs::config_of(c).channels[0].sensor_type = sensor;
+    rigsim::mcs::config_of(c).channels[0].start_position_nm = start;
     return c;
 }
 
@@ -37,7 +39,7 @@ TEST_CASE("FRM finds a single mark, holds it, and makes the position known", "[d
 TEST_CASE("the default rig's positioners start away from their marks: FRM takes a different, non-zero time on each", "[device][mcs][frm]")
 {
     const auto rig = rigsim::default_rig_config();
-    REQUIRE(rig.devices.at(0).protocol == rigsim::Protocol::Mcs);
+    REQUIRE(rig.devices.at(0).protocol == "mcs");
     // Start positions -2.5, +4 and +3 mm, marks at 0, search at 1 mm/s forward (2.3.3): -2.5 mm
     // -> 2.5 s; +4 mm -> forward to the end stop at 10.5 mm, then back to the mark:
     // 6.5 + 10.5 mm = 17 s; +3 mm -> 7.5 + 10.5 mm = 18 s.
@@ -125,9 +127,9 @@ TEST_CASE("FRM on end-stop types drives to the safe direction's end stop", "[dev
 TEST_CASE("FRM failures: no reference (144) and a mark outside the range limit", "[device][mcs][frm]")
 {
     auto config = mcs_device_config(2);
-    config.mcs.channels[0].sensor_type = "SR36M";             // rotary, cannot be referenced
-    config.mcs.channels[1].sensor_type = "S";
-    config.mcs.channels[1].start_position_nm = 1'000'000;
+    rigsim::mcs::config_of(config).channels[0].sensor_type = "SR36M";             // rotary, cannot be referenced
+    rigsim::mcs::config_of(config).channels[1].sensor_type = "S";
+    rigsim::mcs::config_of(config).channels[1].start_position_nm = 1'000'000;
     McsHarness h(config);
     CHECK(h.send(":FRM0,0,0,0\n") == ":E0,144\n");
     CHECK(h.send(":FRM1,1,0,1\n") == ":E1,0\n");           // mark 1 mm behind: backward
@@ -213,7 +215,7 @@ TEST_CASE("SP on a rotary channel takes 0..359,999,999 and answers E<ch>,7 outsi
 TEST_CASE("goniometers have end stops, linear channels refuse angle commands", "[device][mcs][rotary]")
 {
     auto config = mcs_device_config(2);
-    config.mcs.channels[0].sensor_type = "G605S";
+    rigsim::mcs::config_of(config).channels[0].sensor_type = "G605S";
     McsHarness h(config);
     CHECK(h.send(":MAA0,20000000,0,0\n") == ":E0,0\n");      // beyond +10°: end stop
     h.advance_ms(5000);

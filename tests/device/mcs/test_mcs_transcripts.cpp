@@ -11,6 +11,8 @@
 // unprompted messages (asynchronous mode) appear before the answers of the next '>' line.
 #include "mcs_harness.hpp"
 
+#include "emulator/core/rig_families.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <fstream>

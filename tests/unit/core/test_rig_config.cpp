@@ -1,4 +1,6 @@
-#include "emulator/core/rig_config.hpp"
+#include "emulator/apt/config.hpp"
+#include "emulator/core/rig_families.hpp"
+#include "emulator/mcs/config.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -55,13 +57,13 @@ TEST_CASE("rig config: a minimal rig gets every default", "[unit][config]")
     REQUIRE(rig.devices.size() == 1);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
-    CHECK(d.protocol == rigsim::Protocol::Mcs);
+    CHECK(d.protocol == "mcs");
     CHECK(d.model == "MCS-3D");
     CHECK(d.tcp_port == 0);
     CHECK(d.pty.empty());
-    CHECK(d.mcs.system_id == 1000);
-    REQUIRE(d.mcs.channels.size() == 1);
-    const auto& c = d.mcs.channels[0];
+    CHECK(rigsim::mcs::config_of(d).system_id == 1000);
+    REQUIRE(rigsim::mcs::config_of(d).channels.size() == 1);
+    const auto& c = rigsim::mcs::config_of(d).channels[0];
     CHECK(c.sensor_type == "S");
     CHECK(c.travel_min_nm == -10'500'000);
     CHECK(c.travel_max_nm == 10'500'000);
@@ -101,9 +103,9 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
     CHECK(d.model == "MCS-6D");
     CHECK(d.tcp_port == 65535);
     CHECK(d.pty == "/dev/ttyRIG0");
-    CHECK(d.mcs.system_id == 4294967295u);
-    REQUIRE(d.mcs.channels.size() == 2);
-    const auto& c0 = d.mcs.channels[0];
+    CHECK(rigsim::mcs::config_of(d).system_id == 4294967295u);
+    REQUIRE(rigsim::mcs::config_of(d).channels.size() == 2);
+    const auto& c0 = rigsim::mcs::config_of(d).channels[0];
     CHECK(c0.sensor_type == "none");
     CHECK(c0.travel_min_nm == -2'000'000'000);
     CHECK(c0.travel_max_nm == 2'000'000'000);
@@ -111,7 +113,7 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
     CHECK(c0.max_speed_nm_per_s == 100'000'000);
     CHECK(c0.closed_loop_speed_nm_per_s == 100'000'000);
     CHECK(c0.closed_loop_acceleration_um_per_s2 == 10'000'000);
-    const auto& c1 = d.mcs.channels[1];
+    const auto& c1 = rigsim::mcs::config_of(d).channels[1];
     CHECK(c1.sensor_type == "SR");
     CHECK(c1.travel_min_nm == 0);
     CHECK(c1.travel_max_nm == 1);
@@ -125,9 +127,9 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     REQUIRE(rig.devices.size() == 7);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
-    CHECK(d.protocol == rigsim::Protocol::Mcs);
+    CHECK(d.protocol == "mcs");
     CHECK(d.tcp_port == 40100);
-    CHECK(d.mcs.channels.size() == 3);
+    CHECK(rigsim::mcs::config_of(d).channels.size() == 3);
     CHECK(rig.devices[1].model == "TDC001");
     CHECK(rig.devices[1].tcp_port == 40101);
     CHECK(rig.devices[2].model == "KDC101");
@@ -135,9 +137,9 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     CHECK(rig.devices[3].model == "TST001");
     CHECK(rig.devices[4].model == "KST101");
     CHECK(rig.devices[5].model == "BSC203");
-    CHECK(rig.devices[5].apt.bays.size() == 3);
+    CHECK(rigsim::apt::config_of(rig.devices[5]).bays.size() == 3);
     CHECK(rig.devices[6].model == "BBD203");
-    CHECK(rig.devices[6].apt.bays.size() == 3);
+    CHECK(rigsim::apt::config_of(rig.devices[6]).bays.size() == 3);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
@@ -390,15 +392,15 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     CHECK(error_of(rig).find("/devices/0/apt/serial_number: expected an integer 83000000..83999999") != std::string::npos);
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 83123456}};
     const auto ok = rigsim::parse_rig_config(rig.dump(), "rig.json");
-    CHECK(ok.devices[0].protocol == rigsim::Protocol::Apt);
-    CHECK(ok.devices[0].apt.serial_number == 83123456);
+    CHECK(ok.devices[0].protocol == "apt");
+    CHECK(rigsim::apt::config_of(ok.devices[0]).serial_number == 83123456);
     rig["devices"][0]["model"] = "BBD203";
     rig["devices"][0]["apt"] = {{"stage", "MLS203-X"}};
     CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: a rack controller names a stage per bay in \"bays\"");
     rig["devices"][0]["apt"] = {{"bays", {"MLS203-X", "MLS203-Y", "MLS203-Y", "MLS203-X"}}};
     CHECK(error_of(rig).find("/devices/0/apt/bays: expected an array of 1..3 stages") != std::string::npos);
     rig["devices"][0]["apt"] = {{"bays", {"MLS203-X", "MLS203-Y"}}};
-    CHECK(rigsim::parse_rig_config(rig.dump(), "rig.json").devices[0].apt.bays.size() == 2);
+    CHECK(rigsim::apt::config_of(rigsim::parse_rig_config(rig.dump(), "rig.json").devices[0]).bays.size() == 2);
     rig["devices"][0]["model"] = "TST001";
     rig["devices"][0]["apt"] = json::object();
     CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: required key missing (the default MTS50-Z8 is not a stage for a TST001)");
@@ -543,10 +545,15 @@ TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
           "rig.json: /devices/1/pty: path \"/tmp/x\" is already used by /devices/0");
 }
 
-TEST_CASE("rig config: protocol names", "[unit][config]")
+TEST_CASE("rig config: the daemon's families are \"mcs\" then \"apt\"", "[unit][config]")
 {
-    CHECK(rigsim::to_string(rigsim::Protocol::Mcs) == "mcs");
-    CHECK(rigsim::to_string(rigsim::Protocol::Apt) == "apt");
+    const auto& families = rigsim::rig_families();
+    REQUIRE(families.all().size() == 2);
+    CHECK(families.all()[0].name == "mcs");
+    CHECK(families.all()[1].name == "apt");
+    CHECK(families.quoted_names() == "\"mcs\" or \"apt\"");
+    CHECK(families.find("apt") == &families.all()[1]);
+    CHECK(families.find("pz") == nullptr);
 }
 
 TEST_CASE("rig config: resolved pty paths default to <pty-dir>/<name> and never collide", "[unit][config]")
@@ -587,14 +594,14 @@ TEST_CASE("rig config: faithful_timing is a boolean", "[unit][config]")
 TEST_CASE("rig config: mcs interface_version is \"<high>.<low>.<update>\", default 1.2.44", "[unit][config]")
 {
     const auto dflt = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json");
-    CHECK(dflt.devices[0].mcs.interface_version.high == 1);
-    CHECK(dflt.devices[0].mcs.interface_version.low == 2);
-    CHECK(dflt.devices[0].mcs.interface_version.update == 44);
+    CHECK(rigsim::mcs::config_of(dflt.devices[0]).interface_version.high == 1);
+    CHECK(rigsim::mcs::config_of(dflt.devices[0]).interface_version.low == 2);
+    CHECK(rigsim::mcs::config_of(dflt.devices[0]).interface_version.update == 44);
     const auto ok = rigsim::parse_rig_config(
         R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"interface_version":"1.5.0","channels":[{}]}}]})", "rig.json");
-    CHECK(ok.devices[0].mcs.interface_version.high == 1);
-    CHECK(ok.devices[0].mcs.interface_version.low == 5);
-    CHECK(ok.devices[0].mcs.interface_version.update == 0);
+    CHECK(rigsim::mcs::config_of(ok.devices[0]).interface_version.high == 1);
+    CHECK(rigsim::mcs::config_of(ok.devices[0]).interface_version.low == 5);
+    CHECK(rigsim::mcs::config_of(ok.devices[0]).interface_version.update == 0);
     for (const char* bad : {R"("1.2")", R"("1.2.3.4")", R"("1..2")", R"("a.b.c")", R"("1.2.65536")", R"("")", R"(" 1.2.3")",
                             R"("1.2.")", "[1,2,44]", "1"}) {
         INFO(bad);

@@ -1,0 +1,50 @@
+#include "emulator/core/rig_families.hpp"
+
+#include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/config.hpp"
+#include "emulator/mcs/config.hpp"
+#include "emulator/mcs/mcs_device.hpp"
+
+#include <memory>
+
+namespace rigsim {
+namespace {
+
+FamilyRegistry make_families()
+{
+    FamilyRegistry families;
+    families.add(Family{"mcs", "an MCS device", &mcs::load_device_section,
+                        [](const DeviceConfig& config, const DeviceContext& context) -> std::unique_ptr<Device> {
+                            return std::make_unique<mcs::McsDevice>(config, context.world, context.log);
+                        }});
+    families.add(Family{"apt", "an APT device", &apt::load_device_section,
+                        [](const DeviceConfig& config, const DeviceContext& context) -> std::unique_ptr<Device> {
+                            return std::make_unique<apt::AptDevice>(config, context.world, context.log, &context.store);
+                        }});
+    return families;
+}
+
+} // namespace
+
+const FamilyRegistry& rig_families()
+{
+    static const FamilyRegistry families = make_families();
+    return families;
+}
+
+RigConfig parse_rig_config(std::string_view json_text, std::string_view source)
+{
+    return parse_rig_config(json_text, source, rig_families());
+}
+
+RigConfig load_rig_config(const std::string& path)
+{
+    return load_rig_config(path, rig_families());
+}
+
+RigConfig default_rig_config()
+{
+    return parse_rig_config(default_rig_json(), "built-in default rig");
+}
+
+} // namespace rigsim
