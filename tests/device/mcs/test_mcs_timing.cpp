@@ -63,8 +63,8 @@ TEST_CASE("the long-travel rig's first channel: 10 mm at 10 mm/s take 1 s of clo
 {
     // tests/e2e/long_travel_rig.json, channel 0.
     auto config = mcs_device_config();
-    config.mcs.channels[0].start_position_nm = -5'000'000;
-    config.mcs.channels[0].max_speed_nm_per_s = 10'000'000;
+    rigsim::mcs::config_of(config).channels[0].start_position_nm = -5'000'000;
+    rigsim::mcs::config_of(config).channels[0].max_speed_nm_per_s = 10'000'000;
     McsHarness h(config);
     CHECK(h.send(":GP0\n") == ":P0,0\n");                     // unreferenced: reads 0
     CHECK(h.send(":MPA0,10000000,0\n") == ":E0,0\n");
