@@ -4,7 +4,7 @@
 // No I/O: the handler calls it, the Clock advances it.
 
 #include "models/clock.hpp"
-#include "emulator/mcs/codec.hpp"
+#include "emulator/mcs/errors.hpp"
 
 #include <cstdint>
 #include <optional>
