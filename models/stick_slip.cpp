@@ -44,6 +44,8 @@ StickSlipPositioner::Outcome StickSlipPositioner::take_outcome()
 
 void StickSlipPositioner::settle()
 {
+    legs_nm_.clear();
+    next_leg_ = 0;
     switch (motion_) {
     case Motion::Rest:
         return;
@@ -91,6 +93,36 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
         motion_ = Motion::Profile;
     reschedule();
     return profile_end_;
+}
+
+bool StickSlipPositioner::start_legs(std::vector<double> legs_nm, double speed_nm_per_s)
+{
+    settle();
+    outcome_ = Outcome::None;
+    legs_nm_ = std::move(legs_nm);
+    leg_speed_nm_per_s_ = speed_nm_per_s;
+    const bool moving = next_leg(clock_.now());
+    reschedule();
+    return moving;
+}
+
+bool StickSlipPositioner::next_leg(Ticks now)
+{
+    while (next_leg_ < legs_nm_.size()) {
+        const double to = legs_nm_[next_leg_++];
+        profile_ = MotionProfile::plan(AxisState(rest_nm_, 0.0), to, leg_speed_nm_per_s_, 0.0);
+        profile_start_ = now;
+        profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+        if (profile_end_ > now) {
+            motion_ = Motion::Profile;
+            return true;
+        }
+        rest_nm_ = to;
+    }
+    legs_nm_.clear();
+    next_leg_ = 0;
+    motion_ = Motion::Rest;
+    return false;
 }
 
 void StickSlipPositioner::start_burst(const StepBurst& burst)
@@ -239,7 +271,9 @@ void StickSlipPositioner::on_event(Ticks now)
     case Motion::Profile:
         if (now >= profile_end_) {
             rest_nm_ = profile_.target();
-            end_motion(Outcome::Arrived);
+            motion_ = Motion::Rest;
+            if (!next_leg(now))
+                end_motion(Outcome::Arrived);
         }
         return;
     case Motion::Scan:

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <vector>
 
 namespace rigsim::models {
 
@@ -92,6 +93,11 @@ public:
     Ticks move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2);
     /// Where the current closed-loop move ends.
     double target_nm() const { return profile_.target(); }
+    /// Drive through `legs_nm` in order at `speed_nm_per_s` without acceleration limit, each
+    /// leg from rest where the last one ended (a reference search turning at end stops);
+    /// one event per leg end, outcome Arrived after the last. Returns false if all legs
+    /// are done at once (no distance).
+    bool start_legs(std::vector<double> legs_nm, double speed_nm_per_s);
 
     /// Start a burst of open-loop steps now.
     void start_burst(const StepBurst& burst);
@@ -131,6 +137,8 @@ private:
     void catch_up() const;
     void settle();
     void end_motion(Outcome outcome);
+    /// Plan the next leg that has a distance at `now`; false if none is left.
+    bool next_leg(Ticks now);
 
     const Clock& clock_;
     StickSlipConfig config_;
@@ -142,6 +150,9 @@ private:
     MotionProfile profile_;
     Ticks profile_start_ = 0;
     Ticks profile_end_ = 0;
+    std::vector<double> legs_nm_;     ///< legs still to drive after the current one
+    std::size_t next_leg_ = 0;
+    double leg_speed_nm_per_s_ = 0;
     // Open-loop burst; the replay is a cache of a function of time.
     StepBurst burst_;
     double step_width_nm_ = 0;

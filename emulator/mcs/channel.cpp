@@ -361,10 +361,7 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
         arrive(now);
 }
 
-bool Channel::start_leg(double to, double speed)
-{
-    return body_.move_to(to, speed, 0.0) > clock_.now();
-}
+
 
 void Channel::on_body_event(Ticks now)
 {
@@ -377,7 +374,7 @@ void Channel::on_body_event(Ticks now)
         return;
     case Motion::Referencing:
         if (outcome == Outcome::Arrived)
-            next_reference_leg(now);
+            finish_reference(now);
         return;
     case Motion::Stepping:
         if (outcome == Outcome::BurstDone || outcome == Outcome::LimitMet)
@@ -452,7 +449,9 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
                                                                         : (direction == 0 ? 1.0 : -1.0);
         plan_reference_search(here, dir, lo, hi);
         motion_ = Motion::Referencing;
-        next_reference_leg(now);
+        if (!body_.start_legs(std::move(reference_legs_), search_speed_))
+            finish_reference(now);
+        reference_legs_.clear();
     });
     return std::nullopt;
 }
@@ -515,16 +514,8 @@ void Channel::plan_reference_search(double here, double dir, double lo, double h
     }
 }
 
-void Channel::next_reference_leg(Ticks now)
+void Channel::finish_reference(Ticks now)
 {
-    if (!reference_legs_.empty()) {
-        const double to = reference_legs_.front();
-        reference_legs_.erase(reference_legs_.begin());
-        if (start_leg(to, search_speed_))
-            return;   // the body's event at the end of the leg brings the next one
-        next_reference_leg(now);
-        return;
-    }
     if (!reference_found_) {
         // "If a second end stop is detected before the reference mark is found the search
         // will abort unsuccessfully" (2.3.3): 144 in async mode, status 0.

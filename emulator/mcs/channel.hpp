@@ -210,15 +210,14 @@ private:
     /// Runs `start` now, or after the sensor powered up (power save mode, status 5).
     void begin_movement(std::function<void(Ticks)> start);
     void start_closed_loop(double target_physical, std::int32_t hold_ms, Ticks now);
-    /// Drive a reference search leg; false if it is over at once.
-    bool start_leg(double to, double speed);
     /// What the body's last event means for the protocol (tick()).
     void on_body_event(Ticks now);
     void arrive(Ticks now);
     /// The legs of a reference search from physical `here` in direction `dir` (+1/-1) between
     /// the turning points `lo` and `hi`: sets reference_legs_, reference_found_, reference_point_.
     void plan_reference_search(double here, double dir, double lo, double hi);
-    void next_reference_leg(Ticks now);
+    /// The search's last leg has ended: the reference is known now, or 144.
+    void finish_reference(Ticks now);
     void finish_movement();
     void become_known(double reference_physical, bool auto_zero);
     /// Queue an unprompted error of this channel (async mode: 142, 144, 147).
@@ -285,7 +284,7 @@ private:
     bool end_stop_hit_ = false;      ///< the target lay beyond a mechanical end stop
     bool limit_hit_ = false;         ///< the target lay beyond the software range limit
     std::optional<std::pair<std::int64_t, std::int64_t>> limit_;   ///< logical min, max
-    // FRM in progress: the legs still to drive, and the outcome at the end of the last.
+    // FRM: the legs planned for the body, and the outcome at the end of the last.
     std::vector<double> reference_legs_;
     bool reference_found_ = false;
     double reference_point_ = 0;     ///< physical position that becomes the reference
