@@ -91,8 +91,6 @@ public:
     /// Closed-loop move from rest at the position now to `target_nm`; `acceleration_nm_per_s2`
     /// 0 means unlimited. Returns the end tick; a move that ends now is done at return.
     Ticks move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2);
-    /// Where the current closed-loop move ends.
-    double target_nm() const { return profile_.target(); }
     /// Drive through `legs_nm` in order at `speed_nm_per_s` without acceleration limit, each
     /// leg from rest where the last one ended (a reference search turning at end stops);
     /// one event per leg end, outcome Arrived after the last. Returns false if all legs
