@@ -90,11 +90,11 @@ std::vector<DeviceEndpoints> parse_endpoints(const std::string& json)
 }
 
 DaemonProcess::DaemonProcess(const std::string& path, std::optional<int> cpu,
-                             std::chrono::milliseconds timeout)
+                             std::chrono::milliseconds timeout, std::vector<std::string> extra_args)
 {
     // A constructor that throws gets no destructor call: clean up here.
     try {
-        start(path, cpu, timeout);
+        start(path, cpu, timeout, extra_args);
     } catch (...) {
         clean_up();
         throw;
@@ -102,7 +102,7 @@ DaemonProcess::DaemonProcess(const std::string& path, std::optional<int> cpu,
 }
 
 void DaemonProcess::start(const std::string& path, std::optional<int> cpu,
-                          std::chrono::milliseconds timeout)
+                          std::chrono::milliseconds timeout, const std::vector<std::string>& extra_args)
 {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string{tmp && *tmp ? tmp : "/tmp"} + "/rigsim_bench.XXXXXX";
@@ -118,6 +118,7 @@ void DaemonProcess::start(const std::string& path, std::optional<int> cpu,
     std::vector<std::string> args = {path,           "--ephemeral-ports", "--pty-dir",
                                      pty_dir,        "--endpoints-json",  endpoints_file,
                                      "--log-level",  "warn"};
+    args.insert(args.end(), extra_args.begin(), extra_args.end());
     std::vector<char*> argv;
     for (auto& arg : args)
         argv.push_back(arg.data());

@@ -28,10 +28,10 @@ std::vector<DeviceEndpoints> parse_endpoints(const std::string& json);
 /// rigsimd started with fork/exec on ephemeral ports in a fresh temporary directory.
 class DaemonProcess {
 public:
-    /// Starts `path`, pinned to `cpu` if given, and waits (polling, up to `timeout`)
-    /// for its endpoints file.
+    /// Starts `path`, pinned to `cpu` if given, with `extra_args` after its own (e.g.
+    /// `--config FILE`), and waits (polling, up to `timeout`) for its endpoints file.
     DaemonProcess(const std::string& path, std::optional<int> cpu,
-                  std::chrono::milliseconds timeout);
+                  std::chrono::milliseconds timeout, std::vector<std::string> extra_args = {});
     /// Kills the daemon if still running and removes the temporary directory.
     ~DaemonProcess();
     DaemonProcess(const DaemonProcess&) = delete;
@@ -51,7 +51,7 @@ public:
 private:
     /// Creates the directory, forks, execs and waits for the endpoints file.
     void start(const std::string& path, std::optional<int> cpu,
-               std::chrono::milliseconds timeout);
+               std::chrono::milliseconds timeout, const std::vector<std::string>& extra_args);
     /// Kills and reaps the daemon if running; removes the temporary directory.
     void clean_up();
     /// Polls waitpid(WNOHANG); true once the child is reaped, with its status.

@@ -1,14 +1,18 @@
 #pragma once
-// One MCS positioner channel: sensor, measuring scale, closed-loop settings and motion.
-// No I/O: the handler calls it, the Clock advances it. Messages the channel sends by
-// itself (asynchronous errors, completion reports) are queued in events() for the
-// controller to deliver.
+// One MCS positioner channel: the protocol's view of a stick-slip positioner: sensor,
+// measuring scale, reference, range limit, closed-loop settings, status codes, event
+// receivers and command queue. The physics (steps, scans, closed-loop profiles, end stops)
+// is the channel's body in the world, models::StickSlipPositioner under "<device>/<index>":
+// the channel commands it in physical units and reads its position at the clock's now.
+// No I/O. What the channel reports by itself (asynchronous errors, completion, triggered)
+// is queued in events() for the controller to deliver.
 
 #include "models/clock.hpp"
 #include "emulator/mcs/config.hpp"
-#include "emulator/mcs/codec.hpp"
+#include "emulator/mcs/commands.hpp"
+#include "emulator/mcs/errors.hpp"
 #include "emulator/mcs/sensor_types.hpp"
-#include "models/motion_profile.hpp"
+#include "models/stick_slip.hpp"
 #include "models/world.hpp"
 
 #include <array>
@@ -41,6 +45,17 @@ enum class ChannelType : int { Positioner = 0, EndEffector = 1 };
 /// Sensor operation modes (2.3.2; SSE, channel property 134938625).
 enum class SensorMode : int { Disabled = 0, Enabled = 1, PowerSave = 2 };
 
+/// Something a channel reports by itself; the controller turns it into an answer.
+struct ChannelEvent {
+    enum class Kind {
+        Error,       ///< an asynchronous error (142, 144, 147)
+        Completed,   ///< a movement completed (SRC)
+        Triggered,   ///< a queued command was triggered (SRT)
+    };
+    Kind kind;
+    ErrorCode code = ErrorCode::None;   ///< for Kind::Error
+};
+
 class Channel {
 public:
     /// The hold time that means "hold until stopped" (MPA/MPR, manual 3.3).
@@ -56,6 +71,9 @@ public:
 
     /// The channel's positioner joins `world` under `key` ("<device>/<index>").
     Channel(int index, const McsChannelConfig& config, models::World& world, const std::string& key);
+    ~Channel();
+    Channel(const Channel&) = delete;
+    Channel& operator=(const Channel&) = delete;
 
     ChannelType type() const { return ChannelType::Positioner; }
     ChannelStatus status() const;
@@ -80,7 +98,7 @@ public:
     /// Position on the logical scale: nm, or µ° (angle + 360,000,000 × revolution).
     std::int64_t position() const;
     std::int64_t position_nm() const { return position(); }
-    bool physical_position_known() const { return known_; }
+    bool physical_position_known() const;
 
     /// MPA/MAA (`position` in nm or µ°), MPR/MAR (`distance`).
     std::optional<ErrorCode> move_absolute(std::int64_t position, std::int32_t hold_ms);
@@ -162,8 +180,14 @@ public:
 
     /// Messages the channel sends by itself: asynchronous errors (142, 147, 144) and
     /// completion reports. The controller delivers them only in asynchronous mode.
-    std::vector<Reply>& events() { return events_; }
+    std::vector<ChannelEvent>& events() { return events_; }
 
+    /// The positioner in the world.
+    const models::StickSlipPositioner& body() const { return body_; }
+
+    /// Protocol timers (hold, move delay, calibration) and events of the body not yet
+    /// handled: the next tick tick() must run at, or kNever. Never now + 1 merely because
+    /// the positioner moves.
     Ticks next_change(Ticks now) const;
     void tick(Ticks now);
 
@@ -186,26 +210,31 @@ private:
     /// Runs `start` now, or after the sensor powered up (power save mode, status 5).
     void begin_movement(std::function<void(Ticks)> start);
     void start_closed_loop(double target_physical, std::int32_t hold_ms, Ticks now);
-    void start_leg(double to, double speed, Ticks now);
-    void sample(Ticks now);
+    /// What the body's last event means for the protocol (tick()).
+    void on_body_event(Ticks now);
     void arrive(Ticks now);
     /// The legs of a reference search from physical `here` in direction `dir` (+1/-1) between
     /// the turning points `lo` and `hi`: sets reference_legs_, reference_found_, reference_point_.
     void plan_reference_search(double here, double dir, double lo, double hi);
-    void next_reference_leg(Ticks now);
+    /// The search's last leg has ended: the reference is known now, or 144.
+    void finish_reference(Ticks now);
     void finish_movement();
     void become_known(double reference_physical, bool auto_zero);
     /// Queue an unprompted error of this channel (async mode: 142, 144, 147).
     void post_error(ErrorCode code);
-    /// Moves the stage by `delta` physically within end stops and range limit; returns
-    /// false if it was stopped there. Without an enabled sensor the logical position does
-    /// not follow (2.3.2: the position becomes invalid).
-    bool displace(double delta);
-    void step_until(Ticks now);
-    void scan_until(Ticks now);
+    /// The range limit as the body's open-loop bursts see it.
+    models::StepLimit step_limit() const;
+    /// Stepping with the sensor disabled (2.3.2): once a step is made the physical position
+    /// is lost and the reading stays where it was; commit that to the scale.
+    void commit_blind();
+    bool blind_stepped() const;
+    /// A burst ended (body outcome BurstDone or LimitMet).
+    void end_burst(bool limit_met);
 
     int index_;
     const Clock& clock_;
+    models::StickSlipPositioner& body_;
+    bool body_event_ = false;        ///< the body had an event that tick() has not handled
     McsChannelConfig config_;
     const SensorType* sensor_;
     SensorMode sensor_mode_;
@@ -250,16 +279,12 @@ private:
     Motion motion_ = Motion::Idle;
     std::function<void(Ticks)> pending_start_;   ///< movement waiting for the sensor
     Ticks delay_until_ = 0;
-    models::AxisState state_;        ///< physical position (nm), velocity (nm/s)
-    models::MotionProfile profile_;
-    Ticks move_start_ = 0;
-    Ticks move_end_ = 0;             ///< tick at which the profile is done
     Ticks hold_until_ = 0;           ///< kNever: hold until stopped
     std::int32_t hold_ms_ = 0;
     bool end_stop_hit_ = false;      ///< the target lay beyond a mechanical end stop
     bool limit_hit_ = false;         ///< the target lay beyond the software range limit
     std::optional<std::pair<std::int64_t, std::int64_t>> limit_;   ///< logical min, max
-    // FRM in progress: the legs still to drive, and the outcome at the end of the last.
+    // FRM: the legs planned for the body, and the outcome at the end of the last.
     std::vector<double> reference_legs_;
     bool reference_found_ = false;
     double reference_point_ = 0;     ///< physical position that becomes the reference
@@ -267,22 +292,10 @@ private:
     double search_speed_ = 0;
     Ticks calibrate_until_ = 0;
     bool calibrated_ = false;
-    // MST in progress.
-    Ticks step_start_ = 0;
-    std::int64_t steps_total_ = 0;   ///< 0: until stopped
-    std::int64_t steps_done_ = 0;
-    double step_dir_ = 1;
-    double step_width_ = 0;
-    double step_frequency_hz_ = 1;
-    std::uint32_t jitter_state_;
-    // Piezo scan level (MSCA/MSCR), 0..4095, and a scan in progress.
-    double scan_level_ = 0;
-    double scan_from_ = 0;
-    double scan_target_ = 0;
-    double scan_speed_ = 1;
-    Ticks scan_start_ = 0;
+    /// MST with the sensor disabled: the logical position the reading stays at.
+    std::optional<double> blind_logical_;
     double target_physical_nm_ = 0;  ///< MPR accumulates onto this while targeting
-    std::vector<Reply> events_;
+    std::vector<ChannelEvent> events_;
 };
 
 } // namespace rigsim::mcs

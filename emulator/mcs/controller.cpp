@@ -10,6 +10,23 @@ namespace {
 /// The controller's baud rate generator divides a 4 MHz clock: CB57600 -> BR57142 (3.5).
 constexpr std::int64_t kBaudClock_hz = 4'000'000;
 
+/// The answer a channel's own event becomes (asynchronous mode).
+Reply reply_of(int channel, const ChannelEvent& event)
+{
+    switch (event.kind) {
+    case ChannelEvent::Kind::Error:
+        // emplace with an explicit alternative: GCC 12 -O2 misreads Reply{Error{...}}
+        // as copying an uninitialised std::string of the Answer alternative.
+        return Reply(std::in_place_type<Error>, Error{channel, event.code});
+    case ChannelEvent::Kind::Completed:
+        // SRC: the manual gives no format for "completed"; rigsim sends C<ch> (docs/protocol/mcs.md).
+        return Answer{"C" + std::to_string(channel)};
+    case ChannelEvent::Kind::Triggered:
+        return Answer{"T" + std::to_string(channel)};   // SRT
+    }
+    return Silent{};
+}
+
 } // namespace
 
 Controller::Controller(const McsConfig& config, models::World& world, const std::string& device)
@@ -19,7 +36,7 @@ Controller::Controller(const McsConfig& config, models::World& world, const std:
     channels_.reserve(config.channels.size());
     for (std::size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i];
-        channels_.emplace_back(static_cast<int>(i), c, world, device + "/" + std::to_string(i));
+        channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, world, device + "/" + std::to_string(i)));
         if (c.kind == "end_effector")
             effectors_.push_back(std::make_unique<EndEffector>(
                 clock_, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
@@ -52,7 +69,7 @@ Channel* Controller::channel(std::int32_t index)
 {
     if (!valid_index(index) || effectors_[static_cast<std::size_t>(index)])
         return nullptr;
-    return &channels_[static_cast<std::size_t>(index)];
+    return channels_[static_cast<std::size_t>(index)].get();
 }
 
 const Channel* Controller::channel(std::int32_t index) const
@@ -64,7 +81,7 @@ void Controller::set_sensor_mode(SensorMode mode)
 {
     sensor_mode_ = mode;
     for (auto& c : channels_)
-        c.set_sensor_mode(mode);
+        c->set_sensor_mode(mode);
 }
 
 void Controller::set_keep_alive(std::int32_t timeout_ms)
@@ -94,7 +111,7 @@ void Controller::reset()
     baudrate_ = configured_baudrate_;   // CB takes effect at the next reset
     outbox_.clear();
     for (auto& c : channels_)
-        c.reset();
+        c->reset();
     for (auto& e : effectors_)
         if (e)
             e->reset();   // the end effector type (SEET) is kept, like the sensor types
@@ -105,7 +122,7 @@ void Controller::reset()
 void Controller::stop_all()
 {
     for (auto& c : channels_)
-        c.stop();
+        c->stop();
     for (auto& e : effectors_)
         if (e)
             e->stop();
@@ -115,38 +132,39 @@ void Controller::set_emergency_stop_mode(std::int32_t mode)
 {
     esm_mode_ = mode;
     for (auto& c : channels_)
-        c.set_emergency_stop_mode(mode);
+        c->set_emergency_stop_mode(mode);
 }
 
 void Controller::emergency_stop_pulse()
 {
     for (auto& c : channels_)
-        c.emergency_stop_edge(false);
+        c->emergency_stop_edge(false);
     for (auto& c : channels_)
-        c.emergency_stop_edge(true);
+        c->emergency_stop_edge(true);
 }
 
 void Controller::trigger(std::int32_t source)
 {
     for (auto& c : channels_)
-        c.on_event(source);
+        c->on_event(source);
 }
 
 void Controller::collect_events()
 {
     bool broadcast = false;
     for (auto& c : channels_)
-        broadcast = c.take_broadcast_request() || broadcast;
+        broadcast = c->take_broadcast_request() || broadcast;
     if (broadcast)   // 2.2.3: an end stop on a channel with broadcast stop halts them all
         emergency_stop_pulse();
     for (std::size_t i = 0; i < effectors_.size(); ++i)
         if (effectors_[i] && effectors_[i]->take_completed() && effector_report_[i]
             && mode_ == CommunicationMode::Async)
             outbox_.push_back(Answer{"C" + std::to_string(i)});
-    for (auto& c : channels_) {
-        auto& events = c.events();
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+        auto& events = channels_[i]->events();
         if (mode_ == CommunicationMode::Async)
-            outbox_.insert(outbox_.end(), events.begin(), events.end());
+            for (const auto& e : events)
+                outbox_.push_back(reply_of(static_cast<int>(i), e));
         events.clear();
     }
 }
@@ -155,7 +173,7 @@ Ticks Controller::next_change(Ticks now) const
 {
     Ticks next = keep_alive_deadline_ > now ? keep_alive_deadline_ : (keep_alive_deadline_ == kNever ? kNever : now + 1);
     for (const auto& c : channels_)
-        next = std::min(next, c.next_change(now));
+        next = std::min(next, c->next_change(now));
     for (const auto& e : effectors_)
         if (e)
             next = std::min(next, e->next_change(now));
@@ -167,12 +185,12 @@ void Controller::tick(Ticks now)
     if (now >= keep_alive_deadline_) {
         // K: "If a timeout occurs, all positioners are immediately stopped."
         for (auto& c : channels_)
-            c.stop();
+            c->stop();
         keep_alive_deadline_ = kNever;
     }
     for (auto& c : channels_)
-        if (c.next_change(now - 1) <= now)
-            c.tick(now);
+        if (c->next_change(now - 1) <= now)
+            c->tick(now);
     for (auto& e : effectors_)
         if (e && e->next_change(now - 1) <= now)
             e->tick(now);

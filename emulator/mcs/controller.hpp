@@ -3,6 +3,7 @@
 
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/channel.hpp"
+#include "emulator/mcs/commands.hpp"
 #include "emulator/mcs/end_effector.hpp"
 #include "models/clock.hpp"
 #include "models/world.hpp"
@@ -98,7 +99,7 @@ private:
     const Clock& clock_;
     std::uint32_t system_id_;
     InterfaceVersion interface_version_;
-    std::vector<Channel> channels_;   ///< one per index; end effector indices hold an unused one
+    std::vector<std::unique_ptr<Channel>> channels_;   ///< one per index; end effector indices hold an unused one
     std::vector<std::unique_ptr<EndEffector>> effectors_;   ///< non-null for end effector indices
     std::vector<bool> effector_report_;
     CommunicationMode mode_ = CommunicationMode::Sync;

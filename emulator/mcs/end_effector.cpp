@@ -178,7 +178,7 @@ double EndEffector::raw_force_dun() const
     // Only a force gripper presses on something; a bare force sensor sees no load.
     if (type_ != EndEffectorType::ForceGripper)
         return 0;
-    return std::max(0.0, voltage_cv_ - model_.contact_cv) * model_.stiffness_dun_per_cv;
+    return std::max(0.0, voltage_now_cv() - model_.contact_cv) * model_.stiffness_dun_per_cv;
 }
 
 double EndEffector::force_target_cv(std::int32_t force_dun) const
@@ -199,7 +199,7 @@ std::optional<ErrorCode> EndEffector::opening_cv(std::int32_t& out) const
 {
     if (!has_gripper())
         return ErrorCode::WrongEndEffectorType;
-    out = static_cast<std::int32_t>(std::lround(voltage_cv_));
+    out = static_cast<std::int32_t>(std::lround(voltage_now_cv()));
     return std::nullopt;
 }
 
@@ -235,8 +235,9 @@ void EndEffector::start_ramp(double target_cv, std::int32_t speed_v_per_s, Activ
         end_ramp();
 }
 
-void EndEffector::sample(Ticks now)
+double EndEffector::voltage_now_cv() const
 {
+    const Ticks now = clock_.now();
     switch (activity_) {
     case Activity::MovingOpening:
     case Activity::TargetingForce:
@@ -244,14 +245,17 @@ void EndEffector::sample(Ticks now)
     case Activity::Idle:
     case Activity::HoldingForce:
     case Activity::ZeroingForce:
-        return;
+        return voltage_cv_;
     }
-    if (now >= ramp_end_) {
-        voltage_cv_ = ramp_to_cv_;
-        return;
-    }
+    if (now >= ramp_end_)
+        return ramp_to_cv_;
     const double step = ramp_cv_per_tick_ * static_cast<double>(now - ramp_start_);
-    voltage_cv_ = ramp_to_cv_ >= ramp_from_cv_ ? ramp_from_cv_ + step : ramp_from_cv_ - step;
+    return ramp_to_cv_ >= ramp_from_cv_ ? ramp_from_cv_ + step : ramp_from_cv_ - step;
+}
+
+void EndEffector::sample(Ticks /*now*/)
+{
+    voltage_cv_ = voltage_now_cv();
 }
 
 void EndEffector::end_ramp()
@@ -293,7 +297,7 @@ Ticks EndEffector::next_change(Ticks now) const
         return kNever;
     case Activity::MovingOpening:
     case Activity::TargetingForce:
-        return now + 1;
+        return std::max(ramp_end_, now + 1);   // the voltage is sampled when read
     case Activity::ZeroingForce:
         return std::max(zeroing_end_, now + 1);
     }
@@ -310,8 +314,6 @@ void EndEffector::tick(Ticks now)
     case Activity::TargetingForce:
         if (now >= ramp_end_)
             end_ramp();
-        else
-            sample(now);
         return;
     case Activity::ZeroingForce:
         if (now >= zeroing_end_) {

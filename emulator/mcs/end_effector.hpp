@@ -4,7 +4,7 @@
 // No I/O: the handler calls it, the Clock advances it.
 
 #include "models/clock.hpp"
-#include "emulator/mcs/codec.hpp"
+#include "emulator/mcs/errors.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -70,7 +70,8 @@ public:
     /// True once after a movement or SZF has completed (for SRC reports); clears the flag.
     bool take_completed();
 
-    /// Tickable protocol (models/clock.hpp): now + 1 while ramping, kNever when idle.
+    /// Tickable protocol (models/clock.hpp): the end of a ramp or of SZF, kNever when idle
+    /// or holding; the voltage in between is a function of clock time, sampled when read.
     Ticks next_change(Ticks now) const;
     /// Bring the voltage (or the SZF wait) up to tick `now`.
     void tick(Ticks now);
@@ -87,6 +88,8 @@ private:
     /// Voltage at which MGFA's closed loop settles for `force_dun` (clipped to 0..max).
     double force_target_cv(std::int32_t force_dun) const;
     void start_ramp(double target_cv, std::int32_t speed_v_per_s, Activity activity);
+    /// The voltage at the clock's now (1/100 V).
+    double voltage_now_cv() const;
     void sample(Ticks now);
     void end_ramp();
 

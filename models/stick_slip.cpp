@@ -1,0 +1,306 @@
+#include "models/stick_slip.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rigsim::models {
+
+StickSlipPositioner::StickSlipPositioner(const Clock& clock, const StickSlipConfig& config)
+    : clock_(clock), config_(config), rest_nm_(config.start_position_nm), jitter_state_(config.jitter_seed),
+      scanner_(clock, config.scan_range_nm)
+{
+}
+
+void StickSlipPositioner::set_travel(double min_nm, double max_nm)
+{
+    config_.travel_min_nm = min_nm;
+    config_.travel_max_nm = max_nm;
+}
+
+double StickSlipPositioner::position_nm() const
+{
+    const Ticks now = clock_.now();
+    switch (motion_) {
+    case Motion::Rest:
+        return rest_nm_;
+    case Motion::Profile:
+        return now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_))[0];
+    case Motion::Burst:
+        catch_up();
+        return replay_.position_nm;
+    case Motion::Scan:
+        // End stops clamp a scan; the software range limit does not (MCS 2.3.4).
+        return std::clamp(rest_nm_ + scanner_.displacement_nm(now), config_.travel_min_nm, config_.travel_max_nm);
+    }
+    return rest_nm_;
+}
+
+StickSlipPositioner::Outcome StickSlipPositioner::take_outcome()
+{
+    const Outcome o = outcome_;
+    outcome_ = Outcome::None;
+    return o;
+}
+
+void StickSlipPositioner::settle()
+{
+    legs_nm_.clear();
+    next_leg_ = 0;
+    switch (motion_) {
+    case Motion::Rest:
+        return;
+    case Motion::Profile:
+        rest_nm_ = position_nm();
+        break;
+    case Motion::Burst:
+        catch_up();
+        rest_nm_ = replay_.position_nm;
+        jitter_state_ = replay_.jitter_state;
+        break;
+    case Motion::Scan:
+        rest_nm_ = position_nm();
+        scanner_.settle(clock_.now());
+        break;
+    }
+    motion_ = Motion::Rest;
+}
+
+void StickSlipPositioner::halt()
+{
+    settle();
+    outcome_ = Outcome::None;
+    reschedule();
+}
+
+void StickSlipPositioner::place(double position_nm)
+{
+    settle();
+    rest_nm_ = position_nm;
+    reschedule();
+}
+
+Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2)
+{
+    settle();
+    outcome_ = Outcome::None;
+    const Ticks now = clock_.now();
+    profile_ = MotionProfile::plan(AxisState(rest_nm_, 0.0), target_nm, speed_nm_per_s, acceleration_nm_per_s2);
+    profile_start_ = now;
+    profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    if (profile_end_ <= now)
+        rest_nm_ = profile_.target();
+    else
+        motion_ = Motion::Profile;
+    reschedule();
+    return profile_end_;
+}
+
+bool StickSlipPositioner::start_legs(std::vector<double> legs_nm, double speed_nm_per_s)
+{
+    settle();
+    outcome_ = Outcome::None;
+    legs_nm_ = std::move(legs_nm);
+    leg_speed_nm_per_s_ = speed_nm_per_s;
+    const bool moving = next_leg(clock_.now());
+    reschedule();
+    return moving;
+}
+
+bool StickSlipPositioner::next_leg(Ticks now)
+{
+    while (next_leg_ < legs_nm_.size()) {
+        const double to = legs_nm_[next_leg_++];
+        profile_ = MotionProfile::plan(AxisState(rest_nm_, 0.0), to, leg_speed_nm_per_s_, 0.0);
+        profile_start_ = now;
+        profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+        if (profile_end_ > now) {
+            motion_ = Motion::Profile;
+            return true;
+        }
+        rest_nm_ = to;
+    }
+    legs_nm_.clear();
+    next_leg_ = 0;
+    motion_ = Motion::Rest;
+    return false;
+}
+
+void StickSlipPositioner::start_burst(const StepBurst& burst)
+{
+    settle();
+    outcome_ = Outcome::None;
+    burst_ = burst;
+    step_width_nm_ = config_.step_width_nm * burst.amplitude_levels / 4095.0;
+    burst_start_ = clock_.now();
+    replay_ = Replay{rest_nm_, 0, jitter_state_, false};
+    motion_ = Motion::Burst;
+    reschedule();
+}
+
+std::int64_t StickSlipPositioner::steps_due(Ticks elapsed) const
+{
+    auto due = static_cast<std::int64_t>(std::floor(clock_.seconds(elapsed) * burst_.frequency_hz + 1e-9));
+    if (burst_.steps > 0)
+        due = std::min(due, burst_.steps);
+    return due;
+}
+
+Ticks StickSlipPositioner::tick_of_step(std::int64_t n) const
+{
+    // An estimate a little early, then forward with the expression steps_due() uses.
+    const double estimate = static_cast<double>(n) / burst_.frequency_hz * clock_.tick_hz();
+    Ticks t = burst_start_ + std::max<Ticks>(0, static_cast<Ticks>(estimate) - 2);
+    while (std::floor(clock_.seconds(t - burst_start_) * burst_.frequency_hz + 1e-9) < static_cast<double>(n))
+        ++t;
+    return t;
+}
+
+bool StickSlipPositioner::step(double& position_nm, double delta_nm) const
+{
+    const StepLimit& l = burst_.limit;
+    const double base = l.follows_stage ? position_nm : 0.0;
+    const double lo = std::max(config_.travel_min_nm, base + l.min_nm);
+    const double hi = std::min(config_.travel_max_nm, base + l.max_nm);
+    const double target = position_nm + delta_nm;
+    const double reached = std::clamp(target, std::min(lo, position_nm), std::max(hi, position_nm));
+    position_nm = reached;
+    if (reached == target)
+        return true;
+    // Against a mechanical end stop the steps go on without moving; a range limit ends them.
+    const bool at_end_stop = reached <= config_.travel_min_nm || reached >= config_.travel_max_nm;
+    return !l.active || at_end_stop;
+}
+
+void StickSlipPositioner::replay(Replay& r, std::int64_t target) const
+{
+    const double jitter = config_.step_jitter_fraction;
+    while (r.done < target && !r.limit_met) {
+        ++r.done;
+        r.jitter_state = r.jitter_state * 1664525u + 1013904223u;
+        const double u = static_cast<double>(r.jitter_state >> 8) / static_cast<double>(1u << 24) * 2.0 - 1.0;
+        r.limit_met = !step(r.position_nm, burst_.direction * step_width_nm_ * (1.0 + jitter * u));
+    }
+}
+
+void StickSlipPositioner::catch_up() const
+{
+    if (motion_ == Motion::Burst)
+        replay(replay_, steps_due(clock_.now() - burst_start_));
+}
+
+std::int64_t StickSlipPositioner::steps_done() const
+{
+    catch_up();
+    return replay_.done;
+}
+
+bool StickSlipPositioner::stop_burst()
+{
+    if (motion_ != Motion::Burst)
+        return false;
+    catch_up();
+    bool limit_met = replay_.limit_met;
+    const bool unfinished = burst_.steps == 0 || replay_.done < burst_.steps;
+    if (!limit_met && unfinished
+        && clock_.seconds(clock_.now() - burst_start_) * burst_.frequency_hz > static_cast<double>(replay_.done)) {
+        ++replay_.done;
+        limit_met = !step(replay_.position_nm, burst_.direction * step_width_nm_);
+    }
+    halt();
+    return limit_met;
+}
+
+bool StickSlipPositioner::start_scan(double target_levels, double speed_levels_per_s)
+{
+    settle();
+    outcome_ = Outcome::None;
+    const Ticks now = clock_.now();
+    scanner_.start(now, target_levels, speed_levels_per_s);
+    const bool over = scanner_.end_tick() <= now;
+    if (over) {
+        scanner_.settle(now);
+        rest_nm_ = std::clamp(rest_nm_, config_.travel_min_nm, config_.travel_max_nm);
+    } else {
+        motion_ = Motion::Scan;
+    }
+    reschedule();
+    return over;
+}
+
+double StickSlipPositioner::scan_level() const
+{
+    return scanner_.level_at(clock_.now());
+}
+
+Ticks StickSlipPositioner::next_event(Ticks now) const
+{
+    switch (motion_) {
+    case Motion::Rest:
+        return kNever;
+    case Motion::Profile:
+        return profile_end_;
+    case Motion::Scan:
+        return scanner_.end_tick();
+    case Motion::Burst:
+        break;
+    }
+    catch_up();
+    if (replay_.limit_met)
+        return now + 1;
+    Ticks next = burst_.steps > 0 ? tick_of_step(burst_.steps) : kNever;
+    const StepLimit& l = burst_.limit;
+    const bool limit_ahead = l.active && (burst_.direction > 0 ? std::isfinite(l.max_nm) : std::isfinite(l.min_nm));
+    if (!limit_ahead)
+        return next;
+    // The step that meets the limit depends on every jitter draw before it: replay ahead.
+    Replay ahead = replay_;
+    std::int64_t horizon = ahead.done + kLookAheadSteps;
+    if (burst_.steps > 0)
+        horizon = std::min(horizon, burst_.steps);
+    replay(ahead, horizon);
+    if (ahead.limit_met)
+        return std::min(next, tick_of_step(ahead.done));
+    return std::min(next, tick_of_step(horizon));   // look again from there
+}
+
+void StickSlipPositioner::on_event(Ticks now)
+{
+    switch (motion_) {
+    case Motion::Rest:
+        return;
+    case Motion::Profile:
+        if (now >= profile_end_) {
+            rest_nm_ = profile_.target();
+            motion_ = Motion::Rest;
+            if (!next_leg(now))
+                end_motion(Outcome::Arrived);
+        }
+        return;
+    case Motion::Scan:
+        if (now >= scanner_.end_tick()) {
+            settle();
+            end_motion(Outcome::ScanDone);
+        }
+        return;
+    case Motion::Burst:
+        catch_up();
+        if (replay_.limit_met) {
+            settle();
+            end_motion(Outcome::LimitMet);
+        } else if (burst_.steps > 0 && replay_.done >= burst_.steps) {
+            settle();
+            end_motion(Outcome::BurstDone);
+        }
+        return;
+    }
+}
+
+void StickSlipPositioner::end_motion(Outcome outcome)
+{
+    motion_ = Motion::Rest;
+    outcome_ = outcome;
+    if (listener_)
+        listener_();
+}
+
+} // namespace rigsim::models

@@ -1,0 +1,164 @@
+#pragma once
+// A stick-slip piezo positioner (SmarAct MCS, manual 2.3.1): one axis driven by open-loop
+// steps, by closed-loop moves, and by the scanning piezo that shares the axis.
+//
+// Units: positions in nm (µ° on a rotary stage: the same numbers, the protocol chooses),
+// speeds in nm/s, step frequency in Hz, scan levels 0..4095.
+//
+// State is a function of clock time, so the world wakes the body only at its events:
+// - a closed-loop move is an exact MotionProfile: one event, the tick it ends;
+// - a step burst at f Hz has made floor(t·f) steps t seconds after it started; the steps are
+//   replayed lazily, in order, whenever the position is read, each with the next draw of
+//   the seeded jitter generator (a stick-slip step is never exactly the same twice), so the
+//   sequence of widths does not depend on when anyone looks. Events: the tick of the last
+//   step, and the tick of the step that meets the software range limit (found by replaying
+//   ahead, at most kLookAheadSteps steps per wake-up); a mechanical end stop does not end a
+//   burst, the steps go on without moving;
+// - a scan (models/piezo_scanner.hpp) ends at one tick; end stops clamp it.
+// Once an event has been handled, outcome() says what happened, and the listener is called.
+
+#include "models/clock.hpp"
+#include "models/motion_profile.hpp"
+#include "models/piezo_scanner.hpp"
+#include "models/world.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace rigsim::models {
+
+/// The positioner as built (config).
+struct StickSlipConfig {
+    double start_position_nm = 0;
+    double travel_min_nm = -std::numeric_limits<double>::infinity();   ///< mechanical end stop
+    double travel_max_nm = std::numeric_limits<double>::infinity();    ///< mechanical end stop
+    double step_width_nm = 1000;        ///< one step at full amplitude (4095)
+    double step_jitter_fraction = 0;    ///< each step is width · (1 ± this), uniformly
+    std::uint32_t jitter_seed = 0;
+    double scan_range_nm = 1500;        ///< a full 0..4095 scan
+};
+
+/// A software range limit an open-loop burst stops at (MCS 2.3.4).
+struct StepLimit {
+    /// A limit is set: a step that is cut short anywhere but at a mechanical end stop ends
+    /// the burst. Without one, bursts only ever stop at the end stops (and go on stepping).
+    bool active = false;
+    double min_nm = -std::numeric_limits<double>::infinity();
+    double max_nm = std::numeric_limits<double>::infinity();
+    /// The window is relative to the position before each step (a limit on a scale that
+    /// moves with the stage: MCS with its sensor disabled, 2.3.2).
+    bool follows_stage = false;
+};
+
+/// One burst of open-loop steps.
+struct StepBurst {
+    std::int64_t steps = 0;         ///< > 0; 0: until stopped
+    double direction = 1;           ///< +1 or -1
+    std::int32_t amplitude_levels = 4095;   ///< 0..4095: the step width scales with it
+    double frequency_hz = 1;
+    StepLimit limit;
+};
+
+class StickSlipPositioner : public Body {
+public:
+    enum class Motion { Rest, Profile, Burst, Scan };
+    /// What the last event did.
+    enum class Outcome { None, Arrived, BurstDone, LimitMet, ScanDone };
+    /// Steps replayed ahead per wake-up while looking for the one that meets a range limit.
+    static constexpr std::int64_t kLookAheadSteps = 1 << 16;
+
+    StickSlipPositioner(const Clock& clock, const StickSlipConfig& config);
+
+    /// Called after every event that changed outcome().
+    void set_listener(std::function<void()> listener) { listener_ = std::move(listener); }
+    /// Mechanical end stops (±infinity: none, an endless rotary stage). At rest only.
+    void set_travel(double min_nm, double max_nm);
+    double travel_min_nm() const { return config_.travel_min_nm; }
+    double travel_max_nm() const { return config_.travel_max_nm; }
+
+    /// Position at the clock's now (nm).
+    double position_nm() const;
+    Motion motion() const { return motion_; }
+    /// The outcome of the last event, and forget it.
+    Outcome take_outcome();
+
+    /// Stop where the stage is now (a burst stops after its steps due so far).
+    void halt();
+    /// Put the stage at `position_nm`, at rest (a calibration run to an end stop).
+    void place(double position_nm);
+    /// Closed-loop move from rest at the position now to `target_nm`; `acceleration_nm_per_s2`
+    /// 0 means unlimited. Returns the end tick; a move that ends now is done at return.
+    Ticks move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2);
+    /// Drive through `legs_nm` in order at `speed_nm_per_s` without acceleration limit, each
+    /// leg from rest where the last one ended (a reference search turning at end stops);
+    /// one event per leg end, outcome Arrived after the last. Returns false if all legs
+    /// are done at once (no distance).
+    bool start_legs(std::vector<double> legs_nm, double speed_nm_per_s);
+
+    /// Start a burst of open-loop steps now.
+    void start_burst(const StepBurst& burst);
+    /// Steps made by the current (or last) burst up to now.
+    std::int64_t steps_done() const;
+    /// Stop a burst; "the current step is completed" (MCS MST): a step begun but not yet
+    /// due is made, without jitter. Returns true if that step met the range limit.
+    bool stop_burst();
+
+    /// Scan the piezo to `target_levels` at `speed_levels_per_s`; returns true if the scan
+    /// is over at once (no span).
+    bool start_scan(double target_levels, double speed_levels_per_s);
+    /// The piezo level at now, 0..4095.
+    double scan_level() const;
+
+    Ticks next_event(Ticks now) const override;
+    void on_event(Ticks now) override;
+
+private:
+    /// A burst replayed up to some step.
+    struct Replay {
+        double position_nm = 0;
+        std::int64_t done = 0;
+        std::uint32_t jitter_state = 0;
+        bool limit_met = false;
+    };
+    /// Steps due `elapsed` ticks into the burst, capped at its length.
+    std::int64_t steps_due(Ticks elapsed) const;
+    /// The first tick at which step `n` (1-based) is due.
+    Ticks tick_of_step(std::int64_t n) const;
+    /// Make steps until `r.done == target` or the range limit is met.
+    void replay(Replay& r, std::int64_t target) const;
+    /// One step of `delta_nm` from `position_nm` within end stops and limit; false if the
+    /// range limit cut it short.
+    bool step(double& position_nm, double delta_nm) const;
+    /// Replay the burst up to now.
+    void catch_up() const;
+    void settle();
+    void end_motion(Outcome outcome);
+    /// Plan the next leg that has a distance at `now`; false if none is left.
+    bool next_leg(Ticks now);
+
+    const Clock& clock_;
+    StickSlipConfig config_;
+    std::function<void()> listener_;
+    Motion motion_ = Motion::Rest;
+    Outcome outcome_ = Outcome::None;
+    double rest_nm_;                  ///< position at rest, or where a motion started
+    // Closed-loop move.
+    MotionProfile profile_;
+    Ticks profile_start_ = 0;
+    Ticks profile_end_ = 0;
+    std::vector<double> legs_nm_;     ///< legs still to drive after the current one
+    std::size_t next_leg_ = 0;
+    double leg_speed_nm_per_s_ = 0;
+    // Open-loop burst; the replay is a cache of a function of time.
+    StepBurst burst_;
+    double step_width_nm_ = 0;
+    Ticks burst_start_ = 0;
+    mutable Replay replay_;
+    std::uint32_t jitter_state_;      ///< at rest: the generator's state for the next burst
+    // Scan.
+    PiezoScanner scanner_;
+};
+
+} // namespace rigsim::models
