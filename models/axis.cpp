@@ -23,10 +23,9 @@ Axis::Axis(const Clock& clock, const AxisConfig& config)
     anchor_.position_counts = config.start_position_counts;
 }
 
-double Axis::motor_at(Ticks k) const
+double Axis::profile_at(Ticks k) const
 {
-    const double raw = k >= end_ ? profile_.target() : profile_.sample(clock_.seconds(k - start_))[0];
-    return raw + motor_offset_;
+    return k >= end_ ? profile_.target() : profile_.sample(clock_.seconds(k - start_))[0];
 }
 
 Axis::Track Axis::now_track() const
@@ -55,43 +54,49 @@ double Axis::velocity_counts_per_s() const
     const Ticks now = clock_.now();
     if (!moving_ || now >= end_ || now_track().contact != 0)
         return 0;   // at rest, or pressed on an end stop
-    return profile_.sample(clock_.seconds(now - start_))[1];
+    // On the tick a motion is commanded the axis still moves as it did: a profile without an
+    // acceleration limit starts at full speed, from the next tick.
+    return now == start_ ? start_velocity_counts_per_s_ : profile_.sample(clock_.seconds(now - start_))[1];
 }
 
 void Axis::set_limits(double min_counts, double max_counts)
 {
     if (min_counts == limit_min_counts_ && max_counts == limit_max_counts_)
         return;
+    settle();
     limit_min_counts_ = min_counts;
     limit_max_counts_ = max_counts;
-    rules_changed();
+    replan();
 }
 
 void Axis::set_limit_switches(bool forward_stops, bool reverse_stops)
 {
     if (forward_stops == forward_switch_stops_ && reverse_stops == reverse_switch_stops_)
         return;
+    settle();
     forward_switch_stops_ = forward_stops;
     reverse_switch_stops_ = reverse_stops;
-    rules_changed();
+    replan();
 }
 
 void Axis::set_soft_stops(double min_motor_counts, double max_motor_counts)
 {
     if (soft_stops_ && min_motor_counts == soft_min_motor_counts_ && max_motor_counts == soft_max_motor_counts_)
         return;
+    settle();
     soft_stops_ = true;
     soft_min_motor_counts_ = min_motor_counts;
     soft_max_motor_counts_ = max_motor_counts;
-    rules_changed();
+    replan();
 }
 
 void Axis::clear_soft_stops()
 {
     if (!soft_stops_)
         return;
+    settle();
     soft_stops_ = false;
-    rules_changed();
+    replan();
 }
 
 double Axis::run_target_counts(bool forward) const
@@ -137,7 +142,8 @@ void Axis::move_to(double target_counts, double velocity_counts_per_s, double ac
         target = std::clamp(target, limit_min_counts_, limit_max_counts_);
     start(jerk_counts_per_s3 > 0 ? MotionProfile::plan_s_curve(from, target, velocity_counts_per_s,
                                                                acceleration_counts_per_s2, jerk_counts_per_s3)
-                                 : MotionProfile::plan(from, target, velocity_counts_per_s, acceleration_counts_per_s2));
+                                 : MotionProfile::plan(from, target, velocity_counts_per_s, acceleration_counts_per_s2),
+          from[1]);
 }
 
 void Axis::stop_immediately()
@@ -158,12 +164,13 @@ void Axis::stop_profiled(double acceleration_counts_per_s2)
     const double v = velocity_counts_per_s();
     anchor_ = now_track();
     const double x = anchor_.position_counts;
-    start(MotionProfile::plan(AxisState(x, v), x + v * std::abs(v) / (2 * a), std::max(std::abs(v), 1.0), a));
+    start(MotionProfile::plan(AxisState(x, v), x + v * std::abs(v) / (2 * a), std::max(std::abs(v), 1.0), a), v);
 }
 
-void Axis::start(MotionProfile profile)
+void Axis::start(MotionProfile profile, double from_velocity_counts_per_s)
 {
     const Ticks now = clock_.now();
+    start_velocity_counts_per_s_ = from_velocity_counts_per_s;
     profile_ = std::move(profile);
     start_ = now;
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
@@ -186,21 +193,24 @@ void Axis::start(MotionProfile profile)
         return;
     }
     pending_.reset();
-    const double from = anchor_.position_counts + motor_offset_;
-    if (const auto hit = classify(now, from, motor_at(now), anchor_.lost_counts))
+    if (const auto hit = classify(now, anchor_.position_counts, profile_at(now), anchor_.lost_counts))
         apply(*hit);
 }
 
-std::optional<Axis::Hit> Axis::classify(Ticks k, double motor_before, double motor, double lost_before) const
+std::optional<Axis::Hit> Axis::classify(Ticks k, double profile_before, double profile, double lost_before) const
 {
+    // The carriage is where the profile is less what a stepper lost in this motion (exactly
+    // the profile when it lost nothing).
+    const double slip = lost_before - motor_offset_;
     // Only a crossing stops at a soft stop: a stage set beyond one may move back in.
     if (soft_stops_) {
+        const double motor_before = profile_before + motor_offset_, motor = profile + motor_offset_;
         if (motor_before < soft_max_motor_counts_ && motor >= soft_max_motor_counts_)
             return Hit{AxisEvent::SoftStopped, Track{k, soft_max_motor_counts_ - lost_before, lost_before, 0}};
         if (motor_before > soft_min_motor_counts_ && motor <= soft_min_motor_counts_)
             return Hit{AxisEvent::SoftStopped, Track{k, soft_min_motor_counts_ - lost_before, lost_before, 0}};
     }
-    const double x = motor - lost_before;
+    const double x = profile - slip;
     const bool forward = x > limit_max_counts_ + kTolerance;
     if (!config_.rotary && (forward || x < limit_min_counts_ - kTolerance)) {
         const double end = forward ? limit_max_counts_ : limit_min_counts_;
@@ -241,20 +251,21 @@ Axis::Scan Axis::scan(const Track& from, Ticks until, bool find_hits) const
 std::optional<Axis::Hit> Axis::scan_piece(Track& s, Ticks b, bool find_hits) const
 {
     const Ticks a = s.tick;
-    const double ma = motor_at(a), mb = motor_at(b);
-    const int dir = sign(mb - ma);
+    const double pa = profile_at(a), pb = profile_at(b);
+    const int dir = sign(pb - pa);
     // A stepper pressing on (the profile runs on into the end stop it stands at): the carriage
     // stays, the motor's steps are lost.
     const bool pressing = dir != 0 && dir == s.contact && slips(dir);
     const double end = dir > 0 ? limit_max_counts_ : limit_min_counts_;
-    const auto lost_at = [&](double motor) {
+    const auto lost_at = [&](double profile) {
         if (!pressing)
             return s.lost_counts;
-        return dir > 0 ? std::max(s.lost_counts, motor - end) : std::min(s.lost_counts, motor - end);
+        const double lost = motor_offset_ + (profile - end);
+        return dir > 0 ? std::max(s.lost_counts, lost) : std::min(s.lost_counts, lost);
     };
     const auto hit_at = [&](Ticks k) -> std::optional<Hit> {
-        const double before = motor_at(k - 1);
-        auto hit = classify(k, before, motor_at(k), lost_at(before));
+        const double before = profile_at(k - 1);
+        auto hit = classify(k, before, profile_at(k), lost_at(before));
         if (hit && pressing && hit->event == AxisEvent::LostSteps) {
             if (k < end_)
                 return std::nullopt;   // pressing on: no news
@@ -264,43 +275,44 @@ std::optional<Axis::Hit> Axis::scan_piece(Track& s, Ticks b, bool find_hits) con
     };
     // Past tick a+1 the position is monotone over the piece, and so is this test: the first
     // tick it holds is found by bisection.
-    const auto crossed = [&](double m) {
+    const double slip = s.lost_counts - motor_offset_;
+    const auto crossed = [&](double p) {
+        const double ma = pa + motor_offset_, m = p + motor_offset_;
         if (soft_stops_ && (dir > 0 ? ma < soft_max_motor_counts_ && m >= soft_max_motor_counts_
                                     : dir < 0 && ma > soft_min_motor_counts_ && m <= soft_min_motor_counts_))
             return true;
         if (pressing || config_.rotary || dir == 0)
             return false;
-        const double x = m - s.lost_counts;
+        const double x = p - slip;
         return dir > 0 ? x > limit_max_counts_ + kTolerance : x < limit_min_counts_ - kTolerance;
     };
     for (Ticks lo = a + 1; find_hits && lo <= b;) {
         if (const auto hit = hit_at(lo))
             return hit;
-        if (lo == b || !crossed(mb))
+        if (lo == b || !crossed(pb))
             break;
         Ticks hi = b;   // crossed at hi, not at lo
         while (hi - lo > 1) {
             const Ticks mid = lo + (hi - lo) / 2;
-            (crossed(motor_at(mid)) ? hi : lo) = mid;
+            (crossed(profile_at(mid)) ? hi : lo) = mid;
         }
         lo = hi;
     }
     if (find_hits && b >= end_ && b > a + 1)
         if (const auto hit = hit_at(b))
             return hit;
-    s.lost_counts = lost_at(mb);
-    s.position_counts = pressing ? end : mb - s.lost_counts;
+    s.lost_counts = lost_at(pb);
+    s.position_counts = pressing ? end : pb - slip;
     if (dir != 0 && !pressing)
         s.contact = 0;
     s.tick = b;
     return std::nullopt;
 }
 
-void Axis::rules_changed()
+void Axis::settle()
 {
     if (moving_)
         anchor_ = now_track();
-    replan();
 }
 
 void Axis::replan()

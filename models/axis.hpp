@@ -114,13 +114,13 @@ private:
         std::optional<Hit> hit;
     };
 
-    /// Profile position at tick `k` plus the motor offset of the motion (the lost steps at its start).
-    double motor_at(Ticks k) const;
+    /// Profile position at tick `k` (the target from the end of the profile on).
+    double profile_at(Ticks k) const;
     bool stops_at(bool forward) const;
     /// A stepper pressing on the end stop ahead (direction `dir`) that does not stop it runs on.
     bool slips(int dir) const;
     /// The per-tick rule at tick `k`: soft stop, limit or end stop, end of profile.
-    std::optional<Hit> classify(Ticks k, double motor_before, double motor, double lost_before) const;
+    std::optional<Hit> classify(Ticks k, double profile_before, double profile, double lost_before) const;
     /// Walk the motion from `from` to `until` (at most the end of the profile), piece by monotone
     /// piece; with `find_hits`, stop at the first hit.
     Scan scan(const Track& from, Ticks until, bool find_hits) const;
@@ -129,9 +129,9 @@ private:
     /// Ticks at which the motion may turn round (the last tick before each reversal, and the next).
     std::vector<Ticks> piece_ends(Ticks after, Ticks until) const;
     Track now_track() const;
-    void start(MotionProfile profile);
-    /// Re-anchor the motion at now (its rules changed) and plan the next event again.
-    void rules_changed();
+    void start(MotionProfile profile, double from_velocity_counts_per_s);
+    /// Anchor the motion at now, under the rules it ran by so far (before they change).
+    void settle();
     void replan();
     void apply(Hit hit);
 
@@ -149,6 +149,7 @@ private:
     bool moving_ = false;
     Ticks start_ = 0;            ///< tick the profile was planned at
     Ticks end_ = 0;              ///< tick at which it ends
+    double start_velocity_counts_per_s_ = 0;
     double motor_offset_ = 0;    ///< lost steps at the start of the motion
     std::vector<Ticks> turns_;   ///< last tick before each reversal of the profile
     Track anchor_;               ///< last tick the state was settled at (rest: the state)

@@ -268,3 +268,37 @@ TEST_CASE("axis: a TDC001 channel's long move wakes the world once per move, not
     CHECK(ch.position() == -800'000);
     CHECK(ch.take_events() == std::vector<apt::MotorEvent>{apt::MotorEvent::MoveCompleted});
 }
+
+TEST_CASE("axis: on the tick a move is commanded the axis still moves as it did", "[unit][models][axis]")
+{
+    // A per-tick integration samples the new profile from the next tick on: a move without an
+    // acceleration limit reaches full speed there, not at once.
+    Rig r(linear(Drive::Servo));
+    r.clock.advance(3);
+    r.axis.move_to(60'000, 10'000, 0);
+    CHECK(r.axis.velocity_counts_per_s() == 0);
+    CHECK(r.axis.position_counts() == 50'000);
+    r.clock.advance(1);
+    CHECK(r.axis.velocity_counts_per_s() == 10'000);
+    CHECK(r.axis.position_counts() == 50'010);
+}
+
+TEST_CASE("axis: a rule changed while a stepper presses on its end stop acts from then on", "[unit][models][axis]")
+{
+    Rig r(linear(Drive::Stepper));
+    r.axis.set_limit_switches(false, false);
+    r.axis.move_to(r.axis.run_target_counts(true), 20'000, 40'000);
+    r.clock.advance(4'000);   // on the stop since about 2.75 s
+    const double lost = r.axis.lost_counts();
+    CHECK(lost > 20'000);
+    // The switch now stops the axis: what was lost stays lost, the carriage stays on the stop...
+    r.axis.set_limit_switches(true, true);
+    CHECK(r.axis.position_counts() == 100'000);
+    CHECK(r.axis.lost_counts() == lost);
+    // ... and the next step against it stops the axis there.
+    r.clock.advance(1);
+    REQUIRE(r.events.size() == 2);
+    CHECK(r.events[1] == std::make_pair(AxisEvent::StoppedAtLimit, Ticks{4'001}));
+    CHECK(r.axis.position_counts() == 100'000);
+    CHECK(r.axis.lost_counts() == lost);
+}
