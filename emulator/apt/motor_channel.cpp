@@ -1,5 +1,8 @@
 #include "emulator/apt/motor_channel.hpp"
 
+#include "models/axis.hpp"
+#include "models/world.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,18 +13,28 @@ namespace {
 /// A rotation stage's "travel": far enough for any client, near enough for the 32-bit counter.
 constexpr double kRotaryTravelCounts = 1 << 30;
 
+models::AxisConfig axis_config(const ControllerModel& controller, const StageModel& stage)
+{
+    models::AxisConfig c;
+    // DC servo and brushless motors stall at an end stop; a stepper loses its microsteps.
+    c.drive = controller.motor == MotorKind::Stepper ? models::Drive::Stepper : models::Drive::Servo;
+    c.rotary = stage.rotary;
+    c.travel_min_counts = stage.rotary ? -kRotaryTravelCounts : 0.0;
+    c.travel_max_counts = stage.rotary ? kRotaryTravelCounts : stage.travel_mm * stage.counts_per_mm;
+    c.counts_per_turn = 360.0 * stage.counts_per_mm;
+    // Power-up: the stage stands mid-travel (a rotation stage half a turn from its home
+    // switch); the counters read 0 there (not homed).
+    c.start_position_counts = stage.travel_mm * stage.counts_per_mm / 2;
+    return c;
+}
+
 } // namespace
 
 MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
-                           const std::string& /*key*/)
-    : controller_(controller), stage_(stage), clock_(world.clock()), travel_max_(stage.travel_mm * stage.counts_per_mm)
+                           const std::string& key)
+    : controller_(controller), stage_(stage),
+      axis_(world.emplace<models::Axis>(key, world.clock(), axis_config(controller, stage)))
 {
-    if (stage.rotary) {
-        travel_min_ = -kRotaryTravelCounts;
-        travel_max_ = kRotaryTravelCounts;
-    }
-    limit_min_ = travel_min_;
-    limit_max_ = travel_max_;
     const double cpm = stage.counts_per_mm;
     velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
     velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * acceleration_factor()));
@@ -30,11 +43,15 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
     jog.velocity = velocity;
     home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * velocity_factor()));
     home_params.offset = static_cast<std::int32_t>(std::lround(stage.home_offset_mm * cpm));
-    // Power-up: the stage stands mid-travel (a rotation stage half a turn from its home
-    // switch); the counters read 0 there (not homed).
-    state_ = models::AxisState(stage.travel_mm * stage.counts_per_mm / 2, 0.0);
-    counter_offset_ = state_[0];
-    encoder_offset_ = state_[0];
+    counter_offset_ = axis_.motor_position_counts();
+    encoder_offset_ = counter_offset_;
+    axis_.set_listener([this](models::AxisEvent e) { on_axis_event(e); });
+    sync_axis(motion_);
+}
+
+MotorChannel::~MotorChannel()
+{
+    axis_.set_listener({});   // the World outlives its devices
 }
 
 double MotorChannel::velocity_factor() const
@@ -60,57 +77,63 @@ double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
 
 std::int32_t MotorChannel::min_position() const
 {
-    return static_cast<std::int32_t>(std::lround(limit_min_));
+    return static_cast<std::int32_t>(std::lround(axis_.limit_min_counts()));
 }
 
 std::int32_t MotorChannel::max_position() const
 {
-    return static_cast<std::int32_t>(std::lround(limit_max_));
+    return static_cast<std::int32_t>(std::lround(axis_.limit_max_counts()));
 }
 
 void MotorChannel::narrow_travel(std::int32_t min_position, std::int32_t max_position)
 {
-    const double lo = std::max(limit_min_, static_cast<double>(min_position));
-    const double hi = std::min(limit_max_, static_cast<double>(max_position));
-    if (lo < hi) {
-        limit_min_ = lo;
-        limit_max_ = hi;
-    }
+    const double lo = std::max(axis_.limit_min_counts(), static_cast<double>(min_position));
+    const double hi = std::min(axis_.limit_max_counts(), static_cast<double>(max_position));
+    if (lo < hi)
+        axis_.set_limits(lo, hi);
+}
+
+double MotorChannel::counter_origin() const
+{
+    // The counters count the motor: a stepper's lost microsteps move the carriage's zero.
+    return counter_offset_ - axis_.lost_counts();
 }
 
 std::int32_t MotorChannel::position() const
 {
-    return static_cast<std::int32_t>(std::lround(state_[0] - counter_offset_));
+    return static_cast<std::int32_t>(std::lround(axis_.motor_position_counts() - counter_offset_));
 }
 
 void MotorChannel::set_position(std::int32_t counts)
 {
-    counter_offset_ = state_[0] - counts;
+    counter_offset_ = axis_.motor_position_counts() - counts;
+    sync_axis(motion_);   // the soft limits are in position steps
 }
 
 std::int32_t MotorChannel::encoder() const
 {
-    return static_cast<std::int32_t>(std::lround(state_[0] - encoder_offset_));
+    return static_cast<std::int32_t>(std::lround(axis_.motor_position_counts() - encoder_offset_));
 }
 
 void MotorChannel::set_encoder(std::int32_t counts)
 {
-    encoder_offset_ = state_[0] - counts;
+    encoder_offset_ = axis_.motor_position_counts() - counts;
 }
 
 std::int16_t MotorChannel::velocity_word() const
 {
     // DCSTATUSUPDATE (p. 79): "Scaling is 204.8 per mm/sec".
-    const double word = state_[1] / stage_.counts_per_mm * 204.8;
+    const double word = axis_.velocity_counts_per_s() / stage_.counts_per_mm * 204.8;
     return static_cast<std::int16_t>(std::clamp(std::lround(word), -32768L, 32767L));
 }
 
 std::uint32_t MotorChannel::status_bits() const
 {
     std::uint32_t bits = status::kMotorConnected | fault_bits_;
-    if (!stage_.rotary && state_[0] <= travel_min_ + 0.5 && (limit_switch.ccw_hard & 0x7f) != 1)
+    const double x = axis_.position_counts();
+    if (!stage_.rotary && x <= axis_.travel_min_counts() + 0.5 && (limit_switch.ccw_hard & 0x7f) != 1)
         bits |= status::kReverseHardLimit;
-    if (!stage_.rotary && state_[0] >= travel_counts() - 0.5 && (limit_switch.cw_hard & 0x7f) != 1)
+    if (!stage_.rotary && x >= axis_.travel_max_counts() - 0.5 && (limit_switch.cw_hard & 0x7f) != 1)
         bits |= status::kForwardHardLimit;
     if (soft_limits_active()) {
         if (position() >= limit_switch.cw_soft)
@@ -124,7 +147,8 @@ std::uint32_t MotorChannel::status_bits() const
         break;
     case Motion::Moving:
     case Motion::Stopping:
-        bits |= state_[1] >= 0 && profile_.target() >= state_[0] ? status::kMovingForward : status::kMovingReverse;
+        bits |= axis_.velocity_counts_per_s() >= 0 && axis_.target_counts() >= x ? status::kMovingForward
+                                                                                : status::kMovingReverse;
         break;
     case Motion::Jogging:
         bits |= jog_direction_forward_ ? status::kJoggingForward : status::kJoggingReverse;
@@ -158,48 +182,34 @@ bool MotorChannel::switch_stops(bool forward, bool homing) const
     return homing ? mode != 1 : mode == 2 || mode == 3 || mode == 6;
 }
 
-double MotorChannel::run_target(bool forward) const
+void MotorChannel::sync_axis(Motion leg)
 {
-    if (stage_.rotary)
-        return forward ? travel_max_ : travel_min_;
-    const double beyond = travel_max_ - travel_min_;
-    return forward ? travel_max_ + beyond : travel_min_ - beyond;
-}
-
-double MotorChannel::next_home_switch(bool forward) const
-{
-    const double turn = 360.0 * stage_.counts_per_mm;
-    return forward ? std::ceil((state_[0] + 0.5) / turn) * turn : std::floor((state_[0] - 0.5) / turn) * turn;
+    const bool to_home_switch = leg == Motion::HomingToLimit;
+    axis_.set_limit_switches(switch_stops(true, to_home_switch), switch_stops(false, to_home_switch));
+    // LIMSWITCHPARAMS software limit mode 2 ("stop immediate at limit"): the axis stops dead
+    // where it crosses a limit, except while homing. The limits are in position steps.
+    const bool homing = to_home_switch || leg == Motion::HomingBackOff;
+    if (!homing && soft_limits_active() && (limit_switch.mode & 0x7f) == 2)
+        axis_.set_soft_stops(limit_switch.ccw_soft + counter_offset_, limit_switch.cw_soft + counter_offset_);
+    else
+        axis_.clear_soft_stops();
 }
 
 void MotorChannel::start_profile(double target_physical, double v, double a, Motion motion)
 {
-    const Ticks now = clock_.now();
-    sample(now);
     fault_bits_ = 0;   // a new move clears a stall
-    profile_slip_ = 0;
-    // The controller ends a move at the limit switch ahead, or at a travel that
-    // PMDSTAGEAXISPARAMS narrowed; past an ignored switch the axis runs into the end stop.
-    double target = target_physical;
-    if (!stage_.rotary && (target > limit_max_ || target < limit_min_)) {
-        const bool forward = target > limit_max_;
-        const bool narrowed = forward ? limit_max_ < travel_max_ : limit_min_ > travel_min_;
-        if (narrowed || switch_stops(forward, motion == Motion::HomingToLimit))
-            target = std::clamp(target, limit_min_, limit_max_);
-    }
+    // The axis ends a move at the limit switch ahead, or at a travel that PMDSTAGEAXISPARAMS
+    // narrowed; past an ignored switch it runs into the end stop.
+    sync_axis(motion);
     if (v <= 0) {
+        axis_.stop_immediately();
         motion_ = Motion::Idle;
         return;
     }
     // S-curve when MOT_SET_PMDPROFILEMODEPARAMS asks for it (p. 69); jerk scaling of 7.1.
     const double j = controller_.jerk_per_count_s3 > 0 ? jerk / controller_.jerk_per_count_s3 : 0;
-    profile_ = profile_mode == 2 && j > 0 ? models::MotionProfile::plan_s_curve(state_, target, v, a, j)
-                                          : models::MotionProfile::plan(state_, target, v, a);
-    start_ = now;
-    end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
-    motion_ = motion;
-    if (end_ <= now)
-        finish(now);
+    motion_ = motion;   // a move that ends at once concludes within move_to()
+    axis_.move_to(target_physical, v, a, profile_mode == 2 ? j : 0.0);
 }
 
 bool MotorChannel::soft_limits_active() const
@@ -212,20 +222,19 @@ double MotorChannel::within_soft_limits(double target_physical) const
 {
     // LIMSWITCHPARAMS software limits, in position steps (counter units). Mode 3 ("profiled
     // stop at limit") plans the move to stop there; mode 2 ("stop immediate at limit") runs on
-    // and stops dead when it gets there (soft_stop()).
+    // and stops dead when it gets there (the axis's soft stops, sync_axis()).
     if (!soft_limits_active() || (limit_switch.mode & 0x7f) != 3)
         return target_physical;
-    return std::clamp(target_physical, limit_switch.ccw_soft + counter_offset_, limit_switch.cw_soft + counter_offset_);
+    return std::clamp(target_physical, limit_switch.ccw_soft + counter_origin(), limit_switch.cw_soft + counter_origin());
 }
 
 void MotorChannel::move_to(double target_physical)
 {
-    sample(clock_.now());
     target_physical = within_soft_limits(target_physical);
     // GENMOVEPARAMS backlash: a move in the reverse direction overshoots by the backlash
     // distance and comes back forward, so that every move ends approaching forward.
-    if (backlash > 0 && target_physical < state_[0] - 0.5) {
-        pending_backlash_target_ = target_physical - counter_offset_;
+    if (backlash > 0 && target_physical < axis_.position_counts() - 0.5) {
+        pending_backlash_target_ = target_physical - counter_origin();
         start_profile(target_physical - backlash, counts_per_s(velocity.max),
                       counts_per_s2(velocity.acceleration), Motion::Moving);
         return;
@@ -238,15 +247,14 @@ void MotorChannel::move_absolute(std::int32_t counts)
 {
     if (!enabled_)
         return;
-    move_to(counts + counter_offset_);
+    move_to(counts + counter_origin());
 }
 
 void MotorChannel::move_relative(std::int32_t counts)
 {
     if (!enabled_)
         return;
-    sample(clock_.now());
-    move_to(state_[0] + counts);
+    move_to(axis_.position_counts() + counts);
 }
 
 void MotorChannel::home()
@@ -260,8 +268,7 @@ void MotorChannel::home()
                             || home_params.direction == 1;
     homed_ = false;
     homing_forward_ = to_forward;
-    sample(clock_.now());
-    start_profile(stage_.rotary ? next_home_switch(to_forward) : run_target(to_forward),
+    start_profile(stage_.rotary ? axis_.next_home_switch_counts(to_forward) : axis_.run_target_counts(to_forward),
                   counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
 }
 
@@ -274,130 +281,65 @@ void MotorChannel::jog_move(bool forward)
     const double v = counts_per_s(jog.velocity.max);
     const double a = counts_per_s2(jog.velocity.acceleration);
     if (jog.mode == 1) {   // continuous: until stopped or at a limit
-        start_profile(within_soft_limits(run_target(forward)), v, a, Motion::Jogging);
+        start_profile(within_soft_limits(axis_.run_target_counts(forward)), v, a, Motion::Jogging);
         return;
     }
-    sample(clock_.now());
     const double step = forward ? jog.step_size : -jog.step_size;
-    start_profile(within_soft_limits(state_[0] + step), v, a, Motion::Jogging);
+    start_profile(within_soft_limits(axis_.position_counts() + step), v, a, Motion::Jogging);
 }
 
 void MotorChannel::move_velocity(bool forward)
 {
     if (!enabled_)
         return;
-    start_profile(within_soft_limits(run_target(forward)), counts_per_s(velocity.max),
+    start_profile(within_soft_limits(axis_.run_target_counts(forward)), counts_per_s(velocity.max),
                   counts_per_s2(velocity.acceleration), Motion::Moving);
 }
 
 void MotorChannel::stop(bool immediate)
 {
-    const Ticks now = clock_.now();
-    sample(now);
     pending_backlash_target_.reset();
     if (motion_ == Motion::Idle) {
         events_.push_back(MotorEvent::Stopped);   // MOVE_STOPPED for every MOVE_STOP
         return;
     }
-    if (immediate || counts_per_s2(velocity.acceleration) <= 0) {
-        state_[1] = 0;
+    const double a = counts_per_s2(velocity.acceleration);
+    if (immediate || a <= 0) {
+        axis_.stop_immediately();
         motion_ = Motion::Idle;
         events_.push_back(MotorEvent::Stopped);
         return;
     }
-    // Profiled stop: decelerate at the acceleration parameter.
-    const double a = counts_per_s2(velocity.acceleration);
-    const double v = state_[1];
-    const double stop_at = state_[0] + v * std::abs(v) / (2 * a);
-    // An end on the way stops the axis first (enforce_ends()).
-    profile_ = models::MotionProfile::plan(state_, stop_at, std::max(std::abs(v), 1.0), a);
-    profile_slip_ = 0;
-    start_ = now;
-    end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    // Profiled stop: decelerate at the acceleration parameter; an end on the way stops the
+    // axis first.
     motion_ = Motion::Stopping;
-    if (end_ <= now)
-        finish(now);
+    sync_axis(motion_);
+    axis_.stop_profiled(a);
 }
 
-void MotorChannel::sample(Ticks now)
+void MotorChannel::on_axis_event(models::AxisEvent event)
 {
-    if (motion_ == Motion::Idle)
+    switch (event) {
+    case models::AxisEvent::LostSteps:
+        return;   // the counters count the motor's microsteps (motor_position_counts()): nothing to send
+    case models::AxisEvent::Stalled:
+        // The motor stalls against the stop: its current limit (DC servo) or the position error
+        // limit (brushless, PMDPOSITIONLOOPPARAMS) trips, and the controller stops the axis.
+        motion_ = Motion::Idle;
+        pending_backlash_target_.reset();
+        fault_bits_ = controller_.motor == MotorKind::Brushless ? status::kMotionError : status::kCurrentLimit;
+        events_.push_back(MotorEvent::Fault);
+        events_.push_back(MotorEvent::Stopped);
         return;
-    const double before = state_[0];
-    state_ = profile_.sample(clock_.seconds(now - start_));
-    state_[0] -= profile_slip_;
-    if (!soft_stop(before))
-        enforce_ends();
-}
-
-bool MotorChannel::soft_stop(double before)
-{
-    if (!soft_limits_active() || (limit_switch.mode & 0x7f) != 2 || motion_ == Motion::HomingToLimit
-        || motion_ == Motion::HomingBackOff)
-        return false;
-    // Only a crossing counts: a stage set beyond a limit may move back in.
-    const double cw = limit_switch.cw_soft + counter_offset_, ccw = limit_switch.ccw_soft + counter_offset_;
-    double limit;
-    if (before < cw && state_[0] >= cw)
-        limit = cw;
-    else if (before > ccw && state_[0] <= ccw)
-        limit = ccw;
-    else
-        return false;
-    state_ = models::AxisState(limit, 0.0);
-    pending_backlash_target_.reset();
-    conclude();
-    return true;
-}
-
-bool MotorChannel::enforce_ends()
-{
-    constexpr double kTolerance = 1e-6;   // counts: a profile that ends on a limit may round past it
-    if (stage_.rotary || motion_ == Motion::Idle)
-        return false;
-    const bool forward = state_[0] > limit_max_ + kTolerance;
-    if (!forward && state_[0] >= limit_min_ - kTolerance)
-        return false;
-    const double limit = forward ? limit_max_ : limit_min_;
-    const bool narrowed = forward ? limit_max_ < travel_max_ : limit_min_ > travel_min_;
-    if (narrowed || switch_stops(forward, motion_ == Motion::HomingToLimit)) {
-        state_ = models::AxisState(limit, 0.0);   // the switch (or the narrowed limit) stops it
+    case models::AxisEvent::SoftStopped:
+        pending_backlash_target_.reset();
         conclude();
-        return true;
-    }
-    hit_end_stop(limit);
-    return motion_ == Motion::Idle;
-}
-
-void MotorChannel::hit_end_stop(double end)
-{
-    if (controller_.motor == MotorKind::Stepper) {
-        // Open loop: the motor keeps stepping against the stop; the counters count the
-        // microsteps the carriage does not make, and the profile runs on.
-        const double lost = state_[0] - end;
-        profile_slip_ += lost;
-        counter_offset_ -= lost;
-        encoder_offset_ -= lost;
-        state_ = models::AxisState(end, 0.0);
+        return;
+    case models::AxisEvent::StoppedAtLimit:
+    case models::AxisEvent::Arrived:
+        conclude();
         return;
     }
-    // The motor stalls against the stop: its current limit (DC servo) or the position error
-    // limit (brushless, PMDPOSITIONLOOPPARAMS) trips, and the controller stops the axis.
-    state_ = models::AxisState(end, 0.0);
-    motion_ = Motion::Idle;
-    pending_backlash_target_.reset();
-    fault_bits_ = controller_.motor == MotorKind::Brushless ? status::kMotionError : status::kCurrentLimit;
-    events_.push_back(MotorEvent::Fault);
-    events_.push_back(MotorEvent::Stopped);
-}
-
-void MotorChannel::finish(Ticks now)
-{
-    (void)now;
-    const double before = state_[0];
-    state_ = models::AxisState(profile_.target() - profile_slip_, 0.0);
-    if (!soft_stop(before) && !enforce_ends())
-        conclude();
 }
 
 void MotorChannel::conclude()
@@ -407,7 +349,7 @@ void MotorChannel::conclude()
         return;
     case Motion::Moving:
         if (pending_backlash_target_) {   // the backlash leg is done: approach forward
-            const double target = *pending_backlash_target_ + counter_offset_;
+            const double target = *pending_backlash_target_ + counter_origin();
             pending_backlash_target_.reset();
             motion_ = Motion::Idle;
             start_profile(target, counts_per_s(velocity.max), counts_per_s2(velocity.acceleration), Motion::Moving);
@@ -439,8 +381,8 @@ void MotorChannel::conclude()
                                                                        : home_params.offset;
         motion_ = Motion::Idle;
         if (back != 0 && counts_per_s(home_params.velocity) > 0)
-            start_profile(state_[0] + back, counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration),
-                          Motion::HomingBackOff);
+            start_profile(axis_.position_counts() + back, counts_per_s(home_params.velocity),
+                          counts_per_s2(velocity.acceleration), Motion::HomingBackOff);
         else
             complete_homing();
         return;
@@ -455,15 +397,16 @@ void MotorChannel::conclude()
 void MotorChannel::complete_homing()
 {
     // A brushless stage's counters count from its reverse end (PMDSTAGEAXISPARAMS MinPos 0).
-    const double zero = controller_.motor == MotorKind::Brushless ? travel_min_ : state_[0];
-    counter_offset_ = zero;
-    encoder_offset_ = zero;
+    const double zero = controller_.motor == MotorKind::Brushless ? axis_.travel_min_counts() : axis_.position_counts();
+    counter_offset_ = zero + axis_.lost_counts();
+    encoder_offset_ = counter_offset_;
     homed_ = true;
     events_.push_back(MotorEvent::Homed);
 }
 
 std::vector<MotorEvent> MotorChannel::take_events()
 {
+    sync_axis(motion_);
     std::vector<MotorEvent> e;
     e.swap(events_);
     return e;
@@ -471,17 +414,11 @@ std::vector<MotorEvent> MotorChannel::take_events()
 
 Ticks MotorChannel::next_change(Ticks now) const
 {
-    return motion_ == Motion::Idle ? kNever : now + 1;
+    return events_.empty() ? kNever : now + 1;
 }
 
-void MotorChannel::tick(Ticks now)
+void MotorChannel::tick(Ticks /*now*/)
 {
-    if (motion_ == Motion::Idle)
-        return;
-    if (now >= end_)
-        finish(now);
-    else
-        sample(now);
 }
 
 } // namespace rigsim::apt

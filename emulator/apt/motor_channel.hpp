@@ -1,16 +1,22 @@
 #pragma once
-// One APT motor channel: parameters (SET/REQ/GET trios), position counters, trapezoidal
-// moves, homing, jogging and the status bits of MOT_GET_DCSTATUSUPDATE. No I/O.
+// One APT motor channel: parameters (SET/REQ/GET trios), position counters, homing and
+// backlash legs, and the status bits of MOT_GET_DCSTATUSUPDATE. No I/O, no physics: the
+// channel's models::Axis (in the World under the channel's key) moves; the channel translates
+// APT units (7.1), counters and offsets, limit switch modes and the axis's events.
 
 #include "emulator/apt/catalogue.hpp"
 #include "models/clock.hpp"
-#include "models/motion_profile.hpp"
-#include "models/world.hpp"
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace rigsim::models {
+class Axis;
+class World;
+enum class AxisEvent;
+} // namespace rigsim::models
 
 namespace rigsim::apt {
 
@@ -64,6 +70,9 @@ public:
     /// The channel's axis joins `world` under `key` ("<device>/<bay>").
     MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
                  const std::string& key);
+    ~MotorChannel();
+    MotorChannel(const MotorChannel&) = delete;
+    MotorChannel& operator=(const MotorChannel&) = delete;
 
     std::int32_t position() const;               ///< position counter (counts)
     void set_position(std::int32_t counts);
@@ -113,11 +122,17 @@ public:
     /// On the way to the home switch or backing off from it.
     bool homing() const { return motion_ == Motion::HomingToLimit || motion_ == Motion::HomingBackOff; }
 
-    /// End-of-move events since the last call.
+    /// End-of-move events since the last call. Also hands the axis the LIMSWITCHPARAMS
+    /// written to `limit_switch` since (the device calls this after every batch of messages).
     std::vector<MotorEvent> take_events();
 
+    /// For the device's clock hook: due at once while end-of-move events wait to be sent.
     Ticks next_change(Ticks now) const;
+    /// Nothing to do per tick: the World moves the axis and wakes it only at its events.
     void tick(Ticks now);
+
+    /// The physics of this channel (World key "<device>/<bay>").
+    const models::Axis& axis() const { return axis_; }
 
 private:
     enum class Motion { Idle, Moving, Jogging, HomingToLimit, HomingBackOff, Stopping };
@@ -127,28 +142,16 @@ private:
     double acceleration_factor() const;
     double counts_per_s(std::int32_t apt_velocity) const;
     double counts_per_s2(std::int32_t apt_acceleration) const;
-    double travel_counts() const { return travel_max_; }
     /// Whether the hardware limit switch ahead stops the axis (LIMSWITCHPARAMS hard modes).
     bool switch_stops(bool forward, bool homing) const;
-    /// Where a run toward one end (velocity move, continuous jog, homing) is planned to: past
-    /// the end (start_profile() stops it at a switch or limit that stops the axis).
-    double run_target(bool forward) const;
-    /// The home switch of a rotation stage ahead of the carriage (once per turn).
-    double next_home_switch(bool forward) const;
+    /// Hand the axis the rules of the leg `leg`: which switches stop it, its soft stops.
+    void sync_axis(Motion leg);
+    /// The carriage position (axis counts) at which the position counter reads 0.
+    double counter_origin() const;
     void start_profile(double target_physical, double v, double a, Motion motion);
-    /// After a sample: a carriage past a limit that stops the axis ends its motion there; past
-    /// an ignored switch it meets the end stop. True if the motion ended.
-    bool enforce_ends();
-    /// LIMSWITCHPARAMS software limit mode 2: the axis stops dead where it crosses a limit
-    /// (from `before`, the position at the previous sample). True if it did.
-    bool soft_stop(double before);
-    /// The carriage met its end stop at `end`: DC and brushless motors stall (a fault), a
-    /// stepper keeps stepping and loses the microsteps, which its counters still count.
-    void hit_end_stop(double end);
+    void on_axis_event(models::AxisEvent event);
     /// What follows when the motion reaches its end: the next leg, or the end-of-move event.
     void conclude();
-    void sample(Ticks now);
-    void finish(Ticks now);
     void complete_homing();
     bool soft_limits_active() const;
     double within_soft_limits(double target_physical) const;
@@ -156,24 +159,15 @@ private:
 
     const ControllerModel& controller_;
     const StageModel& stage_;
-    const Clock& clock_;
+    models::Axis& axis_;
     bool enabled_ = true;
-    double travel_min_ = 0;          ///< physical counts: the limit switches, the end stops
-    double travel_max_;
-    double limit_min_ = 0;           ///< what PMDSTAGEAXISPARAMS leaves of the travel
-    double limit_max_;
     bool homed_ = false;
-    double counter_offset_;          ///< physical counts that read 0 on the position counter
+    double counter_offset_;          ///< motor position (axis counts) at which the position counter reads 0
     double encoder_offset_;
-    models::AxisState state_;        ///< physical position (counts from the reverse limit), velocity
-    models::MotionProfile profile_;
     Motion motion_ = Motion::Idle;
-    Ticks start_ = 0;
-    Ticks end_ = 0;
     bool jog_direction_forward_ = true;
     bool homing_forward_ = false;
     VelocityParams design_velocity_;
-    double profile_slip_ = 0;        ///< stepper: how far the profile ran on against an end stop
     std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
     std::vector<MotorEvent> events_;
     std::optional<double> pending_backlash_target_;   ///< counter value of the forward approach after a backlash overshoot

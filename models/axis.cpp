@@ -1,0 +1,351 @@
+#include "models/axis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rigsim::models {
+
+namespace {
+
+constexpr double kTolerance = 1e-6;   // counts: a profile that ends on a limit may round past it
+
+int sign(double x)
+{
+    return (x > 0) - (x < 0);
+}
+
+} // namespace
+
+Axis::Axis(const Clock& clock, const AxisConfig& config)
+    : clock_(clock), config_(config), limit_min_counts_(config.travel_min_counts),
+      limit_max_counts_(config.travel_max_counts)
+{
+    anchor_.position_counts = config.start_position_counts;
+}
+
+double Axis::profile_at(Ticks k) const
+{
+    return k >= end_ ? profile_.target() : profile_.sample(clock_.seconds(k - start_))[0];
+}
+
+Axis::Track Axis::now_track() const
+{
+    return moving_ ? scan(anchor_, clock_.now(), false).track : anchor_;
+}
+
+double Axis::position_counts() const
+{
+    return now_track().position_counts;
+}
+
+double Axis::lost_counts() const
+{
+    return now_track().lost_counts;
+}
+
+double Axis::motor_position_counts() const
+{
+    const Track t = now_track();
+    return t.position_counts + t.lost_counts;
+}
+
+double Axis::velocity_counts_per_s() const
+{
+    const Ticks now = clock_.now();
+    if (!moving_ || now >= end_ || now_track().contact != 0)
+        return 0;   // at rest, or pressed on an end stop
+    // On the tick a motion is commanded the axis still moves as it did: a profile without an
+    // acceleration limit starts at full speed, from the next tick.
+    return now == start_ ? start_velocity_counts_per_s_ : profile_.sample(clock_.seconds(now - start_))[1];
+}
+
+void Axis::set_limits(double min_counts, double max_counts)
+{
+    if (min_counts == limit_min_counts_ && max_counts == limit_max_counts_)
+        return;
+    settle();
+    limit_min_counts_ = min_counts;
+    limit_max_counts_ = max_counts;
+    replan();
+}
+
+void Axis::set_limit_switches(bool forward_stops, bool reverse_stops)
+{
+    if (forward_stops == forward_switch_stops_ && reverse_stops == reverse_switch_stops_)
+        return;
+    settle();
+    forward_switch_stops_ = forward_stops;
+    reverse_switch_stops_ = reverse_stops;
+    replan();
+}
+
+void Axis::set_soft_stops(double min_motor_counts, double max_motor_counts)
+{
+    if (soft_stops_ && min_motor_counts == soft_min_motor_counts_ && max_motor_counts == soft_max_motor_counts_)
+        return;
+    settle();
+    soft_stops_ = true;
+    soft_min_motor_counts_ = min_motor_counts;
+    soft_max_motor_counts_ = max_motor_counts;
+    replan();
+}
+
+void Axis::clear_soft_stops()
+{
+    if (!soft_stops_)
+        return;
+    settle();
+    soft_stops_ = false;
+    replan();
+}
+
+double Axis::run_target_counts(bool forward) const
+{
+    if (config_.rotary)
+        return forward ? config_.travel_max_counts : config_.travel_min_counts;
+    const double beyond = config_.travel_max_counts - config_.travel_min_counts;
+    return forward ? config_.travel_max_counts + beyond : config_.travel_min_counts - beyond;
+}
+
+double Axis::next_home_switch_counts(bool forward) const
+{
+    const double turn = config_.counts_per_turn;
+    const double x = position_counts();
+    return forward ? std::ceil((x + 0.5) / turn) * turn : std::floor((x - 0.5) / turn) * turn;
+}
+
+bool Axis::stops_at(bool forward) const
+{
+    // A travel the controller narrowed stops the axis whatever the switch.
+    if (forward)
+        return limit_max_counts_ < config_.travel_max_counts || forward_switch_stops_;
+    return limit_min_counts_ > config_.travel_min_counts || reverse_switch_stops_;
+}
+
+bool Axis::slips(int dir) const
+{
+    return config_.drive == Drive::Stepper && !config_.rotary && !stops_at(dir > 0);
+}
+
+void Axis::move_to(double target_counts, double velocity_counts_per_s, double acceleration_counts_per_s2,
+                   double jerk_counts_per_s3)
+{
+    if (velocity_counts_per_s <= 0) {
+        stop_immediately();
+        return;
+    }
+    const AxisState from(position_counts(), Axis::velocity_counts_per_s());
+    anchor_ = now_track();
+    double target = target_counts;
+    if (!config_.rotary && (target > limit_max_counts_ || target < limit_min_counts_)
+        && stops_at(target > limit_max_counts_))
+        target = std::clamp(target, limit_min_counts_, limit_max_counts_);
+    start(jerk_counts_per_s3 > 0 ? MotionProfile::plan_s_curve(from, target, velocity_counts_per_s,
+                                                               acceleration_counts_per_s2, jerk_counts_per_s3)
+                                 : MotionProfile::plan(from, target, velocity_counts_per_s, acceleration_counts_per_s2),
+          from[1]);
+}
+
+void Axis::stop_immediately()
+{
+    anchor_ = now_track();
+    anchor_.contact = 0;
+    moving_ = false;
+    replan();
+}
+
+void Axis::stop_profiled(double acceleration_counts_per_s2)
+{
+    const double a = acceleration_counts_per_s2;
+    if (a <= 0 || !moving_) {
+        stop_immediately();
+        return;
+    }
+    const double v = velocity_counts_per_s();
+    anchor_ = now_track();
+    const double x = anchor_.position_counts;
+    start(MotionProfile::plan(AxisState(x, v), x + v * std::abs(v) / (2 * a), std::max(std::abs(v), 1.0), a), v);
+}
+
+void Axis::start(MotionProfile profile, double from_velocity_counts_per_s)
+{
+    const Ticks now = clock_.now();
+    start_velocity_counts_per_s_ = from_velocity_counts_per_s;
+    profile_ = std::move(profile);
+    start_ = now;
+    end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    motor_offset_ = anchor_.lost_counts;
+    anchor_ = Track{now, anchor_.position_counts, anchor_.lost_counts, 0};
+    // The profile turns round only where a segment ends at rest: those ticks bound the pieces
+    // over which its position is monotone.
+    turns_.clear();
+    int previous = 0;
+    for (const auto& seg : profile_.segments()) {
+        const int dir = sign(integrate(seg.start, seg.acceleration, seg.jerk, seg.duration)[0] - seg.start[0]);
+        if (dir != 0 && previous != 0 && dir != previous)
+            turns_.push_back(start_ + static_cast<Ticks>(std::floor(seg.t0 * clock_.tick_hz())));
+        if (dir != 0)
+            previous = dir;
+    }
+    moving_ = true;
+    if (end_ > now) {
+        replan();
+        return;
+    }
+    pending_.reset();
+    if (const auto hit = classify(now, anchor_.position_counts, profile_at(now), anchor_.lost_counts))
+        apply(*hit);
+}
+
+std::optional<Axis::Hit> Axis::classify(Ticks k, double profile_before, double profile, double lost_before) const
+{
+    // The carriage is where the profile is less what a stepper lost in this motion (exactly
+    // the profile when it lost nothing).
+    const double slip = lost_before - motor_offset_;
+    // Only a crossing stops at a soft stop: a stage set beyond one may move back in.
+    if (soft_stops_) {
+        const double motor_before = profile_before + motor_offset_, motor = profile + motor_offset_;
+        if (motor_before < soft_max_motor_counts_ && motor >= soft_max_motor_counts_)
+            return Hit{AxisEvent::SoftStopped, Track{k, soft_max_motor_counts_ - lost_before, lost_before, 0}};
+        if (motor_before > soft_min_motor_counts_ && motor <= soft_min_motor_counts_)
+            return Hit{AxisEvent::SoftStopped, Track{k, soft_min_motor_counts_ - lost_before, lost_before, 0}};
+    }
+    const double x = profile - slip;
+    const bool forward = x > limit_max_counts_ + kTolerance;
+    if (!config_.rotary && (forward || x < limit_min_counts_ - kTolerance)) {
+        const double end = forward ? limit_max_counts_ : limit_min_counts_;
+        if (stops_at(forward))
+            return Hit{AxisEvent::StoppedAtLimit, Track{k, end, lost_before, 0}};
+        if (config_.drive == Drive::Servo)
+            return Hit{AxisEvent::Stalled, Track{k, end, lost_before, 0}};
+        return Hit{AxisEvent::LostSteps, Track{k, end, lost_before + (x - end), forward ? 1 : -1}};
+    }
+    if (k >= end_)
+        return Hit{AxisEvent::Arrived, Track{k, x, lost_before, 0}};
+    return std::nullopt;
+}
+
+std::vector<Ticks> Axis::piece_ends(Ticks after, Ticks until) const
+{
+    std::vector<Ticks> ends;
+    for (const Ticks turn : turns_)
+        for (const Ticks t : {turn, turn + 1})
+            if (t > after && t < until && (ends.empty() || t > ends.back()))
+                ends.push_back(t);
+    ends.push_back(until);
+    return ends;
+}
+
+Axis::Scan Axis::scan(const Track& from, Ticks until, bool find_hits) const
+{
+    Scan r{from, std::nullopt};
+    until = std::min(until, end_);
+    if (until <= from.tick)
+        return r;
+    for (const Ticks b : piece_ends(from.tick, until))
+        if ((r.hit = scan_piece(r.track, b, find_hits)))
+            return r;
+    return r;
+}
+
+std::optional<Axis::Hit> Axis::scan_piece(Track& s, Ticks b, bool find_hits) const
+{
+    const Ticks a = s.tick;
+    const double pa = profile_at(a), pb = profile_at(b);
+    const int dir = sign(pb - pa);
+    // A stepper pressing on (the profile runs on into the end stop it stands at): the carriage
+    // stays, the motor's steps are lost.
+    const bool pressing = dir != 0 && dir == s.contact && slips(dir);
+    const double end = dir > 0 ? limit_max_counts_ : limit_min_counts_;
+    const auto lost_at = [&](double profile) {
+        if (!pressing)
+            return s.lost_counts;
+        const double lost = motor_offset_ + (profile - end);
+        return dir > 0 ? std::max(s.lost_counts, lost) : std::min(s.lost_counts, lost);
+    };
+    const auto hit_at = [&](Ticks k) -> std::optional<Hit> {
+        const double before = profile_at(k - 1);
+        auto hit = classify(k, before, profile_at(k), lost_at(before));
+        if (hit && pressing && hit->event == AxisEvent::LostSteps) {
+            if (k < end_)
+                return std::nullopt;   // pressing on: no news
+            hit->event = AxisEvent::Arrived;
+        }
+        return hit;
+    };
+    // Past tick a+1 the position is monotone over the piece, and so is this test: the first
+    // tick it holds is found by bisection.
+    const double slip = s.lost_counts - motor_offset_;
+    const auto crossed = [&](double p) {
+        const double ma = pa + motor_offset_, m = p + motor_offset_;
+        if (soft_stops_ && (dir > 0 ? ma < soft_max_motor_counts_ && m >= soft_max_motor_counts_
+                                    : dir < 0 && ma > soft_min_motor_counts_ && m <= soft_min_motor_counts_))
+            return true;
+        if (pressing || config_.rotary || dir == 0)
+            return false;
+        const double x = p - slip;
+        return dir > 0 ? x > limit_max_counts_ + kTolerance : x < limit_min_counts_ - kTolerance;
+    };
+    for (Ticks lo = a + 1; find_hits && lo <= b;) {
+        if (const auto hit = hit_at(lo))
+            return hit;
+        if (lo == b || !crossed(pb))
+            break;
+        Ticks hi = b;   // crossed at hi, not at lo
+        while (hi - lo > 1) {
+            const Ticks mid = lo + (hi - lo) / 2;
+            (crossed(profile_at(mid)) ? hi : lo) = mid;
+        }
+        lo = hi;
+    }
+    if (find_hits && b >= end_ && b > a + 1)
+        if (const auto hit = hit_at(b))
+            return hit;
+    s.lost_counts = lost_at(pb);
+    s.position_counts = pressing ? end : pb - slip;
+    if (dir != 0 && !pressing)
+        s.contact = 0;
+    s.tick = b;
+    return std::nullopt;
+}
+
+void Axis::settle()
+{
+    if (moving_)
+        anchor_ = now_track();
+}
+
+void Axis::replan()
+{
+    pending_ = moving_ ? scan(anchor_, end_, true).hit : std::nullopt;
+    reschedule();
+}
+
+Ticks Axis::next_event(Ticks /*now*/) const
+{
+    return pending_ ? pending_->after.tick : kNever;
+}
+
+void Axis::on_event(Ticks now)
+{
+    if (pending_ && pending_->after.tick <= now)
+        apply(*pending_);   // a copy: apply() plans the next hit
+}
+
+void Axis::apply(Hit hit)
+{
+    const bool ends = hit.event != AxisEvent::LostSteps || hit.after.tick >= end_;
+    anchor_ = hit.after;
+    if (ends) {
+        moving_ = false;
+        anchor_.contact = 0;
+    }
+    replan();
+    if (listener_)
+        listener_(hit.event);
+    // A stepper that meets the end stop on the last tick of its profile has also arrived.
+    if (hit.event == AxisEvent::LostSteps && ends && !moving_ && listener_)
+        listener_(AxisEvent::Arrived);
+}
+
+} // namespace rigsim::models
