@@ -183,17 +183,17 @@ private:
     Ticks last_byte_ = 0;   ///< clock tick of the last bytes received
 };
 
-AptDevice::AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
+AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      StateStore* store)
-    : config_(config), clock_(clock), log_(std::move(log)), model_(*find_controller(config.model)),
+    : config_(config), clock_(world.clock()), log_(std::move(log)), model_(*find_controller(config.model)),
       serial_(config.apt.serial_number != 0 ? config.apt.serial_number : model_.serial_prefix * 1'000'000 + 1),
       store_(store)
 {
     if (model_.rack)
         for (const auto& stage : config.apt.bays)
-            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock));
+            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock_));
     else
-        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock));
+        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock_));
     last_move_.assign(channels_.size(), 0);
     restore_from_eeprom();
     clock_.add(this);

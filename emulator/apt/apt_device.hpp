@@ -7,7 +7,8 @@
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/motor_channel.hpp"
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
+#include "models/world.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
@@ -37,8 +38,8 @@ public:
     /// HW_RICHRESPONSE code of rigsim's one modelled fault (Thorlabs publishes no code list).
     static constexpr std::uint16_t kFaultCodeStalled = 0x0001;
 
-    /// `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
-    AptDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log,
+    /// The device's bodies join `world` under "<device name>/<bay>". `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
+    AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
               StateStore* store = nullptr);
     ~AptDevice() override;
     AptDevice(const AptDevice&) = delete;

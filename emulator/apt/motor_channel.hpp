@@ -3,7 +3,7 @@
 // moves, homing, jogging and the status bits of MOT_GET_DCSTATUSUPDATE. No I/O.
 
 #include "emulator/apt/catalogue.hpp"
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 #include "models/motion_profile.hpp"
 
 #include <cstdint>

@@ -50,14 +50,14 @@ private:
     Ticker& ticker_;
 };
 
-std::unique_ptr<Device> make_device(const DeviceConfig& config, Clock& clock,
+std::unique_ptr<Device> make_device(const DeviceConfig& config, models::World& world,
                                     std::shared_ptr<spdlog::logger> log, StateStore& store)
 {
     switch (config.protocol) {
     case Protocol::Mcs:
-        return std::make_unique<mcs::McsDevice>(config, clock, std::move(log));
+        return std::make_unique<mcs::McsDevice>(config, world, std::move(log));
     case Protocol::Apt:
-        return std::make_unique<apt::AptDevice>(config, clock, std::move(log), &store);
+        return std::make_unique<apt::AptDevice>(config, world, std::move(log), &store);
     }
     throw ConfigError("device \"" + config.name + "\": unknown protocol");
 }
@@ -89,7 +89,7 @@ struct Rig::Entry {
 };
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
-    : clock_(config.tick_hz), ticker_(io, clock_, options.time_scale),
+    : clock_(config.tick_hz), world_(clock_), ticker_(io, clock_, options.time_scale),
       store_(options.state_file.empty()
                  ? std::make_unique<StateStore>()
                  : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
@@ -100,7 +100,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
-        e->device = make_device(dc, clock_, log, *store_);
+        e->device = make_device(dc, world_, log, *store_);
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
         try {

@@ -2,7 +2,7 @@
 // A running rig: its clock, its devices and their endpoints, on one io_context.
 
 #include "emulator/core/atomic_file.hpp"
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
@@ -11,6 +11,7 @@
 #include "emulator/transport/inotify_watcher.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
+#include "models/world.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/address.hpp>
@@ -55,11 +56,14 @@ public:
 
     const std::vector<DeviceEndpoints>& endpoints() const { return endpoints_; }
     Clock& clock() { return clock_; }
+    models::World& world() { return world_; }
 
 private:
     struct Entry;
 
     Clock clock_;
+    /// Before the devices: every device's bodies live here, and the world ticks first.
+    models::World world_;
     Ticker ticker_;
     std::unique_ptr<StateStore> store_;
     /// Shared by every endpoint, so declared before (destroyed after) the entries.

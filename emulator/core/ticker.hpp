@@ -7,7 +7,7 @@
 // moves, the timer is not armed at all, so an idle rig costs no CPU; I/O calls sync()
 // before it hands bytes to a device, so a command always sees the current tick.
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>

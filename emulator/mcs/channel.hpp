@@ -4,7 +4,7 @@
 // itself (asynchronous errors, completion reports) are queued in events() for the
 // controller to deliver.
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/codec.hpp"
 #include "emulator/mcs/sensor_types.hpp"

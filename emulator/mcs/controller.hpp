@@ -1,7 +1,7 @@
 #pragma once
 // An MCS controller: system-wide settings and its channels. No I/O.
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/channel.hpp"
 #include "emulator/mcs/end_effector.hpp"

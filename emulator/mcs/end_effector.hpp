@@ -3,7 +3,7 @@
 // 3.2 SZF): a gripper driven by a voltage, a force sensor, or a gripper with a force sensor.
 // No I/O: the handler calls it, the Clock advances it.
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 #include "emulator/mcs/codec.hpp"
 
 #include <cstdint>
@@ -70,7 +70,7 @@ public:
     /// True once after a movement or SZF has completed (for SRC reports); clears the flag.
     bool take_completed();
 
-    /// Tickable protocol (emulator/core/clock.hpp): now + 1 while ramping, kNever when idle.
+    /// Tickable protocol (models/clock.hpp): now + 1 while ramping, kNever when idle.
     Ticks next_change(Ticks now) const;
     /// Bring the voltage (or the SZF wait) up to tick `now`.
     void tick(Ticks now);

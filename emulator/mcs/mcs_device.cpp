@@ -62,8 +62,8 @@ private:
     std::string out_;
 };
 
-McsDevice::McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log)
-    : config_(config), clock_(clock), log_(std::move(log)), controller_(config.mcs, clock),
+McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log)
+    : config_(config), clock_(world.clock()), log_(std::move(log)), controller_(config.mcs, world.clock()),
       handler_(controller_)
 {
     clock_.add(this);

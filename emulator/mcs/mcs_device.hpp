@@ -2,7 +2,8 @@
 // An MCS controller as a rig device: framer + codec + handler per connection, one
 // Controller shared by all connections.
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
+#include "models/world.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/controller.hpp"
@@ -19,7 +20,8 @@ class McsSession;
 
 class McsDevice : public Device, public Tickable {
 public:
-    McsDevice(const DeviceConfig& config, Clock& clock, std::shared_ptr<spdlog::logger> log);
+    /// The device's bodies join `world` under "<device name>/<channel>".
+    McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log);
     ~McsDevice() override;
     McsDevice(const McsDevice&) = delete;
     McsDevice& operator=(const McsDevice&) = delete;

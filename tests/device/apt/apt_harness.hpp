@@ -6,7 +6,8 @@
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
+#include "models/world.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "tests/support/hex.hpp"
 
@@ -54,7 +55,7 @@ inline DeviceConfig tdc001()
 class AptHarness {
 public:
     explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr)
-        : device_(config, clock_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store),
+        : world_(clock_), device_(config, world_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store),
           session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
     }
@@ -74,9 +75,11 @@ public:
     }
     void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
     AptDevice& device() { return device_; }
+    models::World& world() { return world_; }
 
 private:
     Clock clock_;
+    models::World world_;
     AptDevice device_;
     std::string out_;
     std::unique_ptr<Session> session_;

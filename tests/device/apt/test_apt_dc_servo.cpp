@@ -288,7 +288,8 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message, a new device re
     {
         StateStore store(path);
         Clock clock;
-        AptDevice device(tdc001(), clock, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &store);
+        models::World world(clock);
+        AptDevice device(tdc001(), world, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &store);
         std::string out;
         auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
         session->receive(bytes("13 04 0E 00 D0 01 01 00 00 00 00 00 10 00 00 00 00 10 00 00"));   // VELPARAMS
@@ -298,7 +299,8 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message, a new device re
     }
     StateStore reloaded(path);                                     // the daemon restarts
     Clock clock;
-    AptDevice device(tdc001(), clock, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &reloaded);
+    models::World world(clock);
+    AptDevice device(tdc001(), world, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &reloaded);
     std::string out;
     auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
     session->receive(bytes("14 04 01 00 50 01"));

@@ -18,7 +18,7 @@ class LoggedDevice {
 public:
     explicit LoggedDevice(const DeviceConfig& config)
         : log_(std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::ostream_sink_st>(log_text_))),
-          device_(config, clock_, log_, nullptr),
+          device_(config, world_, log_, nullptr),
           session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
     }
@@ -42,6 +42,7 @@ private:
     std::ostringstream log_text_;
     std::shared_ptr<spdlog::logger> log_;
     Clock clock_;
+    models::World world_{clock_};
     AptDevice device_;
     std::string out_;
     std::unique_ptr<Session> session_;

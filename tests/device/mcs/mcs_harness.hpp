@@ -2,7 +2,8 @@
 // Device-test harness: framer + codec + handler + controller on a stepped clock.
 // No sockets, no sleeps: h.send(":MPA0,1000000,0\n"); h.advance_ms(2000); h.send(":GP0\n").
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
+#include "models/world.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 
@@ -29,8 +30,8 @@ inline DeviceConfig mcs_device_config(std::size_t channels = 3)
 class McsHarness {
 public:
     explicit McsHarness(const DeviceConfig& config = mcs_device_config(), std::uint32_t tick_hz = 1000)
-        : clock_(tick_hz),
-          device_(config, clock_,
+        : clock_(tick_hz), world_(clock_),
+          device_(config, world_,
                   std::make_shared<spdlog::logger>("mcs-test", std::make_shared<spdlog::sinks::null_sink_st>())),
           session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
@@ -54,10 +55,12 @@ public:
     void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
     void advance_ticks(Ticks n) { clock_.advance(n); }
     Clock& clock() { return clock_; }
+    models::World& world() { return world_; }
     mcs::McsDevice& device() { return device_; }
 
 private:
     Clock clock_;
+    models::World world_;
     mcs::McsDevice device_;
     std::string out_;
     std::unique_ptr<Session> session_;

@@ -2,7 +2,7 @@
 // stepped by a real Clock (manual 3.2-3.4, appendix 4.1/4.2).
 #include "emulator/mcs/end_effector.hpp"
 
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // Clock: integer ticks, due tickables run in order, idle stretches skipped.
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 
 #include <catch2/catch.hpp>
 

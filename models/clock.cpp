@@ -1,4 +1,4 @@
-#include "emulator/core/clock.hpp"
+#include "models/clock.hpp"
 
 #include <algorithm>
 #include <stdexcept>

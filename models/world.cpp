@@ -1,0 +1,83 @@
+#include "models/world.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace rigsim::models {
+
+void Body::reschedule()
+{
+    if (world_)
+        world_->reschedule(*this);
+}
+
+World::World(Clock& clock) : clock_(clock)
+{
+    clock_.add(this);
+}
+
+World::~World()
+{
+    clock_.remove(this);
+}
+
+void World::insert(const std::string& key, std::unique_ptr<Body> body)
+{
+    if (key.empty())
+        throw std::invalid_argument("a body of the world needs a key");
+    if (bodies_.count(key))
+        throw std::invalid_argument("the world already has a body \"" + key + "\"");
+    body->world_ = this;
+    body->key_ = key;
+    Body& ref = *body;
+    bodies_.emplace(key, std::move(body));
+    reschedule(ref);
+}
+
+Body* World::find(std::string_view key) const
+{
+    const auto it = bodies_.find(key);
+    return it == bodies_.end() ? nullptr : it->second.get();
+}
+
+std::vector<std::string> World::keys() const
+{
+    std::vector<std::string> k;
+    k.reserve(bodies_.size());
+    for (const auto& [key, body] : bodies_)
+        k.push_back(key);
+    return k;
+}
+
+void World::reschedule(Body& body)
+{
+    ++body.generation_;
+    const Ticks at = body.next_event(clock_.now());
+    if (at != kNever)
+        due_.push(Due{std::max(at, clock_.now() + 1), &body, body.generation_});
+}
+
+void World::prune() const
+{
+    while (!due_.empty() && due_.top().generation != due_.top().body->generation_)
+        due_.pop();
+}
+
+Ticks World::next_change(Ticks now) const
+{
+    prune();
+    return due_.empty() ? kNever : std::max(due_.top().at, now + 1);
+}
+
+void World::tick(Ticks now)
+{
+    for (prune(); !due_.empty() && due_.top().at <= now; prune()) {
+        Body& body = *due_.top().body;
+        due_.pop();
+        ++body.generation_;   // this wake-up is spent; on_event() may schedule the next
+        body.on_event(now);
+        reschedule(body);
+    }
+}
+
+} // namespace rigsim::models

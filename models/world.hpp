@@ -1,0 +1,104 @@
+#pragma once
+// The physical world of a rig: every moving part (a motor axis, a stick-slip positioner, a
+// piezo) under a stable key ("<device>/<channel>"), advanced on the one clock.
+//
+// A body's state is a function of clock time: a move is planned as an exact profile and a
+// read samples it at "now". The world therefore wakes a body only when an event of its is
+// due (a move ends, an end stop or switch is met, a hold expires), never once per tick, so
+// a moving body costs nothing between its events. Protocol devices hold a reference to
+// their body and translate (units, counters, status bits, error codes); they never
+// integrate motion themselves.
+
+#include "models/clock.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <queue>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rigsim::models {
+
+class World;
+
+/// A moving part of the world.
+class Body {
+public:
+    virtual ~Body() = default;
+    /// Earliest tick (> now) at which on_event() must run, or kNever while only sampling
+    /// changes the state (at rest, or in the middle of a planned profile).
+    virtual Ticks next_event(Ticks now) const = 0;
+    /// Handle what is due at `now` (an end of move, a limit met, ...).
+    virtual void on_event(Ticks now) = 0;
+
+    const std::string& key() const { return key_; }
+
+protected:
+    /// Tell the world that next_event() changed (call after every command that starts,
+    /// changes or stops a motion). Harmless before the body joined a world.
+    void reschedule();
+
+private:
+    friend class World;
+    World* world_ = nullptr;
+    std::string key_;
+    std::uint64_t generation_ = 0;   ///< scheduled wake-ups of older generations are void
+};
+
+/// Every body of a rig, on one clock. The world is one Tickable of the clock: the clock
+/// asks it for its earliest due event and it wakes only the bodies that are due.
+class World : public Tickable {
+public:
+    explicit World(Clock& clock);
+    ~World() override;
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    Clock& clock() { return clock_; }
+    const Clock& clock() const { return clock_; }
+    Ticks now() const { return clock_.now(); }
+
+    /// Adds a body under `key` (std::invalid_argument if the key is taken or empty).
+    template <class T, class... Args>
+    T& emplace(const std::string& key, Args&&... args)
+    {
+        auto body = std::make_unique<T>(std::forward<Args>(args)...);
+        T& ref = *body;
+        insert(key, std::move(body));
+        return ref;
+    }
+    /// The body under `key`, or nullptr.
+    Body* find(std::string_view key) const;
+    /// The body under `key` if it is a T, or nullptr.
+    template <class T>
+    T* find_as(std::string_view key) const { return dynamic_cast<T*>(find(key)); }
+    /// Every key, sorted.
+    std::vector<std::string> keys() const;
+    std::size_t size() const { return bodies_.size(); }
+
+    /// Re-read `body`'s next_event() (Body::reschedule() calls this).
+    void reschedule(Body& body);
+
+    Ticks next_change(Ticks now) const override;
+    void tick(Ticks now) override;
+
+private:
+    struct Due {
+        Ticks at;
+        Body* body;
+        std::uint64_t generation;
+        bool operator>(const Due& o) const { return at > o.at; }
+    };
+    void insert(const std::string& key, std::unique_ptr<Body> body);
+    /// Drops void wake-ups from the top of the queue.
+    void prune() const;
+
+    Clock& clock_;
+    std::map<std::string, std::unique_ptr<Body>, std::less<>> bodies_;
+    mutable std::priority_queue<Due, std::vector<Due>, std::greater<>> due_;
+};
+
+} // namespace rigsim::models
