@@ -208,11 +208,73 @@ std::optional<Message> decode_move_status(const Frame& f)
     }
 }
 
+/// Piezo Control Messages and the TSG001's (p. 93-129).
+std::optional<Message> decode_piezo(const Frame& f)
+{
+    switch (f.id) {
+    case MGMSG_PZ_SET_OUTPUTVOLTS: return as<SetPzOutputVolts>(f);
+    case MGMSG_PZ_REQ_OUTPUTVOLTS: return as<ReqPzOutputVolts>(f);
+    case MGMSG_PZ_GET_OUTPUTVOLTS: return as<GetPzOutputVolts>(f);
+    case MGMSG_PZ_SET_OUTPUTPOS: return as<SetPzOutputPos>(f);
+    case MGMSG_PZ_REQ_OUTPUTPOS: return as<ReqPzOutputPos>(f);
+    case MGMSG_PZ_GET_OUTPUTPOS: return as<GetPzOutputPos>(f);
+    case MGMSG_PZ_SET_INPUTVOLTSSRC: return as<SetPzInputVoltsSrc>(f);
+    case MGMSG_PZ_REQ_INPUTVOLTSSRC: return as<ReqPzInputVoltsSrc>(f);
+    case MGMSG_PZ_GET_INPUTVOLTSSRC: return as<GetPzInputVoltsSrc>(f);
+    case MGMSG_PZ_SET_PICONSTS: return as<SetPzPiConsts>(f);
+    case MGMSG_PZ_REQ_PICONSTS: return as<ReqPzPiConsts>(f);
+    case MGMSG_PZ_GET_PICONSTS: return as<GetPzPiConsts>(f);
+    case MGMSG_PZ_SET_OUTPUTLUT: return as<SetPzOutputLut>(f);
+    case MGMSG_PZ_REQ_OUTPUTLUT: return as<ReqPzOutputLut>(f);
+    case MGMSG_PZ_GET_OUTPUTLUT: return as<GetPzOutputLut>(f);
+    case MGMSG_PZ_SET_OUTPUTLUTPARAMS: return as<SetPzOutputLutParams>(f);
+    case MGMSG_PZ_REQ_OUTPUTLUTPARAMS: return as<ReqPzOutputLutParams>(f);
+    case MGMSG_PZ_GET_OUTPUTLUTPARAMS: return as<GetPzOutputLutParams>(f);
+    case MGMSG_PZ_SET_TPZ_DISPSETTINGS: return as<SetTpzDispSettings>(f);
+    case MGMSG_PZ_REQ_TPZ_DISPSETTINGS: return as<ReqTpzDispSettings>(f);
+    case MGMSG_PZ_GET_TPZ_DISPSETTINGS: return as<GetTpzDispSettings>(f);
+    case MGMSG_PZ_SET_TPZ_IOSETTINGS: return as<SetTpzIoSettings>(f);
+    case MGMSG_PZ_REQ_TPZ_IOSETTINGS: return as<ReqTpzIoSettings>(f);
+    case MGMSG_PZ_GET_TPZ_IOSETTINGS: return as<GetTpzIoSettings>(f);
+    case MGMSG_PZ_SET_IOSETTINGS: return as<SetPzIoSettings>(f);
+    case MGMSG_PZ_REQ_IOSETTINGS: return as<ReqPzIoSettings>(f);
+    case MGMSG_PZ_GET_IOSETTINGS: return as<GetPzIoSettings>(f);
+    case MGMSG_PZ_SET_OUTPUTMAXVOLTS: return as<SetPzOutputMaxVolts>(f);
+    case MGMSG_PZ_REQ_OUTPUTMAXVOLTS: return as<ReqPzOutputMaxVolts>(f);
+    case MGMSG_PZ_GET_OUTPUTMAXVOLTS: return as<GetPzOutputMaxVolts>(f);
+    case MGMSG_PZ_SET_TPZ_SLEWRATES: return as<SetTpzSlewRates>(f);
+    case MGMSG_PZ_REQ_TPZ_SLEWRATES: return as<ReqTpzSlewRates>(f);
+    case MGMSG_PZ_GET_TPZ_SLEWRATES: return as<GetTpzSlewRates>(f);
+    case MGMSG_PZ_SET_TSG_IOSETTINGS: return as<SetTsgIoSettings>(f);
+    case MGMSG_PZ_REQ_TSG_IOSETTINGS: return as<ReqTsgIoSettings>(f);
+    case MGMSG_PZ_GET_TSG_IOSETTINGS: return as<GetTsgIoSettings>(f);
+    case MGMSG_PZ_SET_POSCONTROLMODE: return as<PzSetPosControlMode>(f);
+    case MGMSG_PZ_REQ_POSCONTROLMODE: return as<PzReqPosControlMode>(f);
+    case MGMSG_PZ_GET_POSCONTROLMODE: return as<PzGetPosControlMode>(f);
+    case MGMSG_PZ_REQ_PZSTATUSBITS: return as<PzReqPzStatusBits>(f);
+    case MGMSG_PZ_ACK_PZSTATUSUPDATE: return as<PzAckPzStatusUpdate>(f);
+    case MGMSG_PZ_START_LUTOUTPUT: return as<PzStartLutOutput>(f);
+    case MGMSG_PZ_STOP_LUTOUTPUT: return as<PzStopLutOutput>(f);
+    case MGMSG_PZ_SET_ZERO: return as<PzSetZero>(f);
+    case MGMSG_PZ_REQ_MAXTRAVEL: return as<PzReqMaxTravel>(f);
+    case MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS: return as<MotSetPzStageParamDefaults>(f);
+    case MGMSG_PZ_SET_LUTVALUETYPE: return as<PzSetLutValueType>(f);
+    case MGMSG_PZ_REQ_TSG_READING: return as<TsgReqReading>(f);
+    case MGMSG_PZ_GET_PZSTATUSBITS: return as<PzGetPzStatusBits>(f);
+    case MGMSG_PZ_GET_PZSTATUSUPDATE: return as<PzGetPzStatusUpdate>(f);
+    case MGMSG_PZ_SET_EEPROMPARAMS: return as<PzSetEepromParams>(f);
+    case MGMSG_PZ_GET_MAXTRAVEL: return as<PzGetMaxTravel>(f);
+    case MGMSG_PZ_GET_TSG_READING: return as<TsgGetReading>(f);
+    default:
+        return std::nullopt;
+    }
+}
+
 } // namespace
 
 Message decode(const Frame& f)
 {
-    for (auto part : {decode_generic, decode_trio, decode_pmd_trio, decode_move_status})
+    for (auto part : {decode_generic, decode_trio, decode_pmd_trio, decode_move_status, decode_piezo})
         if (auto m = part(f))
             return *std::move(m);
     return untyped(f);

@@ -409,8 +409,9 @@ TEST_CASE("MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS and MGMSG_MOT_RESUME_ENDOFMOVEMSGS ro
 
 TEST_CASE("apt codec keeps a message it does not type whole, as Untyped", "[apt][codec]")
 {
-    // MGMSG_PZ_SET_OUTPUTVOLTS (p. 97): not typed yet.
-    round_trip(Untyped{MGMSG_PZ_SET_OUTPUTVOLTS, 0, 0, true, unhex("01 00 FF 7F")}, "43 06 04 00 D0 01 01 00 FF 7F");
+    // MGMSG_MOT_SET_SOL_CYCLEPARAMS (p. 87): the solenoid messages are not typed.
+    const std::string data = "01 00 E8 03 00 00 D0 07 00 00 05 00 00 00";
+    round_trip(Untyped{MGMSG_MOT_SET_SOL_CYCLEPARAMS, 0, 0, true, unhex(data)}, "C3 04 0E 00 D0 01 " + data);
     round_trip(Untyped{MGMSG_MOT_REQ_SOL_STATE, 1, 0, false, ""}, "CC 04 01 00 50 01");
 }
 
@@ -426,4 +427,161 @@ TEST_CASE("apt codec decodes a typed message in a form its struct does not have 
     CHECK(std::get<Untyped>(m).data == short_data);
     f.id = MGMSG_MOT_REQ_VELPARAMS;   // a REQ with a data packet
     CHECK(std::holds_alternative<Untyped>(decode(f)));
+}
+
+// ---- Piezo Control Messages (p. 93-126) and the TSG001 strain gauge reader (p. 127-129) ----
+
+TEST_CASE("MGMSG_PZ_SET_POSCONTROLMODE, MGMSG_PZ_REQ_POSCONTROLMODE and MGMSG_PZ_GET_POSCONTROLMODE round-trip",
+          "[apt][codec]")
+{
+    round_trip(PzSetPosControlMode{1, 2}, "40 06 01 02 50 01");
+    round_trip(PzReqPosControlMode{1}, "41 06 01 00 50 01");
+    round_trip(PzGetPosControlMode{1, 2}, "42 06 01 02 01 50", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_OUTPUTVOLTS, MGMSG_PZ_REQ_OUTPUTVOLTS and MGMSG_PZ_GET_OUTPUTVOLTS round-trip", "[apt][codec]")
+{
+    round_trip(SetPzOutputVolts{{1, 32767}}, "43 06 04 00 D0 01 01 00 FF 7F");
+    round_trip(ReqPzOutputVolts{1}, "44 06 01 00 50 01");
+    round_trip(GetPzOutputVolts{{1, -32767}}, "45 06 04 00 81 50 01 00 01 80", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_OUTPUTPOS, MGMSG_PZ_REQ_OUTPUTPOS and MGMSG_PZ_GET_OUTPUTPOS round-trip", "[apt][codec]")
+{
+    round_trip(SetPzOutputPos{{1, 0x2666}}, "46 06 04 00 D0 01 01 00 66 26");   // p. 97 example bytes
+    round_trip(ReqPzOutputPos{1}, "47 06 01 00 50 01");
+    round_trip(GetPzOutputPos{{1, 0x2666}}, "48 06 04 00 81 50 01 00 66 26", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_INPUTVOLTSSRC, MGMSG_PZ_REQ_INPUTVOLTSSRC and MGMSG_PZ_GET_INPUTVOLTSSRC round-trip",
+          "[apt][codec]")
+{
+    round_trip(SetPzInputVoltsSrc{{1, 2}}, "52 06 04 00 D0 01 01 00 02 00");
+    round_trip(ReqPzInputVoltsSrc{1}, "53 06 01 00 50 01");
+    round_trip(GetPzInputVoltsSrc{{1, 3}}, "54 06 04 00 81 50 01 00 03 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_PICONSTS, MGMSG_PZ_REQ_PICONSTS and MGMSG_PZ_GET_PICONSTS round-trip", "[apt][codec]")
+{
+    round_trip(SetPzPiConsts{{1, 100, 15}}, "55 06 06 00 D0 01 01 00 64 00 0F 00");
+    round_trip(ReqPzPiConsts{1}, "56 06 01 00 50 01");
+    round_trip(GetPzPiConsts{{1, 100, 15}}, "57 06 06 00 81 50 01 00 64 00 0F 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_REQ_PZSTATUSBITS and MGMSG_PZ_GET_PZSTATUSBITS round-trip", "[apt][codec]")
+{
+    round_trip(PzReqPzStatusBits{1}, "5B 06 01 00 50 01");
+    round_trip(PzGetPzStatusBits{1, 0x80000401}, "5C 06 06 00 81 50 01 00 01 04 00 80", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_GET_PZSTATUSUPDATE and MGMSG_PZ_ACK_PZSTATUSUPDATE round-trip", "[apt][codec]")
+{
+    // 10-byte data packet (ERRATA: the byte table prints MOT_GET_DCSTATUSUPDATE's header).
+    round_trip(PzGetPzStatusUpdate{1, 1000, -1000, 0x00000401}, "61 06 0A 00 81 50 01 00 E8 03 18 FC 01 04 00 00",
+               0x01, 0x50);
+    round_trip(PzAckPzStatusUpdate{}, "62 06 00 00 50 01");
+}
+
+TEST_CASE("MGMSG_PZ_SET_OUTPUTLUT, MGMSG_PZ_REQ_OUTPUTLUT and MGMSG_PZ_GET_OUTPUTLUT round-trip", "[apt][codec]")
+{
+    round_trip(SetPzOutputLut{{1, 511, -2}}, "00 07 06 00 D0 01 01 00 FF 01 FE FF");
+    round_trip(ReqPzOutputLut{1}, "01 07 01 00 50 01");
+    round_trip(GetPzOutputLut{{1, 7, 300}}, "02 07 06 00 81 50 01 00 07 00 2C 01", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_OUTPUTLUTPARAMS, MGMSG_PZ_REQ_OUTPUTLUTPARAMS and MGMSG_PZ_GET_OUTPUTLUTPARAMS round-trip",
+          "[apt][codec]")
+{
+    // 30-byte packet (ERRATA: the example's header says 6), least-significant byte first.
+    const PzOutputLutParams p{1, 1, 20, 1, 10, 30, 40, 1, 50, 2};
+    const std::string data =
+        "01 00 01 00 14 00 01 00 00 00 0A 00 00 00 1E 00 00 00 28 00 00 00 01 00 32 00 00 00 02 00";
+    round_trip(SetPzOutputLutParams{p}, "03 07 1E 00 D0 01 " + data);
+    round_trip(ReqPzOutputLutParams{1}, "04 07 01 00 50 01");
+    round_trip(GetPzOutputLutParams{p}, "05 07 1E 00 81 50 " + data, 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_START_LUTOUTPUT and MGMSG_PZ_STOP_LUTOUTPUT round-trip", "[apt][codec]")
+{
+    round_trip(PzStartLutOutput{1}, "06 07 01 00 50 01");
+    round_trip(PzStopLutOutput{1}, "07 07 01 00 50 01");
+}
+
+TEST_CASE("MGMSG_PZ_SET_EEPROMPARAMS round-trips", "[apt][codec]")
+{
+    round_trip(PzSetEepromParams{1, MGMSG_PZ_SET_OUTPUTMAXVOLTS}, "D0 07 04 00 D0 01 01 00 80 06");
+}
+
+TEST_CASE("MGMSG_PZ_SET_TPZ_DISPSETTINGS, MGMSG_PZ_REQ_TPZ_DISPSETTINGS and MGMSG_PZ_GET_TPZ_DISPSETTINGS round-trip",
+          "[apt][codec]")
+{
+    round_trip(SetTpzDispSettings{{255}}, "D1 07 02 00 D0 01 FF 00");   // no channel word (p. 114)
+    round_trip(ReqTpzDispSettings{1}, "D2 07 01 00 50 01");
+    round_trip(GetTpzDispSettings{{100}}, "D3 07 02 00 81 50 64 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_TPZ_IOSETTINGS, MGMSG_PZ_REQ_TPZ_IOSETTINGS and MGMSG_PZ_GET_TPZ_IOSETTINGS round-trip",
+          "[apt][codec]")
+{
+    round_trip(SetTpzIoSettings{{1, 3, 2, 0, 0}}, "D4 07 0A 00 D0 01 01 00 03 00 02 00 00 00 00 00");
+    round_trip(ReqTpzIoSettings{1}, "D5 07 01 00 50 01");
+    round_trip(GetTpzIoSettings{{1, 1, 1, 0, 0}}, "D6 07 0A 00 81 50 01 00 01 00 01 00 00 00 00 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_ZERO round-trips", "[apt][codec]")
+{
+    round_trip(PzSetZero{1}, "58 06 01 00 50 01");
+}
+
+TEST_CASE("MGMSG_PZ_REQ_MAXTRAVEL and MGMSG_PZ_GET_MAXTRAVEL round-trip", "[apt][codec]")
+{
+    round_trip(PzReqMaxTravel{1}, "50 06 01 00 50 01");
+    round_trip(PzGetMaxTravel{1, 200}, "51 06 04 00 81 50 01 00 C8 00", 0x01, 0x50);   // 20 um
+}
+
+TEST_CASE("MGMSG_PZ_SET_IOSETTINGS, MGMSG_PZ_REQ_IOSETTINGS and MGMSG_PZ_GET_IOSETTINGS round-trip", "[apt][codec]")
+{
+    round_trip(SetPzIoSettings{{1, 2, 3, 1, 2}}, "70 06 0A 00 D0 01 01 00 02 00 03 00 01 00 02 00");
+    round_trip(ReqPzIoSettings{1}, "71 06 01 00 50 01");
+    round_trip(GetPzIoSettings{{1, 2, 3, 1, 2}}, "72 06 0A 00 81 50 01 00 02 00 03 00 01 00 02 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_OUTPUTMAXVOLTS, MGMSG_PZ_REQ_OUTPUTMAXVOLTS and MGMSG_PZ_GET_OUTPUTMAXVOLTS round-trip",
+          "[apt][codec]")
+{
+    round_trip(SetPzOutputMaxVolts{{1, 750, 0}}, "80 06 06 00 D0 01 01 00 EE 02 00 00");   // 75 V
+    round_trip(ReqPzOutputMaxVolts{1}, "81 06 01 00 50 01");
+    round_trip(GetPzOutputMaxVolts{{1, 1500, 2}}, "82 06 06 00 81 50 01 00 DC 05 02 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES and MGMSG_PZ_GET_TPZ_SLEWRATES round-trip",
+          "[apt][codec]")
+{
+    round_trip(SetTpzSlewRates{{1, 100, 200}}, "83 06 06 00 D0 01 01 00 64 00 C8 00");
+    round_trip(ReqTpzSlewRates{1}, "84 06 01 00 50 01");
+    round_trip(GetTpzSlewRates{{1, 100, 200}}, "85 06 06 00 81 50 01 00 64 00 C8 00", 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS and MGMSG_PZ_SET_LUTVALUETYPE round-trip", "[apt][codec]")
+{
+    round_trip(MotSetPzStageParamDefaults{1}, "86 06 01 00 50 01");
+    round_trip(PzSetLutValueType{2}, "08 07 02 00 50 01");
+}
+
+TEST_CASE("MGMSG_PZ_SET_TSG_IOSETTINGS, MGMSG_PZ_REQ_TSG_IOSETTINGS and MGMSG_PZ_GET_TSG_IOSETTINGS round-trip",
+          "[apt][codec]")
+{
+    // p. 127: the example's values (hub output 1, force display 2... 3, calibration 30,000);
+    // 14 bytes of data, its last 6 for future use.
+    const TsgIoSettings p{1, 1, 3, 30000, 0, 0, 0};
+    const std::string data = "01 00 01 00 03 00 30 75 00 00 00 00 00 00";
+    round_trip(SetTsgIoSettings{p}, "DA 07 0E 00 D0 01 " + data);
+    round_trip(ReqTsgIoSettings{1}, "DB 07 01 00 50 01");
+    round_trip(GetTsgIoSettings{p}, "DC 07 0E 00 81 50 " + data, 0x01, 0x50);
+}
+
+TEST_CASE("MGMSG_PZ_REQ_TSG_READING and MGMSG_PZ_GET_TSG_READING round-trip", "[apt][codec]")
+{
+    round_trip(TsgReqReading{1}, "DD 07 01 00 50 01");
+    round_trip(TsgGetReading{1, 0x0052, 0x0050}, "DE 07 06 00 81 50 01 00 52 00 50 00", 0x01, 0x50);   // p. 129
 }
