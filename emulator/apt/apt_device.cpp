@@ -75,11 +75,15 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
             std::max(model_.rack ? config.apt.bays.size() : std::size_t{1}, static_cast<std::size_t>(model_.max_bays))},
       store_(store)
 {
+    // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
+    // of a rack (addresses 0x21..).
+    const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
     if (model_.rack)
         for (const auto& stage : config.apt.bays)
-            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), clock_));
+            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), world,
+                                                               key(channels_.size())));
     else
-        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), clock_));
+        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config.apt.stage), world, key(0)));
     for (std::size_t bay = 0; bay < channels_.size(); ++bay)
         modules_.push_back(make_module(bay));
     if (model_.rack) {

@@ -12,8 +12,9 @@ constexpr double kRotaryTravelCounts = 1 << 30;
 
 } // namespace
 
-MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock)
-    : controller_(controller), stage_(stage), clock_(clock), travel_max_(stage.travel_mm * stage.counts_per_mm)
+MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
+                           const std::string& /*key*/)
+    : controller_(controller), stage_(stage), clock_(world.clock()), travel_max_(stage.travel_mm * stage.counts_per_mm)
 {
     if (stage.rotary) {
         travel_min_ = -kRotaryTravelCounts;

@@ -5,6 +5,7 @@
 #include "emulator/apt/catalogue.hpp"
 #include "models/clock.hpp"
 #include "models/motion_profile.hpp"
+#include "models/world.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -60,7 +61,9 @@ struct LimitSwitchParams {
 
 class MotorChannel {
 public:
-    MotorChannel(const ControllerModel& controller, const StageModel& stage, const Clock& clock);
+    /// The channel's axis joins `world` under `key` ("<device>/<bay>").
+    MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
+                 const std::string& key);
 
     std::int32_t position() const;               ///< position counter (counts)
     void set_position(std::int32_t counts);

@@ -6,8 +6,8 @@
 
 namespace rigsim::mcs {
 
-Channel::Channel(int index, const McsChannelConfig& config, const Clock& clock)
-    : index_(index), clock_(clock), config_(config),
+Channel::Channel(int index, const McsChannelConfig& config, models::World& world, const std::string& /*key*/)
+    : index_(index), clock_(world.clock()), config_(config),
       sensor_(config.sensor_type == "none" ? nullptr : sensor_type_by_symbol(config.sensor_type)),
       sensor_mode_(SensorMode::Enabled),
       travel_min_nm_(static_cast<double>(config.travel_min_nm)),

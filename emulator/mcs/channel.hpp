@@ -9,11 +9,13 @@
 #include "emulator/mcs/codec.hpp"
 #include "emulator/mcs/sensor_types.hpp"
 #include "models/motion_profile.hpp"
+#include "models/world.hpp"
 
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -52,7 +54,8 @@ public:
     /// Acceleration that enabling low vibration mode switches on (2.5.1 "default settings").
     static constexpr std::int32_t kDefaultLowVibrationAcceleration = 1'000'000;
 
-    Channel(int index, const McsChannelConfig& config, const Clock& clock);
+    /// The channel's positioner joins `world` under `key` ("<device>/<index>").
+    Channel(int index, const McsChannelConfig& config, models::World& world, const std::string& key);
 
     ChannelType type() const { return ChannelType::Positioner; }
     ChannelStatus status() const;

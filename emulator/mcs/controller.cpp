@@ -12,17 +12,17 @@ constexpr std::int64_t kBaudClock_hz = 4'000'000;
 
 } // namespace
 
-Controller::Controller(const McsConfig& config, const Clock& clock)
-    : clock_(clock), system_id_(config.system_id),
+Controller::Controller(const McsConfig& config, models::World& world, const std::string& device)
+    : clock_(world.clock()), system_id_(config.system_id),
       interface_version_{config.interface_version.high, config.interface_version.low, config.interface_version.update}
 {
     channels_.reserve(config.channels.size());
     for (std::size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i];
-        channels_.emplace_back(static_cast<int>(i), c, clock);
+        channels_.emplace_back(static_cast<int>(i), c, world, device + "/" + std::to_string(i));
         if (c.kind == "end_effector")
             effectors_.push_back(std::make_unique<EndEffector>(
-                clock, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
+                clock_, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
                                         static_cast<std::int32_t>(c.gripper_stiffness_dun_per_cv)}));
         else
             effectors_.push_back(nullptr);

@@ -1,14 +1,15 @@
 #pragma once
 // An MCS controller: system-wide settings and its channels. No I/O.
 
-#include "models/clock.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/mcs/channel.hpp"
 #include "emulator/mcs/end_effector.hpp"
-
-#include <memory>
+#include "models/clock.hpp"
+#include "models/world.hpp"
 
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace rigsim::mcs {
@@ -26,7 +27,8 @@ class Controller : public Tickable {
 public:
     static constexpr std::int32_t kDefaultBaudrate = 9600;   ///< factory default (1.2)
 
-    Controller(const McsConfig& config, const Clock& clock);
+    /// Channel n's positioner joins `world` under "<device>/<n>".
+    Controller(const McsConfig& config, models::World& world, const std::string& device);
 
     std::size_t channel_count() const { return channels_.size(); }
     /// The positioner with this index, or nullptr (out of range, or an end effector).

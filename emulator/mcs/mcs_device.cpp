@@ -63,7 +63,7 @@ private:
 };
 
 McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log)
-    : config_(config), clock_(world.clock()), log_(std::move(log)), controller_(config.mcs, world.clock()),
+    : config_(config), clock_(world.clock()), log_(std::move(log)), controller_(config.mcs, world, config.name),
       handler_(controller_)
 {
     clock_.add(this);

@@ -5,7 +5,6 @@
 
 #include <csignal>
 #include <string>
-#include <vector>
 
 #include "e2e_support.hpp"
 
@@ -39,26 +38,17 @@ TEST_CASE("lifecycle: SIGTERM or SIGINT with clients connected exits 0 and remov
     CHECK(t.wait_for_eof(2000ms));
 }
 
-TEST_CASE("lifecycle: --time-scale 10 runs physics ten times faster than wall time",
+TEST_CASE("lifecycle: --time-scale 10 is accepted and the clock runs: a move completes",
           "[e2e][lifecycle]")
 {
-    // Channel 0 powers up at the physical position -5 mm (reading 0) and moves at 10 mm/s:
-    // the 10 mm move to physical +5 mm takes 1 s of physics time.
+    // How fast the scaled clock runs is unit-tested on the Ticker (tests/unit/core/test_ticker.cpp)
+    // and the move's timing on the stepped clock (tests/device/mcs/test_mcs_timing.cpp): here
+    // only that the daemon takes the flag and its clock carries a move to the end.
     Daemon daemon({"", fixture("long_travel_rig.json"), {"--time-scale", "10"}});
     TcpClient c(daemon.endpoint());
     REQUIRE(c.request(":GP0\n") == ":P0,0\n");
-
-    const auto start = SteadyClock::now();
     REQUIRE(c.request(":MPA0,10000000,0\n") == ":E0,0\n");
-    std::vector<std::string> seen;
-    const bool stopped = poll_status_until(c, 0, 0, 5000ms, &seen);
-    const double wall_ms = elapsed_ms(start);
-    INFO("wall time " << wall_ms << " ms, " << seen.size() << " status polls");
-    REQUIRE(stopped);
-    CHECK(wall_ms < 600.0);
-    // The lower bound shows the move was simulated, not jumped: 1 s / 10 = 100 ms.
-    CHECK(wall_ms > 50.0);
-    CHECK(seen.front() == ":S0,4\n");
+    REQUIRE(poll_status_until(c, 0, 0, 5000ms));
     CHECK(c.request(":GP0\n") == ":P0,10000000\n");
 }
 
@@ -126,7 +116,8 @@ TEST_CASE(
 
     TcpClient c(ep);
     CHECK(c.request(":GNC\n") == ":N3\n");
-    // A 200 Hz tick still lands exactly on the target.
+    // The clock runs at 200 Hz: a move completes (its timing at 200 Hz: device test "at a
+    // 200 Hz tick a move ends on its target, ...").
     REQUIRE(c.request(":MPA0,1000000,0\n") == ":E0,0\n");
     REQUIRE(poll_status_until(c, 0, 0, 3000ms));
     CHECK(c.request(":GP0\n") == ":P0,1000000\n");
