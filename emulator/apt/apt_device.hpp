@@ -5,6 +5,9 @@
 // the unit sends by itself (manual sections 4 and 5 (c)).
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/codec.hpp"
+#include "emulator/apt/motor_module.hpp"
+#include "emulator/apt/rack_modules.hpp"
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/motor_channel.hpp"
 #include "models/clock.hpp"
@@ -19,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace rigsim::apt {
@@ -66,34 +70,48 @@ public:
     /// Send end-of-move messages and due status updates to every connection.
     void flush();
 
+    /// The parameter SETs MOT_SET_EEPROMPARAMS saves (p. 60): the motor chapter's settings that
+    /// rigsim's controllers act on. Not SET_POSCOUNTER or SET_ENCCOUNTER: the 'live' counts
+    /// (p. 28), unknown at power-up.
+    using SavedSet = std::variant<msg::SetVelParams, msg::SetJogParams, msg::SetGenMoveParams, msg::SetMoveRelParams,
+                                  msg::SetMoveAbsParams, msg::SetHomeParams, msg::SetLimSwitchParams,
+                                  msg::SetDcPidParams, msg::SetAvModes, msg::SetPotParams, msg::SetButtonParams,
+                                  msg::SetPmdPositionLoopParams, msg::SetPmdMotorOutputParams,
+                                  msg::SetPmdTrackSettleParams, msg::SetPmdProfileModeParams,
+                                  msg::SetPmdCurrentLoopParams, msg::SetPmdSettledCurrentLoopParams,
+                                  msg::SetPmdStageAxisParams>;
+
 private:
     /// The module address a bay answers from: 0x50 for a single unit, 0x21 + bay in a rack.
     std::uint8_t address_of(std::size_t bay) const;
-    /// Module-wide messages a motherboard and a bay (or single unit) handle alike: identify,
-    /// disconnect, update messages, server alive, flash programming. False if `f` is another.
-    bool handle_system(const Frame& f, std::string_view peer);
-    void handle_motherboard(const Frame& f, std::string_view peer, std::string& reply);
-    void handle_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
-    /// A rack's built-in channel card with no stage configured: info and status only.
-    void handle_empty_bay(std::size_t bay, const Frame& f, std::string_view peer, std::string& reply);
-    /// Bays whose channel card is built in (all of a BBD203's or BSC203's).
-    std::size_t built_in_bays() const;
-    std::string info_packet(std::optional<std::size_t> bay) const;
-    std::string status_packet(std::size_t bay) const;      ///< 14 bytes: MOT_GET_STATUSUPDATE layout
-    std::string dc_status_packet(std::size_t bay) const;   ///< 14 bytes: MOT_GET_DCSTATUSUPDATE layout
+    /// The module of this controller's motor kind for bay `bay`.
+    std::unique_ptr<MotorModule> make_module(std::size_t bay);
+    /// A message for bay `bay` (or a single unit): the shell's System messages, else the
+    /// bay's module; a SET it accepts is kept for MOT_SET_EEPROMPARAMS.
+    void handle_bay(std::size_t bay, const msg::Message& m, Request& r);
+    /// Module-wide messages (the System family) every module address acts on alike: identify,
+    /// disconnect, update messages, server alive, end-of-move messages, flash programming.
+    /// False if `m` is another.
+    bool handle_system(const msg::Message& m, std::string_view peer);
+    void on(const msg::ModIdentify& m, std::string_view peer);            ///< MGMSG_MOD_IDENTIFY (p. 16)
+    void on(const msg::HwDisconnect& m, std::string_view peer);           ///< MGMSG_HW_DISCONNECT (p. 19)
+    void on(const msg::HwStartUpdateMsgs& m, std::string_view peer);      ///< MGMSG_HW_START_UPDATEMSGS (p. 20)
+    void on(const msg::HwStopUpdateMsgs& m, std::string_view peer);       ///< MGMSG_HW_STOP_UPDATEMSGS (p. 20)
+    void on(const msg::HwYesFlashProgramming& m, std::string_view peer);  ///< MGMSG_HW_YES_FLASH_PROGRAMMING
+    void on(const msg::HwNoFlashProgramming& m, std::string_view peer);   ///< MGMSG_HW_NO_FLASH_PROGRAMMING
+    void on(const msg::SuspendEndOfMoveMsgs& m, std::string_view peer);   ///< MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS (p. 82)
+    void on(const msg::ResumeEndOfMoveMsgs& m, std::string_view peer);    ///< MGMSG_MOT_RESUME_ENDOFMOVEMSGS (p. 83)
+    void on(const msg::AckDcStatusUpdate& m, std::string_view peer);      ///< MGMSG_MOT_ACK_DCSTATUSUPDATE (p. 80)
     void start_updates();
-    /// Brushless (PMD) parameter trios of a bay: SET stores, REQ answers GET (manual p. 61-76).
-    /// Returns false if `f` is not one of them.
-    bool handle_pmd(std::size_t bay, const Frame& f, std::string& reply);
-    /// MOT_GET_PMDSTAGEAXISPARAMS of a bay's stage (p. 75), without the channel word.
-    std::string stage_axis_block(std::size_t bay) const;
     /// MOT_SET_EEPROMPARAMS: save the last SET of message `id` on bay `bay`.
     void save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer);
+    /// Keep `m` if it is a SET that MOT_SET_EEPROMPARAMS saves.
+    void remember(std::size_t bay, const msg::Message& m);
+    /// The data packet a saved SET is stored as: the bay's channel (1) and its parameters.
+    static std::string saved_data(SavedSet set);
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
     void restore_from_eeprom();
     void broadcast(const std::string& frame);
-    /// The SET being handled was ignored: MOT_SET_EEPROMPARAMS must not save it.
-    void forget_set();
     /// HW_RESPONSE or HW_RICHRESPONSE for a fault of bay `bay` (p. 19).
     std::string fault_report(std::size_t bay) const;
 
@@ -101,8 +119,12 @@ private:
     Clock& clock_;
     std::shared_ptr<spdlog::logger> log_;
     const ControllerModel& model_;
-    std::vector<std::unique_ptr<MotorChannel>> channels_;
     std::uint32_t serial_;
+    UnitIdentity unit_;
+    std::vector<std::unique_ptr<MotorChannel>> channels_;
+    std::vector<std::unique_ptr<MotorModule>> modules_;    ///< per bay with a stage
+    std::unique_ptr<RackMotherboard> motherboard_;          ///< racks only
+    std::vector<std::unique_ptr<EmptyBay>> empty_bays_;     ///< a rack's built-in bays past the last stage
     std::vector<AptSession*> sessions_;
     bool updates_ = false;                  ///< after HW_START_UPDATEMSGS
     Ticks next_update_ = kNever;
@@ -111,16 +133,7 @@ private:
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     StateStore* store_;
-    std::map<std::pair<std::size_t, std::uint16_t>, std::string> pmd_blocks_;   ///< (bay, SET id) -> data after the channel word
-    std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;   ///< (bay, SET id) -> data
-    std::vector<std::uint16_t> last_move_;  ///< per bay: the message that started its last move
-    struct SetUndo {
-        std::pair<std::size_t, std::uint16_t> key;
-        std::optional<std::string> previous;
-    };
-    std::optional<SetUndo> set_undo_;       ///< how to take back the SET being handled
-    std::map<std::uint8_t, std::uint8_t> digital_outputs_;   ///< rack: bay address (0: motherboard) -> outputs
-
+    std::map<std::pair<std::size_t, std::uint16_t>, SavedSet> last_set_;   ///< (bay, SET id) -> the last accepted
 };
 
 } // namespace rigsim::apt

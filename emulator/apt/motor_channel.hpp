@@ -105,9 +105,6 @@ public:
     std::uint32_t jerk = 0;
     std::int32_t relative_distance = 0;
     std::int32_t absolute_position = 0;
-    /// Parameter blocks that do not change the motion model, kept as sent (DCPIDPARAMS,
-    /// AVMODES, POTPARAMS, BUTTONPARAMS): the data packet after the channel word.
-    std::string pid_params, av_modes, pot_params, button_params;
 
     void move_absolute(std::int32_t counts);
     void move_relative(std::int32_t counts);

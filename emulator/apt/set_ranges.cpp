@@ -1,0 +1,140 @@
+#include "emulator/apt/set_ranges.hpp"
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace rigsim::apt {
+
+namespace {
+
+struct FieldRange {
+    std::string_view name;
+    std::int64_t value;
+    std::int64_t min;
+    std::int64_t max;
+};
+using Ranges = std::vector<FieldRange>;
+
+constexpr std::int64_t kMaxLong = 2'147'483'647;
+
+template <class P> Ranges ranges(const P&)
+{
+    return {};   // the manual gives this block no ranges rigsim checks
+}
+
+Ranges ranges(const msg::VelParams& p)
+{
+    // p. 30: acceleration and maximum velocity are unsigned longs; a zero would never move.
+    return {{"minimum velocity", p.min_velocity, 0, kMaxLong},
+            {"acceleration", p.acceleration, 1, kMaxLong},
+            {"maximum velocity", p.max_velocity, 1, kMaxLong}};
+}
+
+Ranges ranges(const msg::JogParams& p)
+{
+    // p. 32: jog mode 1 continuous, 2 single step; stop mode 1 immediate, 2 profiled.
+    return {{"jog mode", p.jog_mode, 1, 2},
+            {"jog step size", p.jog_step_size, 0, kMaxLong},
+            {"jog minimum velocity", p.jog_min_velocity, 0, kMaxLong},
+            {"jog acceleration", p.jog_acceleration, 1, kMaxLong},
+            {"jog maximum velocity", p.jog_max_velocity, 1, kMaxLong},
+            {"stop mode", p.jog_stop_mode, 1, 2}};
+}
+
+Ranges ranges(const msg::DcPidParams& p)
+{
+    // p. 51: proportional, integral, differential and integral limit 0..32767.
+    return {{"proportional", p.proportional, 0, 32767},
+            {"integral", p.integral, 0, 32767},
+            {"differential", p.differential, 0, 32767},
+            {"integral limit", p.integral_limit, 0, 32767}};
+}
+
+Ranges ranges(const msg::ButtonParams& p)
+{
+    return {{"mode", p.mode, 1, 2}};   // p. 58: mode 1 jog, 2 go to position
+}
+
+Ranges ranges(const msg::PmdPositionLoopParams& p)
+{
+    // p. 61. The PosErrLim text says "0 to 7FFFFFF" (seven Fs); the dword's other limit
+    // field, Integral Limit, says 7FFFFFFF: taken for both.
+    return {{"Kp", p.kp_pos, 0, 32767},
+            {"Ki", p.ki_pos, 0, 32767},
+            {"integral limit", p.integral_limit, 0, kMaxLong},
+            {"Kd", p.kd_pos, 0, 32767},
+            {"KdTimePos", p.kd_time_pos, 1, 32767},
+            {"KvffPos", p.kvff_pos, 0, 32767},
+            {"KaffPos", p.kaff_pos, 0, 32767},
+            {"PosErrLim", p.pos_err_lim, 0, kMaxLong}};
+}
+
+Ranges ranges(const msg::PmdMotorOutputParams& p)
+{
+    // p. 63-64: MotorBias "-32767 to 32768" in a signed word: -32767..32767.
+    return {{"ContCurrentLim", p.cont_current_lim, 0, 32767},
+            {"EnergyLim", p.energy_lim, 0, 32767},
+            {"MotorLim", p.motor_lim, 0, 32767},
+            {"MotorBias", p.motor_bias, -32767, 32767}};
+}
+
+Ranges ranges(const msg::PmdTrackSettleParams& p)
+{
+    // p. 66: settle time 0..32767 cycles; both windows 0..65535 (any word).
+    return {{"settle time", p.time_cycles, 0, 32767}};
+}
+
+Ranges ranges(const msg::PmdProfileModeParams& p)
+{
+    // p. 69: mode 0 trapezoidal, 2 S-curve (1 is no mode); jerk 0..4294967295 (any dword).
+    return {{"mode", p.mode, 0, 2}};
+}
+
+Ranges ranges(const msg::PmdCurrentLoopParams& p)
+{
+    // p. 71: phase 0 A, 1 B, 2 A and B; gains, limit, dead band, feed-forward 0..32767.
+    return {{"phase", p.phase, 0, 2},          {"KpCurrent", p.kp_current, 0, 32767},
+            {"KiCurrent", p.ki_current, 0, 32767}, {"ILimCurrent", p.i_lim_current, 0, 32767},
+            {"IDeadBand", p.i_dead_band, 0, 32767}, {"Kff", p.kff, 0, 32767}};
+}
+
+Ranges ranges(const msg::PmdSettledCurrentLoopParams& p)
+{
+    // p. 73: as the current loop's.
+    return {{"phase", p.phase, 0, 2},
+            {"KpSettled", p.kp_settled, 0, 32767},
+            {"KiSettled", p.ki_settled, 0, 32767},
+            {"ILimSettled", p.i_lim_settled, 0, 32767},
+            {"IDeadBandSettled", p.i_dead_band_settled, 0, 32767},
+            {"KffSettled", p.kff_settled, 0, 32767}};
+}
+
+std::optional<std::string> first_out_of_range(const Ranges& fields)
+{
+    for (const auto& r : fields)
+        if (r.value < r.min || r.value > r.max)
+            return std::string(r.name) + " " + std::to_string(r.value) + " (" + std::to_string(r.min) + ".."
+                   + std::to_string(r.max) + ")";
+    return std::nullopt;
+}
+
+template <class T> struct IsSet : std::false_type {};
+template <class P> struct IsSet<msg::Set<P>> : std::true_type {};
+
+} // namespace
+
+std::optional<std::string> out_of_range(const msg::Message& m)
+{
+    return std::visit(
+        [](const auto& typed) -> std::optional<std::string> {
+            using T = std::decay_t<decltype(typed)>;
+            if constexpr (IsSet<T>::value)
+                return first_out_of_range(ranges(typed.params));
+            else
+                return std::nullopt;
+        },
+        m);
+}
+
+} // namespace rigsim::apt

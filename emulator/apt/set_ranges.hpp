@@ -1,0 +1,17 @@
+#pragma once
+// The field ranges the manual gives for the SETs a motor unit acts on (page at each entry).
+
+#include "emulator/apt/codec.hpp"
+
+#include <optional>
+#include <string>
+
+namespace rigsim::apt {
+
+/// The first field of `m` (a SET) outside its range, as "<name> <value> (<min>..<max>)";
+/// nullopt for a message in range or without ranges. Fields the manual gives no range
+/// (positions, distances, the backlash: signed longs) take any value. Rules that tie two
+/// fields together, and modes whose values are not a range, are the handlers' checks.
+std::optional<std::string> out_of_range(const msg::Message& m);
+
+} // namespace rigsim::apt
