@@ -498,9 +498,7 @@ Ticks AptDevice::next_change(Ticks now) const
 
 void AptDevice::tick(Ticks now)
 {
-    for (auto& ch : channels_)
-        ch->tick(now);
-    flush();
+    flush();   // end-of-move events the axes raised (the World moves them, not this tick)
     if (updates_ && now >= next_update_) {
         next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).

@@ -417,8 +417,4 @@ Ticks MotorChannel::next_change(Ticks now) const
     return events_.empty() ? kNever : now + 1;
 }
 
-void MotorChannel::tick(Ticks /*now*/)
-{
-}
-
 } // namespace rigsim::apt

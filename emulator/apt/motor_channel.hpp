@@ -125,8 +125,6 @@ public:
 
     /// For the device's clock hook: due at once while end-of-move events wait to be sent.
     Ticks next_change(Ticks now) const;
-    /// Nothing to do per tick: the World moves the axis and wakes it only at its events.
-    void tick(Ticks now);
 
     /// The physics of this channel (World key "<device>/<bay>").
     const models::Axis& axis() const { return axis_; }
