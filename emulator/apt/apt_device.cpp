@@ -1,10 +1,12 @@
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/apt/config.hpp"
+#include "emulator/core/state_store.hpp"
 
 #include "emulator/apt/brushless_module.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
 
+#include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>

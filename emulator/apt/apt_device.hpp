@@ -6,17 +6,14 @@
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/codec.hpp"
-#include "emulator/apt/motor_module.hpp"
-#include "emulator/apt/rack_modules.hpp"
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/motor_channel.hpp"
-#include "models/clock.hpp"
-#include "models/world.hpp"
+#include "emulator/apt/motor_module.hpp"
+#include "emulator/apt/rack_modules.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/rig_config.hpp"
-#include "emulator/core/state_store.hpp"
-
-#include <spdlog/logger.h>
+#include "models/clock.hpp"
+#include "models/world.hpp"
 
 #include <map>
 #include <memory>
@@ -24,6 +21,14 @@
 #include <string>
 #include <variant>
 #include <vector>
+
+namespace spdlog {
+class logger;
+}
+
+namespace rigsim {
+class StateStore;   // emulator/core/state_store.hpp (nlohmann/json, spdlog: kept out of this header)
+}
 
 namespace rigsim::apt {
 

@@ -2,6 +2,7 @@
 
 #include "emulator/mcs/line_framer.hpp"
 
+#include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>

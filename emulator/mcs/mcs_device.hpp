@@ -9,10 +9,12 @@
 #include "emulator/mcs/controller.hpp"
 #include "emulator/mcs/handler.hpp"
 
-#include <spdlog/logger.h>
-
 #include <memory>
 #include <vector>
+
+namespace spdlog {
+class logger;
+}
 
 namespace rigsim::mcs {
 

@@ -9,9 +9,11 @@
 #include "models/clock.hpp"
 #include "models/world.hpp"
 #include "emulator/apt/config.hpp"
+#include "emulator/core/state_store.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
+#include <spdlog/logger.h>
 #include <spdlog/sinks/null_sink.h>
 
 #include <memory>

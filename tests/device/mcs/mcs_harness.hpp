@@ -7,6 +7,7 @@
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 
+#include <spdlog/logger.h>
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
 
