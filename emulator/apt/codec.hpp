@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -1127,6 +1128,63 @@ template <class T> std::string encode_data(const T& m)
     return out;
 }
 
+namespace codec_detail {
+/// A frame being written: a buffer of the largest frame, copied into a string once (status
+/// updates and GETs are the hot path; byte-wise string appends cost more than the handler).
+struct FrameBuffer {
+    std::array<char, kMaxFrameSize> bytes;
+    std::size_t size = 0;
+    void append(const char* p, std::size_t n)
+    {
+        std::memcpy(bytes.data() + size, p, n);
+        size += n;
+    }
+};
+inline void put(FrameBuffer& out, std::uint8_t v)
+{
+    const char c = static_cast<char>(v);
+    out.append(&c, 1);
+}
+inline void put(FrameBuffer& out, std::uint16_t v)
+{
+    const char b[2] = {static_cast<char>(v & 0xFF), static_cast<char>(v >> 8)};
+    out.append(b, 2);
+}
+inline void put(FrameBuffer& out, std::int16_t v) { put(out, static_cast<std::uint16_t>(v)); }
+inline void put(FrameBuffer& out, std::uint32_t v)
+{
+    const char b[4] = {static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+                       static_cast<char>((v >> 16) & 0xFF), static_cast<char>(v >> 24)};
+    out.append(b, 4);
+}
+inline void put(FrameBuffer& out, std::int32_t v) { put(out, static_cast<std::uint32_t>(v)); }
+template <std::size_t N> void put(FrameBuffer& out, const std::array<char, N>& v) { out.append(v.data(), N); }
+inline void put(FrameBuffer& out, const MotorStatus& v)
+{
+    std::visit([&](const auto& s) { std::apply([&](const auto&... f) { (put(out, f), ...); }, s.fields(s)); }, v);
+}
+inline void put(FrameBuffer& out, const std::optional<std::int32_t>& v)
+{
+    if (v)
+        put(out, *v);
+}
+
+/// The frame of `m` with its data packet: the header (length patched in at the end), then the fields.
+template <class T> std::string encode_frame_with_data(const T& m, std::uint8_t dest, std::uint8_t source)
+{
+    FrameBuffer out;
+    put(out, T::id);
+    put(out, std::uint16_t{0});
+    put(out, static_cast<std::uint8_t>(dest | kDataFlag));
+    put(out, source);
+    std::apply([&](const auto&... f) { (put(out, f), ...); }, T::fields(m));
+    const auto length = static_cast<std::uint16_t>(out.size - kHeaderSize);
+    out.bytes[2] = static_cast<char>(length & 0xFF);
+    out.bytes[3] = static_cast<char>(length >> 8);
+    return std::string(out.bytes.data(), out.size);
+}
+} // namespace codec_detail
+
 /// Message `m` as a frame from `source` to `dest` (without the data flag).
 template <class T> std::string encode(const T& m, std::uint8_t dest, std::uint8_t source)
 {
@@ -1134,7 +1192,7 @@ template <class T> std::string encode(const T& m, std::uint8_t dest, std::uint8_
         const auto& distance = std::get<1>(T::fields(m));
         if (!distance)
             return encode_header_only(T::id, static_cast<std::uint8_t>(m.chan_ident), 0, dest, source);
-        return encode_with_data(T::id, dest, source, encode_data(m));
+        return codec_detail::encode_frame_with_data(m, dest, source);
     } else if constexpr (std::is_same_v<T, Untyped>) {
         return m.has_data ? encode_with_data(m.id, dest, source, m.data)
                           : encode_header_only(m.id, m.param1, m.param2, dest, source);
@@ -1144,7 +1202,7 @@ template <class T> std::string encode(const T& m, std::uint8_t dest, std::uint8_
         std::apply([&](const auto&... f) { ((params[i++] = codec_detail::param_byte(f)), ...); }, T::fields(m));
         return encode_header_only(T::id, params[0], params[1], dest, source);
     } else {
-        return encode_with_data(T::id, dest, source, encode_data(m));
+        return codec_detail::encode_frame_with_data(m, dest, source);
     }
 }
 

@@ -184,6 +184,13 @@ bool MotorChannel::switch_stops(bool forward, bool homing) const
 
 void MotorChannel::sync_axis(Motion leg)
 {
+    const auto& l = limit_switch;
+    if (synced_ && synced_->leg == leg && synced_->counter_offset == counter_offset_
+        && synced_->limit_switch.cw_hard == l.cw_hard && synced_->limit_switch.ccw_hard == l.ccw_hard
+        && synced_->limit_switch.cw_soft == l.cw_soft && synced_->limit_switch.ccw_soft == l.ccw_soft
+        && synced_->limit_switch.mode == l.mode)
+        return;
+    synced_ = Synced{l, leg, counter_offset_};
     const bool to_home_switch = leg == Motion::HomingToLimit;
     axis_.set_limit_switches(switch_stops(true, to_home_switch), switch_stops(false, to_home_switch));
     // LIMSWITCHPARAMS software limit mode 2 ("stop immediate at limit"): the axis stops dead

@@ -165,6 +165,14 @@ private:
     VelocityParams design_velocity_;
     std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
     std::vector<MotorEvent> events_;
+    /// What sync_axis() last handed the axis (it depends on nothing else): take_events() after
+    /// every batch of messages then costs a comparison.
+    struct Synced {
+        LimitSwitchParams limit_switch;
+        Motion leg;
+        double counter_offset;
+    };
+    std::optional<Synced> synced_;
     std::optional<double> pending_backlash_target_;   ///< counter value of the forward approach after a backlash overshoot
 };
 

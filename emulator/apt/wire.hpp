@@ -40,16 +40,17 @@ inline void put_u8(std::string& out, std::uint8_t v) { out.push_back(static_cast
 
 inline void put_u16(std::string& out, std::uint16_t v)
 {
-    out.push_back(static_cast<char>(v & 0xFF));
-    out.push_back(static_cast<char>(v >> 8));
+    const char bytes[2] = {static_cast<char>(v & 0xFF), static_cast<char>(v >> 8)};
+    out.append(bytes, 2);
 }
 
 inline void put_i16(std::string& out, std::int16_t v) { put_u16(out, static_cast<std::uint16_t>(v)); }
 
 inline void put_u32(std::string& out, std::uint32_t v)
 {
-    for (int shift = 0; shift < 32; shift += 8)
-        out.push_back(static_cast<char>((v >> shift) & 0xFF));
+    const char bytes[4] = {static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+                           static_cast<char>((v >> 16) & 0xFF), static_cast<char>(v >> 24)};
+    out.append(bytes, 4);
 }
 
 inline void put_i32(std::string& out, std::int32_t v) { put_u32(out, static_cast<std::uint32_t>(v)); }

@@ -102,7 +102,8 @@ void McsDevice::flush_outbox()
     for (const auto& r : outbox)
         encode(r, text);
     outbox.clear();
-    log_->debug("unprompted: \"{}\"", printable(text));
+    if (log_->should_log(spdlog::level::debug))
+        log_->debug("unprompted: \"{}\"", printable(text));
     for (auto* s : sessions_)
         s->send(text);
 }
@@ -128,7 +129,7 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
     if (const auto* err = std::get_if<Error>(&reply))
         log_->warn("{}: \"{}\": error {} (source channel {})", peer, printable(line),
                    static_cast<int>(err->code), err->channel);
-    else
+    else if (log_->should_log(spdlog::level::debug))   // printable() is not free: only when logged
         log_->debug("{}: \"{}\"", peer, printable(line));
     encode(reply, out);
     if (handler_.take_reset_request()) {
