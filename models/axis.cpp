@@ -25,7 +25,7 @@ Axis::Axis(const Clock& clock, const AxisConfig& config)
 
 double Axis::profile_at(Ticks k) const
 {
-    return k >= end_ ? profile_.target() : profile_.sample(clock_.seconds(k - start_))[0];
+    return k >= end_ ? profile_.target() : profile_.sample(clock_.seconds(k - start_)).position;
 }
 
 Axis::Track Axis::now_track() const
@@ -56,7 +56,7 @@ double Axis::velocity_counts_per_s() const
         return 0;   // at rest, or pressed on an end stop
     // On the tick a motion is commanded the axis still moves as it did: a profile without an
     // acceleration limit starts at full speed, from the next tick.
-    return now == start_ ? start_velocity_counts_per_s_ : profile_.sample(clock_.seconds(now - start_))[1];
+    return now == start_ ? start_velocity_counts_per_s_ : profile_.sample(clock_.seconds(now - start_)).velocity;
 }
 
 void Axis::set_limits(double min_counts, double max_counts)
@@ -134,7 +134,7 @@ void Axis::move_to(double target_counts, double velocity_counts_per_s, double ac
         stop_immediately();
         return;
     }
-    const AxisState from(position_counts(), Axis::velocity_counts_per_s());
+    const AxisState from{position_counts(), Axis::velocity_counts_per_s()};
     anchor_ = now_track();
     double target = target_counts;
     if (!config_.rotary && (target > limit_max_counts_ || target < limit_min_counts_)
@@ -143,7 +143,7 @@ void Axis::move_to(double target_counts, double velocity_counts_per_s, double ac
     start(jerk_counts_per_s3 > 0 ? MotionProfile::plan_s_curve(from, target, velocity_counts_per_s,
                                                                acceleration_counts_per_s2, jerk_counts_per_s3)
                                  : MotionProfile::plan(from, target, velocity_counts_per_s, acceleration_counts_per_s2),
-          from[1]);
+          from.velocity);
 }
 
 void Axis::stop_immediately()
@@ -164,7 +164,7 @@ void Axis::stop_profiled(double acceleration_counts_per_s2)
     const double v = velocity_counts_per_s();
     anchor_ = now_track();
     const double x = anchor_.position_counts;
-    start(MotionProfile::plan(AxisState(x, v), x + v * std::abs(v) / (2 * a), std::max(std::abs(v), 1.0), a), v);
+    start(MotionProfile::plan(AxisState{x, v}, x + v * std::abs(v) / (2 * a), std::max(std::abs(v), 1.0), a), v);
 }
 
 void Axis::start(MotionProfile profile, double from_velocity_counts_per_s)
@@ -181,7 +181,7 @@ void Axis::start(MotionProfile profile, double from_velocity_counts_per_s)
     turns_.clear();
     int previous = 0;
     for (const auto& seg : profile_.segments()) {
-        const int dir = sign(integrate(seg.start, seg.acceleration, seg.jerk, seg.duration)[0] - seg.start[0]);
+        const int dir = sign(integrate(seg.start, seg.acceleration, seg.jerk, seg.duration).position - seg.start.position);
         if (dir != 0 && previous != 0 && dir != previous)
             turns_.push_back(start_ + static_cast<Ticks>(std::floor(seg.t0 * clock_.tick_hz())));
         if (dir != 0)

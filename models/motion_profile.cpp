@@ -6,12 +6,12 @@ namespace rigsim::models {
 
 AxisState integrate(const AxisState& s, double a, double t)
 {
-    return AxisState{s[0] + s[1] * t + 0.5 * a * t * t, s[1] + a * t};
+    return AxisState{s.position + s.velocity * t + 0.5 * a * t * t, s.velocity + a * t};
 }
 
 AxisState integrate(const AxisState& s, double a, double j, double t)
 {
-    return AxisState{s[0] + s[1] * t + 0.5 * a * t * t + j * t * t * t / 6, s[1] + a * t + 0.5 * j * t * t};
+    return AxisState{s.position + s.velocity * t + 0.5 * a * t * t + j * t * t * t / 6, s.velocity + a * t + 0.5 * j * t * t};
 }
 
 void MotionProfile::append(double duration, const AxisState& start, double acceleration, double jerk)
@@ -52,11 +52,11 @@ Ramp s_ramp(double v, double a, double j)
 MotionProfile MotionProfile::plan_s_curve(const AxisState& from, double target, double v_max, double a_max,
                                                 double j_max)
 {
-    if (a_max <= 0 || j_max <= 0 || from[1] != 0 || v_max <= 0)
+    if (a_max <= 0 || j_max <= 0 || from.velocity != 0 || v_max <= 0)
         return plan(from, target, v_max, a_max);
     MotionProfile p;
     p.target_ = target;
-    const double d = target - from[0];
+    const double d = target - from.position;
     if (d == 0)
         return p;
     const double dir = std::copysign(1.0, d);
@@ -106,37 +106,37 @@ void MotionProfile::plan_from(AxisState s, double v_max, double a_max)
     // Each pass either finishes the plan or brings the axis to a simpler state
     // (at rest, or moving toward the target no faster than v_max); three passes suffice.
     for (int pass = 0; pass < 4; ++pass) {
-        const double d = target_ - s[0];
+        const double d = target_ - s.position;
         if (a_max <= 0) {   // unlimited acceleration: constant speed all the way
             if (d != 0)
-                append(std::abs(d) / v_max, AxisState{s[0], std::copysign(v_max, d)}, 0);
+                append(std::abs(d) / v_max, AxisState{s.position, std::copysign(v_max, d)}, 0);
             return;
         }
-        if (d == 0 && s[1] == 0)
+        if (d == 0 && s.velocity == 0)
             return;
         // Work in the frame where the target lies ahead (sign +1).
-        const double dir = d != 0 ? std::copysign(1.0, d) : std::copysign(1.0, -s[1]);
+        const double dir = d != 0 ? std::copysign(1.0, d) : std::copysign(1.0, -s.velocity);
         const double x = dir * d;       // distance to go, >= 0
-        const double u = dir * s[1];    // speed toward the target
+        const double u = dir * s.velocity;    // speed toward the target
         if (u < 0) {                    // moving away: brake to rest first
             const double t = -u / a_max;
             append(t, s, dir * a_max);
             s = integrate(s, dir * a_max, t);
-            s[1] = 0;
+            s.velocity = 0;
             continue;
         }
         if (u > v_max) {                // faster than allowed: brake to v_max first
             const double t = (u - v_max) / a_max;
             append(t, s, -dir * a_max);
             s = integrate(s, -dir * a_max, t);
-            s[1] = dir * v_max;
+            s.velocity = dir * v_max;
             continue;
         }
         if (u * u / (2 * a_max) > x) {  // cannot stop in time: overshoot, come back from rest
             const double t = u / a_max;
             append(t, s, -dir * a_max);
             s = integrate(s, -dir * a_max, t);
-            s[1] = 0;
+            s.velocity = 0;
             continue;
         }
         const double full_ramps = (2 * v_max * v_max - u * u) / (2 * a_max);
@@ -149,7 +149,7 @@ void MotionProfile::plan_from(AxisState s, double v_max, double a_max)
         const double t_up = (v_peak - u) / a_max;
         append(t_up, s, dir * a_max);
         s = integrate(s, dir * a_max, t_up);
-        s[1] = dir * v_peak;
+        s.velocity = dir * v_peak;
         append(cruise, s, 0);
         s = integrate(s, 0, cruise);
         append(v_peak / a_max, s, -dir * a_max);

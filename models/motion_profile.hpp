@@ -7,14 +7,15 @@
 // any time since planning. Sampling is exact, so arrival time does not depend on the
 // physics tick. Units are whatever the caller uses consistently (rigsim: nm, nm/s, nm/s^2).
 
-#include <Eigen/Core>
-
 #include <vector>
 
 namespace rigsim::models {
 
-/// (position, velocity)
-using AxisState = Eigen::Vector2d;
+/// One axis's state at an instant, in the caller's stage unit (nm, counts, ...) and that unit per second.
+struct AxisState {
+    double position = 0;   ///< stage unit
+    double velocity = 0;   ///< stage unit per second
+};
 
 /// One constant-jerk stretch of a profile (jerk 0: constant acceleration).
 struct Segment {

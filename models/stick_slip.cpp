@@ -24,7 +24,7 @@ double StickSlipPositioner::position_nm() const
     case Motion::Rest:
         return rest_nm_;
     case Motion::Profile:
-        return now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_))[0];
+        return now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_)).position;
     case Motion::Burst:
         catch_up();
         return replay_.position_nm;
@@ -84,7 +84,7 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     settle();
     outcome_ = Outcome::None;
     const Ticks now = clock_.now();
-    profile_ = MotionProfile::plan(AxisState(rest_nm_, 0.0), target_nm, speed_nm_per_s, acceleration_nm_per_s2);
+    profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, target_nm, speed_nm_per_s, acceleration_nm_per_s2);
     profile_start_ = now;
     profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     if (profile_end_ <= now)
@@ -110,7 +110,7 @@ bool StickSlipPositioner::next_leg(Ticks now)
 {
     while (next_leg_ < legs_nm_.size()) {
         const double to = legs_nm_[next_leg_++];
-        profile_ = MotionProfile::plan(AxisState(rest_nm_, 0.0), to, leg_speed_nm_per_s_, 0.0);
+        profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, to, leg_speed_nm_per_s_, 0.0);
         profile_start_ = now;
         profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
         if (profile_end_ > now) {

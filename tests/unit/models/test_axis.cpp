@@ -63,7 +63,7 @@ Ticks first_tick_beyond(const MotionProfile& p, double limit, bool tolerance)
 {
     const Ticks end = end_tick(p, 0);
     for (Ticks k = 1; k < end; ++k) {
-        const double x = p.sample(k / 1000.0)[0];
+        const double x = p.sample(k / 1000.0).position;
         if (tolerance ? x > limit + 1e-6 : x >= limit)
             return k;
     }
@@ -77,13 +77,13 @@ TEST_CASE("axis: a move ends at its planned tick and is sampled exactly in betwe
     Rig r(linear(Drive::Servo));
     r.clock.advance(7);
     r.axis.move_to(80'000, 10'000, 20'000);
-    const auto p = MotionProfile::plan(AxisState(50'000, 0), 80'000, 10'000, 20'000);
+    const auto p = MotionProfile::plan(AxisState{50'000, 0}, 80'000, 10'000, 20'000);
     const Ticks end = end_tick(p, 7);
     CHECK(r.axis.next_event(r.clock.now()) == end);
     for (const Ticks t : {Ticks{1}, Ticks{250}, Ticks{500}, Ticks{1999}, end - 8}) {
         r.clock.advance_to(7 + t);
-        CHECK(r.axis.position_counts() == p.sample(t / 1000.0)[0]);
-        CHECK(r.axis.velocity_counts_per_s() == p.sample(t / 1000.0)[1]);
+        CHECK(r.axis.position_counts() == p.sample(t / 1000.0).position);
+        CHECK(r.axis.velocity_counts_per_s() == p.sample(t / 1000.0).velocity);
         CHECK(r.axis.moving());
     }
     CHECK(r.events.empty());
@@ -114,7 +114,7 @@ TEST_CASE("axis: a moving axis is woken once, at the end of its move, not once p
 TEST_CASE("axis: at an end stop whose switch is ignored a servo stalls and a stepper loses steps",
           "[unit][models][axis]")
 {
-    const auto p = MotionProfile::plan(AxisState(50'000, 0), 130'000, 20'000, 40'000);
+    const auto p = MotionProfile::plan(AxisState{50'000, 0}, 130'000, 20'000, 40'000);
     const Ticks crossing = first_tick_beyond(p, 100'000, true);
     SECTION("servo: stalled at the stop, the motion ends there")
     {
@@ -137,7 +137,7 @@ TEST_CASE("axis: at an end stop whose switch is ignored a servo stalls and a ste
         r.clock.advance_to(crossing + 100);
         CHECK(r.axis.position_counts() == 100'000);
         CHECK(r.axis.velocity_counts_per_s() == 0);
-        CHECK(r.axis.motor_position_counts() == Approx(p.sample((crossing + 100) / 1000.0)[0]));
+        CHECK(r.axis.motor_position_counts() == Approx(p.sample((crossing + 100) / 1000.0).position));
         r.clock.advance(10'000);
         CHECK(r.events
               == std::vector<std::pair<AxisEvent, Ticks>>{{AxisEvent::LostSteps, crossing}, {AxisEvent::Arrived, end}});
@@ -166,7 +166,7 @@ TEST_CASE("axis: a limit switch that stops the axis ends the motion on it", "[un
         r.axis.move_to(r.axis.run_target_counts(true), 20'000, 40'000);
         r.clock.advance(100);
         r.axis.set_limit_switches(true, true);
-        const auto p = MotionProfile::plan(AxisState(50'000, 0), 200'000, 20'000, 40'000);
+        const auto p = MotionProfile::plan(AxisState{50'000, 0}, 200'000, 20'000, 40'000);
         const Ticks crossing = first_tick_beyond(p, 100'000, true);
         CHECK(r.axis.next_event(r.clock.now()) == crossing);
         r.clock.advance(10'000);
@@ -181,7 +181,7 @@ TEST_CASE("axis: a soft stop stops the axis dead at the tick it is crossed", "[u
     Rig r(linear(Drive::Servo));
     r.axis.set_soft_stops(40'000, 60'000);
     r.axis.move_to(90'000, 20'000, 40'000);
-    const auto p = MotionProfile::plan(AxisState(50'000, 0), 90'000, 20'000, 40'000);
+    const auto p = MotionProfile::plan(AxisState{50'000, 0}, 90'000, 20'000, 40'000);
     const Ticks crossing = first_tick_beyond(p, 60'000, false);
     CHECK(r.axis.next_event(0) == crossing);
     r.clock.advance(10'000);
