@@ -208,6 +208,27 @@ std::optional<Message> decode_move_status(const Frame& f)
     }
 }
 
+/// Solenoid Control Messages (p. 84-92).
+std::optional<Message> decode_solenoid(const Frame& f)
+{
+    switch (f.id) {
+    case MGMSG_MOT_SET_SOL_OPERATINGMODE: return as<SolSetOperatingMode>(f);
+    case MGMSG_MOT_REQ_SOL_OPERATINGMODE: return as<SolReqOperatingMode>(f);
+    case MGMSG_MOT_GET_SOL_OPERATINGMODE: return as<SolGetOperatingMode>(f);
+    case MGMSG_MOT_SET_SOL_CYCLEPARAMS: return as<SetSolCycleParams>(f);
+    case MGMSG_MOT_REQ_SOL_CYCLEPARAMS: return as<ReqSolCycleParams>(f);
+    case MGMSG_MOT_GET_SOL_CYCLEPARAMS: return as<GetSolCycleParams>(f);
+    case MGMSG_MOT_SET_SOL_INTERLOCKMODE: return as<SolSetInterlockMode>(f);
+    case MGMSG_MOT_REQ_SOL_INTERLOCKMODE: return as<SolReqInterlockMode>(f);
+    case MGMSG_MOT_GET_SOL_INTERLOCKMODE: return as<SolGetInterlockMode>(f);
+    case MGMSG_MOT_SET_SOL_STATE: return as<SolSetState>(f);
+    case MGMSG_MOT_REQ_SOL_STATE: return as<SolReqState>(f);
+    case MGMSG_MOT_GET_SOL_STATE: return as<SolGetState>(f);
+    default:
+        return std::nullopt;
+    }
+}
+
 /// Piezo Control Messages and the TSG001's (p. 93-129).
 std::optional<Message> decode_piezo(const Frame& f)
 {
@@ -274,7 +295,7 @@ std::optional<Message> decode_piezo(const Frame& f)
 
 Message decode(const Frame& f)
 {
-    for (auto part : {decode_generic, decode_trio, decode_pmd_trio, decode_move_status, decode_piezo})
+    for (auto part : {decode_generic, decode_trio, decode_pmd_trio, decode_move_status, decode_solenoid, decode_piezo})
         if (auto m = part(f))
             return *std::move(m);
     return untyped(f);

@@ -9,9 +9,9 @@
 // by a SET/REQ/GET trio is one struct (VelParams, ...) wrapped by Set<>, Req<> and Get<>:
 // a SET knows its GET through the block's IDs, so no ID arithmetic is needed.
 //
-// decode() never throws and loses nothing: a message the codec does not type (the solenoid
-// messages), or one whose data packet has another length than the
-// struct's, is an Untyped holding its ID, params and data packet.
+// decode() never throws and loses nothing: a message the codec does not type (an ID outside
+// the message table), or one whose data packet has another length than the struct's, is an
+// Untyped holding its ID, params and data packet.
 
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/messages.hpp"
@@ -40,10 +40,11 @@ enum class Family {
     Motor,       ///< every motor module: counters, moves, trios, status
     DcServo,     ///< DC servo and brushless modules (not steppers): PID, DC status
     Pmd,         ///< brushless (PMD) modules: the PMD parameter trios
+    Solenoid,    ///< TSC001 solenoid modules (none emulated yet)
     Piezo,       ///< piezo modules (none emulated yet)
     StrainGauge, ///< strain gauge readers (none emulated yet)
     UnitToHost,  ///< sent by units (GETs, end-of-move messages): a unit ignores them
-    Untyped,     ///< not typed by the codec (solenoid)
+    Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };
 
 // ---- Parameter blocks of the SET/REQ/GET trios (the data packet, channel word first) ----
@@ -754,6 +755,94 @@ RIGSIM_APT_BARE_MESSAGE(SuspendEndOfMoveMsgs, MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS, S
 /// MGMSG_MOT_RESUME_ENDOFMOVEMSGS (p. 83).
 RIGSIM_APT_BARE_MESSAGE(ResumeEndOfMoveMsgs, MGMSG_MOT_RESUME_ENDOFMOVEMSGS, System);
 
+// ---- Solenoid Control Messages (p. 84-92): MOT_ messages of the TSC001 solenoid driver ----
+// No emulated unit acts on them yet: every module ignores and logs them.
+
+/// MGMSG_MOT_SET_SOL_OPERATINGMODE (p. 85).
+struct SolSetOperatingMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_OPERATINGMODE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.operating_mode); }
+};
+/// MGMSG_MOT_REQ_SOL_OPERATINGMODE (p. 85).
+struct SolReqOperatingMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_OPERATINGMODE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+};
+/// MGMSG_MOT_GET_SOL_OPERATINGMODE (p. 85).
+struct SolGetOperatingMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_OPERATINGMODE, true, UnitToHost);
+    std::uint8_t chan_ident = 1;
+    std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.operating_mode); }
+};
+
+/// MGMSG_MOT_SET/REQ/GET_SOL_CYCLEPARAMS (p. 87): the on/off cycle of the non-manual modes.
+struct SolCycleParams {
+    static constexpr std::uint16_t set_id = MGMSG_MOT_SET_SOL_CYCLEPARAMS;
+    static constexpr std::uint16_t req_id = MGMSG_MOT_REQ_SOL_CYCLEPARAMS;
+    static constexpr std::uint16_t get_id = MGMSG_MOT_GET_SOL_CYCLEPARAMS;
+    static constexpr Family family = Family::Solenoid;
+    std::uint16_t chan_ident = 1;       ///< always 1 on a TSC001
+    std::int32_t on_time_250us = 0;     ///< OnTime: 250 us steps, 100 ms..10,000 s (4000 = 1 s)
+    std::int32_t off_time_250us = 0;    ///< OffTime: 250 us steps, 100 ms..10,000 s
+    std::int32_t num_cycles = 0;        ///< 'Auto' mode only: 0..1,000,000, 0 cycles indefinitely
+    template <class S> static auto fields(S& s)
+    {
+        return std::tie(s.chan_ident, s.on_time_250us, s.off_time_250us, s.num_cycles);
+    }
+};
+
+/// MGMSG_MOT_SET_SOL_INTERLOCKMODE (p. 89).
+struct SolSetInterlockMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_INTERLOCKMODE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    std::uint8_t interlock_mode = 1;   ///< 1 enabled (the interlock plug is required), 2 disabled
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.interlock_mode); }
+};
+/// MGMSG_MOT_REQ_SOL_INTERLOCKMODE (p. 89).
+struct SolReqInterlockMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_INTERLOCKMODE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+};
+/// MGMSG_MOT_GET_SOL_INTERLOCKMODE (p. 89).
+struct SolGetInterlockMode {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_INTERLOCKMODE, true, UnitToHost);
+    std::uint8_t chan_ident = 1;
+    std::uint8_t interlock_mode = 1;   ///< 1 enabled, 2 disabled
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.interlock_mode); }
+};
+
+/// MGMSG_MOT_SET_SOL_STATE (p. 91): overrides the operating mode.
+struct SolSetState {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_STATE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    // The data structure table labels param2 "Interlock Mode" (copied from p. 89); the
+    // header diagram and the values name it the state.
+    std::uint8_t state = 2;   ///< 1 on (solenoid active), 2 off
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.state); }
+};
+/// MGMSG_MOT_REQ_SOL_STATE (p. 91).
+struct SolReqState {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_STATE, true, Solenoid);
+    std::uint8_t chan_ident = 1;
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+};
+/// MGMSG_MOT_GET_SOL_STATE (p. 91).
+struct SolGetState {
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_STATE, true, UnitToHost);
+    std::uint8_t chan_ident = 1;
+    std::uint8_t state = 2;   ///< 1 on, 2 off
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.state); }
+};
+
+using SetSolCycleParams = Set<SolCycleParams>;
+using ReqSolCycleParams = Req<SolCycleParams>;
+using GetSolCycleParams = Get<SolCycleParams>;
+
 // ---- Piezo Control Messages (p. 93-126) and the TSG001 strain gauge reader (p. 127-129) ----
 // No emulated unit acts on them yet: every module ignores and logs them.
 
@@ -1051,8 +1140,8 @@ using GetTsgIoSettings = Get<TsgIoSettings>;
 #undef RIGSIM_APT_BARE_MESSAGE
 #undef RIGSIM_APT_MESSAGE
 
-/// A message the codec does not type (the solenoid family), or whose data packet has another length than its
-/// struct's: kept whole.
+/// A message the codec does not type (an ID outside the table), or whose data packet has another length than
+/// its struct's: kept whole.
 struct Untyped {
     static constexpr Family family = Family::Untyped;
     std::uint16_t id = 0;
@@ -1088,6 +1177,10 @@ using Message = std::variant<
     MoveHome, MoveHomed, MoveRelative, MoveAbsolute, MoveJog, MoveVelocity, MoveStop, MoveCompleted, MoveStopped,
     SetEepromParams, ReqStatusUpdate, GetStatusUpdate, ReqDcStatusUpdate, GetDcStatusUpdate, AckDcStatusUpdate,
     ReqStatusBits, GetStatusBits, SuspendEndOfMoveMsgs, ResumeEndOfMoveMsgs,
+    // solenoid
+    SolSetOperatingMode, SolReqOperatingMode, SolGetOperatingMode, SetSolCycleParams, ReqSolCycleParams,
+    GetSolCycleParams, SolSetInterlockMode, SolReqInterlockMode, SolGetInterlockMode, SolSetState, SolReqState,
+    SolGetState,
     // piezo and strain gauge
     SetPzOutputVolts, ReqPzOutputVolts, GetPzOutputVolts, SetPzOutputPos, ReqPzOutputPos, GetPzOutputPos, SetPzInputVoltsSrc, ReqPzInputVoltsSrc, GetPzInputVoltsSrc, SetPzPiConsts, ReqPzPiConsts, GetPzPiConsts, SetPzOutputLut, ReqPzOutputLut, GetPzOutputLut, SetPzOutputLutParams, ReqPzOutputLutParams, GetPzOutputLutParams, SetTpzDispSettings, ReqTpzDispSettings, GetTpzDispSettings, SetTpzIoSettings, ReqTpzIoSettings, GetTpzIoSettings, SetPzIoSettings, ReqPzIoSettings, GetPzIoSettings, SetPzOutputMaxVolts, ReqPzOutputMaxVolts, GetPzOutputMaxVolts, SetTpzSlewRates, ReqTpzSlewRates, GetTpzSlewRates, SetTsgIoSettings, ReqTsgIoSettings, GetTsgIoSettings, PzSetPosControlMode, PzReqPosControlMode, PzGetPosControlMode, PzReqPzStatusBits, PzAckPzStatusUpdate, PzStartLutOutput, PzStopLutOutput, PzSetZero, PzReqMaxTravel, MotSetPzStageParamDefaults, PzSetLutValueType, TsgReqReading, PzGetPzStatusBits, PzGetPzStatusUpdate, PzSetEepromParams, PzGetMaxTravel, TsgGetReading,
     // the rest of the table
