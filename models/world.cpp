@@ -65,6 +65,8 @@ void World::prune() const
 
 Ticks World::next_change(Ticks now) const
 {
+    if (due_.empty())
+        return kNever;   // the usual case between moves: no call into prune()
     prune();
     return due_.empty() ? kNever : std::max(due_.top().at, now + 1);
 }
