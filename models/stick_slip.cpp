@@ -17,12 +17,31 @@ void StickSlipPositioner::set_travel(double min_nm, double max_nm)
     config_.travel_max_nm = max_nm;
 }
 
+void StickSlipPositioner::set_closed_loop_hold(bool hold)
+{
+    if (motion_ == Motion::Rest) {
+        const Ticks now = clock_.now();
+        rest_nm_ = rest_position(now);
+        rest_since_ = now;
+    }
+    hold_ = hold;
+}
+
+double StickSlipPositioner::rest_position(Ticks now) const
+{
+    if (config_.drift_nm_per_s == 0 || hold_)
+        return rest_nm_;
+    const double drifted = rest_nm_ + config_.drift_nm_per_s * clock_.seconds(now - rest_since_);
+    // Drift stops at an end stop (and never pulls a stage placed beyond one further out).
+    return std::clamp(drifted, std::min(config_.travel_min_nm, rest_nm_), std::max(config_.travel_max_nm, rest_nm_));
+}
+
 double StickSlipPositioner::position_nm() const
 {
     const Ticks now = clock_.now();
     switch (motion_) {
     case Motion::Rest:
-        return rest_nm_;
+        return rest_position(now);
     case Motion::Profile:
         return now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_)).position;
     case Motion::Burst:
@@ -46,9 +65,11 @@ void StickSlipPositioner::settle()
 {
     legs_nm_.clear();
     next_leg_ = 0;
+    const Ticks now = clock_.now();
     switch (motion_) {
     case Motion::Rest:
-        return;
+        rest_nm_ = rest_position(now);
+        break;
     case Motion::Profile:
         rest_nm_ = position_nm();
         break;
@@ -59,10 +80,12 @@ void StickSlipPositioner::settle()
         break;
     case Motion::Scan:
         rest_nm_ = position_nm();
-        scanner_.settle(clock_.now());
+        scanner_.settle(now);
         break;
     }
     motion_ = Motion::Rest;
+    rest_since_ = now;
+    hold_ = false;
 }
 
 void StickSlipPositioner::halt()
@@ -271,6 +294,7 @@ void StickSlipPositioner::on_event(Ticks now)
     case Motion::Profile:
         if (now >= profile_end_) {
             rest_nm_ = profile_.target();
+            rest_since_ = now;
             motion_ = Motion::Rest;
             if (!next_leg(now))
                 end_motion(Outcome::Arrived);

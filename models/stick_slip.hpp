@@ -14,7 +14,10 @@
 //   step, and the tick of the step that meets the software range limit (found by replaying
 //   ahead, at most kLookAheadSteps steps per wake-up); a mechanical end stop does not end a
 //   burst, the steps go on without moving;
-// - a scan (models/piezo_scanner.hpp) ends at one tick; end stops clamp it.
+// - a scan (models/piezo_scanner.hpp) ends at one tick; end stops clamp it;
+// - at rest and not holding a closed-loop position, the stage creeps at drift_nm_per_s
+//   (rest + drift · elapsed, clamped at the end stops); that is no event: it just stops
+//   at an end stop, and nobody is told.
 // Once an event has been handled, outcome() says what happened, and the listener is called.
 
 #include "models/clock.hpp"
@@ -38,6 +41,7 @@ struct StickSlipConfig {
     double step_jitter_fraction = 0;    ///< each step is width · (1 ± this), uniformly
     std::uint32_t jitter_seed = 0;
     double scan_range_nm = 1500;        ///< a full 0..4095 scan
+    double drift_nm_per_s = 0;          ///< open-loop creep at rest, signed; 0: none
 };
 
 /// A software range limit an open-loop burst stops at (MCS 2.3.4).
@@ -77,6 +81,11 @@ public:
     void set_travel(double min_nm, double max_nm);
     double travel_min_nm() const { return config_.travel_min_nm; }
     double travel_max_nm() const { return config_.travel_max_nm; }
+
+    /// The stage is held at its closed-loop target (no drift) until any motion command
+    /// (halt included) or `false` releases it.
+    void set_closed_loop_hold(bool hold);
+    bool closed_loop_hold() const { return hold_; }
 
     /// Position at the clock's now (nm).
     double position_nm() const;
@@ -131,6 +140,8 @@ private:
     /// One step of `delta_nm` from `position_nm` within end stops and limit; false if the
     /// range limit cut it short.
     bool step(double& position_nm, double delta_nm) const;
+    /// Position at rest at `now`, drift included.
+    double rest_position(Ticks now) const;
     /// Replay the burst up to now.
     void catch_up() const;
     void settle();
@@ -144,6 +155,8 @@ private:
     Motion motion_ = Motion::Rest;
     Outcome outcome_ = Outcome::None;
     double rest_nm_;                  ///< position at rest, or where a motion started
+    Ticks rest_since_ = 0;            ///< when the stage came to rest at rest_nm_ (drift base)
+    bool hold_ = false;               ///< holding a closed-loop target: no drift
     // Closed-loop move.
     MotionProfile profile_;
     Ticks profile_start_ = 0;

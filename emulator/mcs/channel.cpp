@@ -17,6 +17,7 @@ models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
     s.step_jitter_fraction = static_cast<double>(c.step_jitter_percent) / 100.0;
     s.jitter_seed = 0x9e3779b9u ^ static_cast<std::uint32_t>(index);
     s.scan_range_nm = static_cast<double>(c.scan_range_nm);
+    s.drift_nm_per_s = static_cast<double>(c.drift_nm_per_s);
     return s;
 }
 
@@ -412,6 +413,7 @@ void Channel::arrive(Ticks now)
         return;
     }
     motion_ = Motion::Holding;
+    body_.set_closed_loop_hold(true);   // a held position does not drift
     hold_until_ = hold_ms_ == kHoldForever_ms ? kNever : now + clock_.ticks_from_ms(hold_ms_);
 }
 
@@ -806,6 +808,7 @@ void Channel::tick(Ticks now)
     case Motion::Holding:
         if (now >= hold_until_) {
             motion_ = Motion::Idle;
+            body_.set_closed_loop_hold(false);
             finish_movement();
         }
         return;

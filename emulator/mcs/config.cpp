@@ -20,11 +20,11 @@ constexpr std::int64_t kTravelLimitNm = 2'000'000'000;
 constexpr std::int64_t kMaxSystemId = std::numeric_limits<std::uint32_t>::max();
 
 constexpr std::array<std::string_view, 3> kMcsKeys{"system_id", "interface_version", "channels"};
-constexpr std::array<std::string_view, 16> kChannelKeys{
+constexpr std::array<std::string_view, 17> kChannelKeys{
     "kind", "gripper_contact_cv", "gripper_stiffness_dun_per_cv", "sensor_type", "travel_nm", "start_position_nm", "max_speed_nm_per_s",
     "closed_loop_speed_nm_per_s", "closed_loop_acceleration_um_per_s2", "travel_udeg",
     "reference_position", "coded_mark_spacing", "calibration_ms", "step_width_nm",
-    "step_jitter_percent", "scan_range_nm"};
+    "step_jitter_percent", "scan_range_nm", "drift_nm_per_s"};
 
 /// A channel integer whose range does not depend on other keys.
 struct ChannelIntKey {
@@ -34,12 +34,13 @@ struct ChannelIntKey {
     std::int64_t McsChannelConfig::*member;
 };
 
-constexpr std::array<ChannelIntKey, 11> kChannelIntKeys{{
+constexpr std::array<ChannelIntKey, 12> kChannelIntKeys{{
     {"gripper_contact_cv", 0, 22'500, &McsChannelConfig::gripper_contact_cv},
     {"gripper_stiffness_dun_per_cv", 1, 100'000, &McsChannelConfig::gripper_stiffness_dun_per_cv},
     {"step_width_nm", 1, 100'000, &McsChannelConfig::step_width_nm},
     {"step_jitter_percent", 0, 50, &McsChannelConfig::step_jitter_percent},
     {"scan_range_nm", 1, 1'000'000, &McsChannelConfig::scan_range_nm},
+    {"drift_nm_per_s", -1'000'000, 1'000'000, &McsChannelConfig::drift_nm_per_s},
     {"reference_position", -2'000'000'000, 2'000'000'000, &McsChannelConfig::reference_position},
     {"coded_mark_spacing", 1'000, 100'000'000, &McsChannelConfig::coded_mark_spacing},
     {"calibration_ms", 0, 60'000, &McsChannelConfig::calibration_ms},

@@ -48,6 +48,9 @@ struct McsChannelConfig {
     std::int64_t step_jitter_percent = 3;
     /// Scanning: piezo deflection at 100 V (level 4095), nm (µ° on angular channels).
     std::int64_t scan_range_nm = 1500;
+    /// Open loop: how fast the stage creeps while not under closed-loop control (at rest,
+    /// not holding a target), nm/s (µ°/s), signed; it stops at an end stop. 0: no drift.
+    std::int64_t drift_nm_per_s = 0;
 };
 
 /// The GIV answer `IV<high>,<low>,<update>`; the default is the version the manual documents.

@@ -200,3 +200,26 @@ TEST_CASE("two connections share the device, each gets its own answers", "[devic
     second->receive("0\n");
     CHECK(other == ":P0,1000000\n");
 }
+
+TEST_CASE("an open-loop positioner drifts at drift_nm_per_s after a burst, not while it holds a target",
+          "[device][mcs]")
+{
+    auto config = mcs_device_config();
+    rigsim::mcs::config_of(config).channels[0].drift_nm_per_s = 1000;
+    rigsim::mcs::config_of(config).channels[0].step_jitter_percent = 0;
+    McsHarness h(config);
+    CHECK(h.send(":MST0,10,4095,100\n") == ":E0,0\n");   // 10 steps of 1 µm, over at 100 ms
+    h.advance_ms(100);
+    CHECK(h.send(":GS0\n") == ":S0,0\n");
+    CHECK(h.send(":GP0\n") == ":P0,10000\n");             // no drift while stepping
+    h.advance_ms(2000);
+    CHECK(h.send(":GP0\n") == ":P0,12000\n");             // 2 s at rest: 2000 nm more
+    CHECK(h.send(":GP1\n") == ":P1,0\n");                 // channel 1 has no drift
+    CHECK(h.send(":MPA0,20000,60000\n") == ":E0,0\n");    // then held for ever
+    h.advance_ms(2000);
+    CHECK(h.send(":GS0\n") == ":S0,3\n");
+    CHECK(h.send(":GP0\n") == ":P0,20000\n");             // the held position stays
+    CHECK(h.send(":S0\n") == ":E0,0\n");                  // stopped: no longer held
+    h.advance_ms(1000);
+    CHECK(h.send(":GP0\n") == ":P0,21000\n");
+}

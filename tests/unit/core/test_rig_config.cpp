@@ -219,7 +219,7 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
               "travel_nm, start_position_nm, max_speed_nm_per_s, closed_loop_speed_nm_per_s, "
               "closed_loop_acceleration_um_per_s2, travel_udeg, reference_position, "
                              "coded_mark_spacing, calibration_ms, step_width_nm, step_jitter_percent, "
-                             "scan_range_nm)");
+                             "scan_range_nm, drift_nm_per_s)");
     }
     SECTION("a key needing escapes is quoted as JSON")
     {
@@ -614,4 +614,21 @@ TEST_CASE("rig config: mcs interface_version is \"<high>.<low>.<update>\", defau
             CHECK(std::string(e.what()).rfind("rig.json: /devices/0/mcs/interface_version: expected a version \"<high>.<low>.<update>\" of three numbers 0..65535, got ", 0) == 0);
         }
     }
+}
+
+TEST_CASE("rig config: drift_nm_per_s is a signed channel integer, 0 by default", "[unit][config]")
+{
+    auto rig = minimal_rig();
+    CHECK(rigsim::mcs::config_of(parse_rig_config(rig.dump(), "rig.json").devices[0]).channels[0].drift_nm_per_s == 0);
+    rig["devices"][0]["mcs"]["channels"][0]["drift_nm_per_s"] = -250;
+    CHECK(rigsim::mcs::config_of(parse_rig_config(rig.dump(), "rig.json").devices[0]).channels[0].drift_nm_per_s
+          == -250);
+    const std::string expected =
+        "rig.json: /devices/0/mcs/channels/0/drift_nm_per_s: expected an integer -1000000..1000000, got ";
+    rig["devices"][0]["mcs"]["channels"][0]["drift_nm_per_s"] = "fast";
+    CHECK(error_of(rig) == expected + "\"fast\"");
+    rig["devices"][0]["mcs"]["channels"][0]["drift_nm_per_s"] = 0.5;
+    CHECK(error_of(rig) == expected + "0.5");
+    rig["devices"][0]["mcs"]["channels"][0]["drift_nm_per_s"] = 1'000'001;
+    CHECK(error_of(rig) == expected + "1000001");
 }

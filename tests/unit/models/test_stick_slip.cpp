@@ -208,3 +208,57 @@ TEST_CASE("stick-slip: a scan moves the axis by the scan range per 4095 levels a
     CHECK(p.position_nm() == Approx(1500.0));
     CHECK(p.start_scan(4095, 10));   // already there: over at once
 }
+
+TEST_CASE("stick-slip: an open-loop positioner at rest drifts at drift_nm_per_s and stops at its end stop; "
+          "a closed-loop hold does not drift",
+          "[unit][models]")
+{
+    Clock clock;
+    World world(clock);
+    StickSlipConfig c = plain();
+    c.travel_max_nm = 5000;
+    c.drift_nm_per_s = 1000;
+    auto& p = world.emplace<Counted>("mcs/0", clock, c);
+    CHECK(p.next_event(clock.now()) == kNever);
+    clock.advance(2000);   // 2 s at 1000 nm/s
+    CHECK(p.position_nm() == Approx(2000.0));
+    clock.advance(10'000);   // at the end stop after 3 s more: it stays there, without an event
+    CHECK(p.position_nm() == 5000.0);
+    CHECK(p.woken.empty());
+    CHECK(p.next_event(clock.now()) == kNever);
+
+    // A closed-loop move to 1000 nm, then held there: no drift while the hold lasts.
+    const Ticks end = p.move_to(1000, 1'000'000, 0);
+    clock.advance(end - clock.now());
+    CHECK(p.take_outcome() == StickSlipPositioner::Outcome::Arrived);
+    p.set_closed_loop_hold(true);
+    clock.advance(3000);
+    CHECK(p.position_nm() == 1000.0);
+    // The hold ends: the drift starts from there, then.
+    p.set_closed_loop_hold(false);
+    clock.advance(500);
+    CHECK(p.position_nm() == Approx(1500.0));
+    CHECK(p.woken == std::vector<Ticks>{end});
+}
+
+TEST_CASE("stick-slip: a negative drift stops at the minimum end stop; a drift of 0 never moves",
+          "[unit][models]")
+{
+    Clock clock;
+    World world(clock);
+    StickSlipConfig c = plain();
+    c.travel_min_nm = -300;
+    c.drift_nm_per_s = -200;
+    auto& p = world.emplace<Counted>("mcs/0", clock, c);
+    clock.advance(1000);
+    CHECK(p.position_nm() == Approx(-200.0));
+    p.set_closed_loop_hold(true);
+    p.halt();   // releases the hold
+    CHECK_FALSE(p.closed_loop_hold());
+    clock.advance(5000);
+    CHECK(p.position_nm() == -300.0);
+    auto& still = world.emplace<Counted>("mcs/1", clock, plain());
+    clock.advance(5000);
+    CHECK(still.position_nm() == 0.0);
+    CHECK(p.woken.empty());
+}
