@@ -209,7 +209,7 @@ TEST_CASE("stick-slip: a scan moves the axis by the scan range per 4095 levels a
     CHECK(p.start_scan(4095, 10));   // already there: over at once
 }
 
-TEST_CASE("stick-slip: an open-loop positioner at rest drifts at drift_nm_per_s and stops at its end stop; "
+TEST_CASE("stick-slip: an open-loop positioner at rest drifts at drift_nm_per_s and stops at its end stop, "
           "a closed-loop hold does not drift",
           "[unit][models]")
 {
@@ -241,7 +241,7 @@ TEST_CASE("stick-slip: an open-loop positioner at rest drifts at drift_nm_per_s 
     CHECK(p.woken == std::vector<Ticks>{end});
 }
 
-TEST_CASE("stick-slip: a negative drift stops at the minimum end stop; a drift of 0 never moves",
+TEST_CASE("stick-slip: a negative drift stops at the minimum end stop, and a drift of 0 never moves",
           "[unit][models]")
 {
     Clock clock;
