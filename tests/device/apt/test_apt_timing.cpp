@@ -11,22 +11,6 @@ using namespace rigsim::test;
 
 namespace {
 
-/// The frames of a reply stream (hex in, hex per frame out), split by their headers.
-std::vector<std::string> frames(const std::string& reply_hex)
-{
-    const auto b = bytes(reply_hex);
-    std::vector<std::string> out;
-    std::size_t i = 0;
-    while (i + 6 <= b.size()) {
-        const bool data = (static_cast<unsigned char>(b[i + 4]) & 0x80) != 0;
-        const std::size_t n = 6 + (data ? get_u16(b, i + 2) : 0);
-        out.push_back(hex(b.substr(i, n)));
-        i += n;
-    }
-    REQUIRE(i == b.size());
-    return out;
-}
-
 /// MOVE_ABSOLUTE for channel 1 of a TDC001 to `counts`.
 std::string move_absolute(std::int32_t counts)
 {
