@@ -251,7 +251,7 @@ std::string AptDevice::saved_data(SavedSet set)
 
 void AptDevice::remember(std::size_t bay, const msg::Message& m)
 {
-    std::visit(
+    msg::visit(
         [&](const auto& typed) {
             using T = std::decay_t<decltype(typed)>;
             if constexpr (IsAlternative<T, SavedSet>::value)
@@ -382,7 +382,7 @@ void AptDevice::handle_bay(std::size_t bay, const msg::Message& m, Request& r)
 
 bool AptDevice::handle_system(const msg::Message& m, std::string_view peer)
 {
-    return std::visit(
+    return msg::visit(
         [&](const auto& typed) {
             if constexpr (std::decay_t<decltype(typed)>::family == msg::Family::System) {
                 on(typed, peer);

@@ -28,7 +28,7 @@ BrushlessModule::BrushlessModule(const UnitIdentity& unit, std::size_t bay, std:
 void BrushlessModule::handle(const msg::Message& m, Request& r)
 {
     begin(r, m);
-    std::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
+    msg::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
 }
 
 void BrushlessModule::on(const msg::SetPmdPositionLoopParams& m)

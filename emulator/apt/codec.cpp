@@ -303,12 +303,12 @@ Message decode(const Frame& f)
 
 std::string encode(const Message& m, std::uint8_t dest, std::uint8_t source)
 {
-    return std::visit([&](const auto& typed) { return encode(typed, dest, source); }, m);
+    return msg::visit([&](const auto& typed) { return encode(typed, dest, source); }, m);
 }
 
 std::uint16_t message_id(const Message& m)
 {
-    return std::visit(
+    return msg::visit(
         [](const auto& typed) -> std::uint16_t {
             if constexpr (std::is_same_v<std::decay_t<decltype(typed)>, Untyped>)
                 return typed.id;

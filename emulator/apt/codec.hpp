@@ -1152,39 +1152,135 @@ struct Untyped {
     template <class S> static auto fields(S& s) { return std::tie(s.id, s.param1, s.param2, s.has_data, s.data); }
 };
 
-/// Every message decode() can return.
-using Message = std::variant<
-    // generic
-    ModIdentify, ModSetChanEnableState, ModReqChanEnableState, ModGetChanEnableState, HwDisconnect, HwResponse,
-    HwRichResponse, HwStartUpdateMsgs, HwStopUpdateMsgs, HwReqInfo, HwGetInfo, RackReqBayUsed, RackGetBayUsed,
-    HubReqBayUsed, HubGetBayUsed, RackReqStatusBits, RackGetStatusBits, RackSetDigOutputs, RackReqDigOutputs,
-    RackGetDigOutputs, HwYesFlashProgramming, HwNoFlashProgramming,
-    // motor trios
-    SetPosCounter, ReqPosCounter, GetPosCounter, SetEncCounter, ReqEncCounter, GetEncCounter, SetVelParams,
-    ReqVelParams, GetVelParams, SetJogParams, ReqJogParams, GetJogParams, SetGenMoveParams, ReqGenMoveParams,
-    GetGenMoveParams, SetMoveRelParams, ReqMoveRelParams, GetMoveRelParams, SetMoveAbsParams, ReqMoveAbsParams,
-    GetMoveAbsParams, SetHomeParams, ReqHomeParams, GetHomeParams, SetLimSwitchParams, ReqLimSwitchParams,
-    GetLimSwitchParams, SetDcPidParams, ReqDcPidParams, GetDcPidParams, SetAvModes, ReqAvModes, GetAvModes,
-    SetPotParams, ReqPotParams, GetPotParams, SetButtonParams, ReqButtonParams, GetButtonParams,
-    // PMD trios
-    SetPmdPositionLoopParams, ReqPmdPositionLoopParams, GetPmdPositionLoopParams, SetPmdMotorOutputParams,
-    ReqPmdMotorOutputParams, GetPmdMotorOutputParams, SetPmdTrackSettleParams, ReqPmdTrackSettleParams,
-    GetPmdTrackSettleParams, SetPmdProfileModeParams, ReqPmdProfileModeParams, GetPmdProfileModeParams,
-    SetPmdCurrentLoopParams, ReqPmdCurrentLoopParams, GetPmdCurrentLoopParams, SetPmdSettledCurrentLoopParams,
-    ReqPmdSettledCurrentLoopParams, GetPmdSettledCurrentLoopParams, SetPmdStageAxisParams, ReqPmdStageAxisParams,
-    GetPmdStageAxisParams,
-    // moves, status
-    MoveHome, MoveHomed, MoveRelative, MoveAbsolute, MoveJog, MoveVelocity, MoveStop, MoveCompleted, MoveStopped,
-    SetEepromParams, ReqStatusUpdate, GetStatusUpdate, ReqDcStatusUpdate, GetDcStatusUpdate, AckDcStatusUpdate,
-    ReqStatusBits, GetStatusBits, SuspendEndOfMoveMsgs, ResumeEndOfMoveMsgs,
-    // solenoid
-    SolSetOperatingMode, SolReqOperatingMode, SolGetOperatingMode, SetSolCycleParams, ReqSolCycleParams,
-    GetSolCycleParams, SolSetInterlockMode, SolReqInterlockMode, SolGetInterlockMode, SolSetState, SolReqState,
-    SolGetState,
-    // piezo and strain gauge
-    SetPzOutputVolts, ReqPzOutputVolts, GetPzOutputVolts, SetPzOutputPos, ReqPzOutputPos, GetPzOutputPos, SetPzInputVoltsSrc, ReqPzInputVoltsSrc, GetPzInputVoltsSrc, SetPzPiConsts, ReqPzPiConsts, GetPzPiConsts, SetPzOutputLut, ReqPzOutputLut, GetPzOutputLut, SetPzOutputLutParams, ReqPzOutputLutParams, GetPzOutputLutParams, SetTpzDispSettings, ReqTpzDispSettings, GetTpzDispSettings, SetTpzIoSettings, ReqTpzIoSettings, GetTpzIoSettings, SetPzIoSettings, ReqPzIoSettings, GetPzIoSettings, SetPzOutputMaxVolts, ReqPzOutputMaxVolts, GetPzOutputMaxVolts, SetTpzSlewRates, ReqTpzSlewRates, GetTpzSlewRates, SetTsgIoSettings, ReqTsgIoSettings, GetTsgIoSettings, PzSetPosControlMode, PzReqPosControlMode, PzGetPosControlMode, PzReqPzStatusBits, PzAckPzStatusUpdate, PzStartLutOutput, PzStopLutOutput, PzSetZero, PzReqMaxTravel, MotSetPzStageParamDefaults, PzSetLutValueType, TsgReqReading, PzGetPzStatusBits, PzGetPzStatusUpdate, PzSetEepromParams, PzGetMaxTravel, TsgGetReading,
-    // the rest of the table
-    Untyped>;
+// ---- The decoded message: a variant of the manual's chapters, each a variant of its messages ----
+//
+// One flat std::variant of all 166 messages would cost minutes of compile time and hundreds of
+// megabytes of debug information per file that visits it (libstdc++ instantiates its storage and
+// accessors per alternative, each named after all 166 types). Two levels, each a struct with a short
+// name, cost a few percent of that. msg::visit() walks both levels; get_if<T>() and holds<T>() find
+// one message.
+
+/// Generic System Control Messages (p. 15-26).
+struct GenericMessage : std::variant<ModIdentify, ModSetChanEnableState, ModReqChanEnableState, ModGetChanEnableState,
+                                     HwDisconnect, HwResponse, HwRichResponse, HwStartUpdateMsgs, HwStopUpdateMsgs,
+                                     HwReqInfo, HwGetInfo, RackReqBayUsed, RackGetBayUsed, HubReqBayUsed,
+                                     HubGetBayUsed, RackReqStatusBits, RackGetStatusBits, RackSetDigOutputs,
+                                     RackReqDigOutputs, RackGetDigOutputs, HwYesFlashProgramming,
+                                     HwNoFlashProgramming> {
+    using variant::variant;
+};
+/// The motor parameter trios (p. 27-60).
+struct MotorTrioMessage
+    : std::variant<SetPosCounter, ReqPosCounter, GetPosCounter, SetEncCounter, ReqEncCounter, GetEncCounter,
+                   SetVelParams, ReqVelParams, GetVelParams, SetJogParams, ReqJogParams, GetJogParams,
+                   SetGenMoveParams, ReqGenMoveParams, GetGenMoveParams, SetMoveRelParams, ReqMoveRelParams,
+                   GetMoveRelParams, SetMoveAbsParams, ReqMoveAbsParams, GetMoveAbsParams, SetHomeParams,
+                   ReqHomeParams, GetHomeParams, SetLimSwitchParams, ReqLimSwitchParams, GetLimSwitchParams,
+                   SetDcPidParams, ReqDcPidParams, GetDcPidParams, SetAvModes, ReqAvModes, GetAvModes, SetPotParams,
+                   ReqPotParams, GetPotParams, SetButtonParams, ReqButtonParams, GetButtonParams> {
+    using variant::variant;
+};
+/// The brushless (PMD) parameter trios (p. 61-76).
+struct PmdTrioMessage
+    : std::variant<SetPmdPositionLoopParams, ReqPmdPositionLoopParams, GetPmdPositionLoopParams,
+                   SetPmdMotorOutputParams, ReqPmdMotorOutputParams, GetPmdMotorOutputParams,
+                   SetPmdTrackSettleParams, ReqPmdTrackSettleParams, GetPmdTrackSettleParams,
+                   SetPmdProfileModeParams, ReqPmdProfileModeParams, GetPmdProfileModeParams,
+                   SetPmdCurrentLoopParams, ReqPmdCurrentLoopParams, GetPmdCurrentLoopParams,
+                   SetPmdSettledCurrentLoopParams, ReqPmdSettledCurrentLoopParams, GetPmdSettledCurrentLoopParams,
+                   SetPmdStageAxisParams, ReqPmdStageAxisParams, GetPmdStageAxisParams> {
+    using variant::variant;
+};
+/// Moves, end-of-move and status messages (p. 41-83).
+struct MoveStatusMessage
+    : std::variant<MoveHome, MoveHomed, MoveRelative, MoveAbsolute, MoveJog, MoveVelocity, MoveStop, MoveCompleted,
+                   MoveStopped, SetEepromParams, ReqStatusUpdate, GetStatusUpdate, ReqDcStatusUpdate,
+                   GetDcStatusUpdate, AckDcStatusUpdate, ReqStatusBits, GetStatusBits, SuspendEndOfMoveMsgs,
+                   ResumeEndOfMoveMsgs> {
+    using variant::variant;
+};
+/// Solenoid Control Messages (p. 84-92).
+struct SolenoidMessage
+    : std::variant<SolSetOperatingMode, SolReqOperatingMode, SolGetOperatingMode, SetSolCycleParams,
+                   ReqSolCycleParams, GetSolCycleParams, SolSetInterlockMode, SolReqInterlockMode,
+                   SolGetInterlockMode, SolSetState, SolReqState, SolGetState> {
+    using variant::variant;
+};
+/// The piezo and strain gauge parameter trios (p. 93-129).
+struct PiezoTrioMessage
+    : std::variant<SetPzOutputVolts, ReqPzOutputVolts, GetPzOutputVolts, SetPzOutputPos, ReqPzOutputPos,
+                   GetPzOutputPos, SetPzInputVoltsSrc, ReqPzInputVoltsSrc, GetPzInputVoltsSrc, SetPzPiConsts,
+                   ReqPzPiConsts, GetPzPiConsts, SetPzOutputLut, ReqPzOutputLut, GetPzOutputLut, SetPzOutputLutParams,
+                   ReqPzOutputLutParams, GetPzOutputLutParams, SetTpzDispSettings, ReqTpzDispSettings,
+                   GetTpzDispSettings, SetTpzIoSettings, ReqTpzIoSettings, GetTpzIoSettings, SetPzIoSettings,
+                   ReqPzIoSettings, GetPzIoSettings, SetPzOutputMaxVolts, ReqPzOutputMaxVolts, GetPzOutputMaxVolts,
+                   SetTpzSlewRates, ReqTpzSlewRates, GetTpzSlewRates, SetTsgIoSettings, ReqTsgIoSettings,
+                   GetTsgIoSettings> {
+    using variant::variant;
+};
+/// The other piezo and strain gauge messages (p. 93-129).
+struct PiezoMessage
+    : std::variant<PzSetPosControlMode, PzReqPosControlMode, PzGetPosControlMode, PzReqPzStatusBits,
+                   PzAckPzStatusUpdate, PzStartLutOutput, PzStopLutOutput, PzSetZero, PzReqMaxTravel,
+                   MotSetPzStageParamDefaults, PzSetLutValueType, TsgReqReading, PzGetPzStatusBits,
+                   PzGetPzStatusUpdate, PzSetEepromParams, PzGetMaxTravel, TsgGetReading> {
+    using variant::variant;
+};
+
+namespace codec_detail {
+template <class T, class V> struct IsIn : std::false_type {};
+template <class T, class... Ts> struct IsIn<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
+/// The chapter (Group) whose variant holds message T; no `type` if none does.
+template <class T, class... Groups> struct GroupOf {};
+template <class T, class G, class... Groups>
+struct GroupOf<T, G, Groups...>
+    : std::conditional_t<IsIn<T, typename G::variant>::value, std::common_type<G>, GroupOf<T, Groups...>> {};
+} // namespace codec_detail
+
+/// The chapter of typed message T (GenericMessage, ...).
+template <class T>
+using GroupOf = typename codec_detail::GroupOf<T, GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage,
+                                               SolenoidMessage, PiezoTrioMessage, PiezoMessage>::type;
+
+/// Every message decode() can return: a chapter's message, or an Untyped.
+struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
+                              PiezoTrioMessage, PiezoMessage, Untyped> {
+    Message() = default;
+    /// Typed message `m`, in its chapter.
+    template <class T, class G = GroupOf<T>>
+    Message(T m) : variant(std::in_place_type<G>, std::in_place_type<T>, std::move(m))
+    {
+    }
+    Message(Untyped m) : variant(std::in_place_type<Untyped>, std::move(m)) {}
+};
+
+/// Calls f with the typed message (or Untyped) `m` holds; f returns one type for all.
+template <class F> decltype(auto) visit(F&& f, const Message& m)
+{
+    return std::visit(
+        [&f](const auto& group) -> decltype(auto) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(group)>, Untyped>)
+                return f(group);
+            else
+                return std::visit(f, static_cast<const typename std::decay_t<decltype(group)>::variant&>(group));
+        },
+        static_cast<const Message::variant&>(m));
+}
+
+/// The message T that `m` holds, or nullptr.
+template <class T> const T* get_if(const Message& m)
+{
+    if constexpr (std::is_same_v<T, Untyped>) {
+        return std::get_if<Untyped>(&static_cast<const Message::variant&>(m));
+    } else {
+        using G = GroupOf<T>;
+        const auto* group = std::get_if<G>(&static_cast<const Message::variant&>(m));
+        return group ? std::get_if<T>(&static_cast<const typename G::variant&>(*group)) : nullptr;
+    }
+}
+
+/// Whether `m` holds message T.
+template <class T> bool holds(const Message& m) { return get_if<T>(m) != nullptr; }
 
 /// The typed message of a frame (an Untyped if the codec has no struct for it).
 Message decode(const Frame& frame);

@@ -402,7 +402,7 @@ std::string DcMotorModule::status_update(std::uint8_t host) const
 void DcServoModule::handle(const msg::Message& m, Request& r)
 {
     begin(r, m);
-    std::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
+    msg::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
 }
 
 // ---- Stepper modules ----
@@ -415,7 +415,7 @@ std::string StepperModule::status_update(std::uint8_t host) const
 void StepperModule::handle(const msg::Message& m, Request& r)
 {
     begin(r, m);
-    std::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
+    msg::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
 }
 
 } // namespace rigsim::apt

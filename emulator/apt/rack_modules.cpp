@@ -14,7 +14,7 @@ RackMotherboard::RackMotherboard(const UnitIdentity& unit, std::size_t present_b
 void RackMotherboard::handle(const msg::Message& m, Request& r)
 {
     request_ = &r;
-    std::visit(
+    msg::visit(
         [this](const auto& typed) {
             using T = std::decay_t<decltype(typed)>;
             if constexpr (T::family == msg::Family::Rack || std::is_same_v<T, msg::HwReqInfo>)
@@ -77,7 +77,7 @@ EmptyBay::EmptyBay(const UnitIdentity& unit, std::size_t bay, bool answers_dc_st
 void EmptyBay::handle(const msg::Message& m, Request& r)
 {
     request_ = &r;
-    std::visit(
+    msg::visit(
         [this](const auto& typed) {
             using T = std::decay_t<decltype(typed)>;
             if constexpr (std::is_same_v<T, msg::HwReqInfo> || std::is_same_v<T, msg::ReqStatusBits>

@@ -126,7 +126,7 @@ template <class P> struct IsSet<msg::Set<P>> : std::true_type {};
 
 std::optional<std::string> out_of_range(const msg::Message& m)
 {
-    return std::visit(
+    return msg::visit(
         [](const auto& typed) -> std::optional<std::string> {
             using T = std::decay_t<decltype(typed)>;
             if constexpr (IsSet<T>::value)

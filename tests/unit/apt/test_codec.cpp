@@ -32,8 +32,8 @@ template <class T> void round_trip(const T& m, const std::string& frame_hex, std
     const auto bytes = encode(m, dest, source);
     CHECK(hex(bytes) == frame_hex);
     const auto decoded = decode_bytes(unhex(frame_hex));
-    REQUIRE(std::holds_alternative<T>(decoded));
-    CHECK((std::get<T>(decoded) == m));
+    REQUIRE(holds<T>(decoded));
+    CHECK((*get_if<T>(decoded) == m));
     CHECK(message_id(decoded) == (unhex(frame_hex)[0] & 0xFF) + (unhex(frame_hex)[1] & 0xFF) * 256);
 }
 
@@ -459,8 +459,8 @@ TEST_CASE("apt codec keeps a message it does not type whole, as Untyped", "[apt]
     f.param1 = 7;
     f.param2 = 9;
     auto m = decode(f);
-    REQUIRE(std::holds_alternative<Untyped>(m));
-    CHECK((std::get<Untyped>(m) == Untyped{0x0001, 7, 9, false, ""}));
+    REQUIRE(holds<Untyped>(m));
+    CHECK((*get_if<Untyped>(m) == Untyped{0x0001, 7, 9, false, ""}));
     CHECK(message_id(m) == 0x0001);
     CHECK(hex(encode(m, 0x50, 0x01)) == "01 00 07 09 50 01");
 
@@ -469,8 +469,8 @@ TEST_CASE("apt codec keeps a message it does not type whole, as Untyped", "[apt]
     f.param1 = f.param2 = 0;
     f.data = data;
     m = decode(f);
-    REQUIRE(std::holds_alternative<Untyped>(m));
-    CHECK(std::get<Untyped>(m).data == data);
+    REQUIRE(holds<Untyped>(m));
+    CHECK(get_if<Untyped>(m)->data == data);
     CHECK(hex(encode(m, 0x50, 0x01)) == "01 00 04 00 D0 01 01 00 E8 03");
 }
 
@@ -482,10 +482,10 @@ TEST_CASE("apt codec decodes a typed message in a form its struct does not have 
     const std::string short_data = unhex("01 00 02 00");
     f.data = short_data;
     const auto m = decode(f);
-    REQUIRE(std::holds_alternative<Untyped>(m));
-    CHECK(std::get<Untyped>(m).data == short_data);
+    REQUIRE(holds<Untyped>(m));
+    CHECK(get_if<Untyped>(m)->data == short_data);
     f.id = MGMSG_MOT_REQ_VELPARAMS;   // a REQ with a data packet
-    CHECK(std::holds_alternative<Untyped>(decode(f)));
+    CHECK(holds<Untyped>(decode(f)));
 }
 
 // ---- Piezo Control Messages (p. 93-126) and the TSG001 strain gauge reader (p. 127-129) ----
