@@ -1237,10 +1237,17 @@ struct GroupOf<T, G, Groups...>
     : std::conditional_t<IsIn<T, typename G::variant>::value, std::common_type<G>, GroupOf<T, Groups...>> {};
 } // namespace codec_detail
 
+/// Every chapter, in the order of Message's alternatives.
+using Chapters = std::tuple<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
+                            PiezoTrioMessage, PiezoMessage>;
+
+namespace codec_detail {
+template <class T, class C> struct GroupOfIn;
+template <class T, class... G> struct GroupOfIn<T, std::tuple<G...>> : GroupOf<T, G...> {};
+} // namespace codec_detail
+
 /// The chapter of typed message T (GenericMessage, ...).
-template <class T>
-using GroupOf = typename codec_detail::GroupOf<T, GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage,
-                                               SolenoidMessage, PiezoTrioMessage, PiezoMessage>::type;
+template <class T> using GroupOf = typename codec_detail::GroupOfIn<T, Chapters>::type;
 
 /// Every message decode() can return: a chapter's message, or an Untyped.
 struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,

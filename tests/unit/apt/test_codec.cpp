@@ -472,6 +472,15 @@ TEST_CASE("apt codec keeps a message it does not type whole, as Untyped", "[apt]
     REQUIRE(holds<Untyped>(m));
     CHECK(get_if<Untyped>(m)->data == data);
     CHECK(hex(encode(m, 0x50, 0x01)) == "01 00 04 00 D0 01 01 00 E8 03");
+
+    // IDs above the table's highest (0x07DE), up to the largest a header can carry.
+    f.has_data = false;
+    for (std::uint16_t id : {0x07DF, 0x0800, 0x0801, 0xFFFF}) {
+        f.id = id;
+        m = decode(f);
+        REQUIRE(holds<Untyped>(m));
+        CHECK(message_id(m) == id);
+    }
 }
 
 TEST_CASE("apt codec decodes a typed message in a form its struct does not have as Untyped", "[apt][codec]")
