@@ -1,6 +1,6 @@
 #pragma once
 // The module of one channel of an APT unit: a T-/K-Cube's only channel or a rack bay's card.
-// It acts on the typed messages (codec.hpp) addressed to it, through a std::visit over an
+// It acts on the typed messages (codec.hpp) addressed to it, through a msg::visit over an
 // overload set with one on() per message: a message of a family the module kind acts on
 // (Family) without its on() does not compile. Messages of the other families (another
 // module kind's, a rack motherboard's, a unit's own GETs, the untyped piezo and solenoid
