@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rigsim {
 
@@ -14,7 +15,7 @@ Ticker::Ticker(boost::asio::io_context& io, Clock& clock, double time_scale,
 
 Ticker::SteadyClock::time_point Ticker::wall_of(Ticks t) const
 {
-    const long double ns = static_cast<long double>(t) * 1e9L
+    const long double ns = static_cast<long double>(t - anchor_) * 1e9L
         / (static_cast<long double>(clock_.tick_hz()) * time_scale_);
     return start_ + std::chrono::nanoseconds(static_cast<std::int64_t>(std::ceil(ns)));
 }
@@ -22,12 +23,14 @@ Ticker::SteadyClock::time_point Ticker::wall_of(Ticks t) const
 Ticks Ticker::due_at(SteadyClock::time_point wall) const
 {
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wall - start_).count();
-    return static_cast<Ticks>(std::floor(static_cast<long double>(ns) * clock_.tick_hz()
-                                         * time_scale_ / 1e9L));
+    return anchor_ + static_cast<Ticks>(std::floor(static_cast<long double>(ns) * clock_.tick_hz()
+                                                   * time_scale_ / 1e9L));
 }
 
 void Ticker::sync()
 {
+    if (paused_)
+        return;
     const Ticks due = due_at(SteadyClock::now());
     if (due > clock_.now())
         clock_.advance_to(due);
@@ -35,7 +38,7 @@ void Ticker::sync()
 
 void Ticker::reschedule()
 {
-    if (stopped_)
+    if (stopped_ || paused_)
         return;
     const Ticks next = clock_.next_wakeup();
     if (next == kNever)
@@ -62,6 +65,76 @@ void Ticker::stop()
 {
     stopped_ = true;
     timer_.cancel();
+}
+
+void Ticker::reanchor()
+{
+    start_ = SteadyClock::now();
+    anchor_ = clock_.now();
+}
+
+void Ticker::disarm()
+{
+    timer_.cancel();
+    armed_for_ = SteadyClock::time_point::max();
+}
+
+void Ticker::pause()
+{
+    if (paused_)
+        return;
+    sync();
+    paused_ = true;
+    disarm();
+}
+
+void Ticker::resume()
+{
+    if (!paused_)
+        return;
+    paused_ = false;
+    reanchor();
+    reschedule();
+}
+
+void Ticker::set_time_scale(double scale)
+{
+    if (!std::isfinite(scale) || scale <= 0)
+        throw std::invalid_argument("the time scale must be a finite number above 0");
+    sync();
+    time_scale_ = scale;
+    reanchor();
+    disarm();
+    reschedule();
+}
+
+void Ticker::step(Ticks n)
+{
+    if (n < 0)
+        throw std::invalid_argument("a step must not be negative");
+    sync();
+    clock_.advance(n);
+    reanchor();
+    disarm();
+    reschedule();
+}
+
+Ticks Ticker::run_until_idle(Ticks max_ticks, const std::function<bool()>& busy)
+{
+    if (max_ticks < 0)
+        throw std::invalid_argument("the limit must not be negative");
+    sync();
+    const Ticks limit = clock_.now() + max_ticks;
+    while (clock_.now() < limit && busy()) {
+        const Ticks next = clock_.next_wakeup();
+        if (next == kNever)
+            break;   // busy, yet nothing changes by itself any more: waiting cannot help
+        clock_.advance_to(std::min(next, limit));
+    }
+    reanchor();
+    disarm();
+    reschedule();
+    return clock_.now();
 }
 
 } // namespace rigsim

@@ -13,6 +13,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include <chrono>
+#include <functional>
 
 namespace rigsim {
 
@@ -29,17 +30,39 @@ public:
     void stop();
 
     double time_scale() const { return time_scale_; }
+    bool paused() const { return paused_; }
+
+    // ---- Time under test control (the control API's POST /api/clock) ----
+    // Each change of mode re-anchors the wall-time mapping at the current tick, so the clock
+    // continues from where it is and never jumps to catch up.
+
+    /// Stop the clock at the current tick; devices still answer from the paused state.
+    void pause();
+    /// Run again from the current tick.
+    void resume();
+    /// Clock ticks per wall tick from now on; throws std::invalid_argument unless finite and > 0.
+    void set_time_scale(double scale);
+    /// Advance the clock `n` ticks now, running every due tick (paused or running).
+    void step(Ticks n);
+    /// Advance the clock as fast as the CPU allows, from wake-up to wake-up, while `busy()` and
+    /// for at most `max_ticks`; returns the tick reached.
+    Ticks run_until_idle(Ticks max_ticks, const std::function<bool()>& busy);
 
 private:
     using SteadyClock = std::chrono::steady_clock;
     SteadyClock::time_point wall_of(Ticks t) const;
     Ticks due_at(SteadyClock::time_point wall) const;
     void on_timer(const boost::system::error_code& ec);
+    /// The wall time of the current tick is now (after a change of mode or a jump).
+    void reanchor();
+    void disarm();
 
     Clock& clock_;
     double time_scale_;
     SteadyClock::duration min_period_;
-    SteadyClock::time_point start_;
+    SteadyClock::time_point start_;   ///< the wall time of tick anchor_
+    Ticks anchor_ = 0;
+    bool paused_ = false;
     boost::asio::steady_timer timer_;
     SteadyClock::time_point armed_for_ = SteadyClock::time_point::max();
     SteadyClock::time_point last_fire_;

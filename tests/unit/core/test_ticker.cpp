@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -298,4 +299,119 @@ TEST_CASE("ticker: scaled beyond one tick per min_period, it wakes at most once 
     CHECK(clock.now() >= static_cast<Ticks>(wakeups) * 5000);
     CHECK(clock.now() <= due_after(t_end - t0, kTickHz, kTimeScale));
     CHECK(every.count == clock.now() / 100);
+}
+
+// ---- Time under test control ----
+
+TEST_CASE("ticker: paused, the clock stays at its tick and the timer is disarmed, and step() runs the due ticks",
+          "[unit][ticker]")
+{
+    constexpr std::uint32_t kTickHz = 1000;
+    boost::asio::io_context io;
+    Clock clock(kTickHz);
+    Wakeups w({5, 100, 250});
+    clock.add(&w);
+    Ticker ticker(io, clock, 1.0);
+    ticker.reschedule();
+    REQUIRE(armed(io));
+
+    ticker.pause();
+    CHECK(ticker.paused());
+    const Ticks at_pause = clock.now();
+    CHECK_FALSE(armed(io));   // the timer's wait was cancelled
+    std::this_thread::sleep_for(20ms);   // 20 ticks of wall time pass: none runs
+    ticker.sync();
+    ticker.reschedule();
+    CHECK(clock.now() == at_pause);
+    CHECK_FALSE(armed(io));
+
+    // step(): exactly n ticks, each due tick on the way runs once, in order.
+    ticker.step(100 - at_pause);
+    CHECK(clock.now() == 100);
+    CHECK(w.ran == std::vector<Ticks>{5, 100});
+    CHECK_FALSE(armed(io));   // still paused
+    ticker.step(0);
+    CHECK(clock.now() == 100);
+    CHECK_THROWS_AS(ticker.step(-1), std::invalid_argument);
+}
+
+TEST_CASE("ticker: resume() continues from the paused tick, without catching up the paused wall time",
+          "[unit][ticker]")
+{
+    constexpr std::uint32_t kTickHz = 1000;
+    boost::asio::io_context io;
+    Clock clock(kTickHz);
+    Wakeups w({1'000'000});
+    clock.add(&w);
+    Ticker ticker(io, clock, 1.0);
+    ticker.pause();
+    ticker.step(40);
+    std::this_thread::sleep_for(200ms);   // 200 ticks' worth of wall time while paused
+
+    const auto r0 = SteadyClock::now();
+    ticker.resume();
+    CHECK_FALSE(ticker.paused());
+    ticker.sync();
+    const auto r1 = SteadyClock::now();
+    // From tick 40 on, at most the ticks due in the wall time since resume() (not the 200 ms).
+    CHECK(clock.now() >= 40);
+    CHECK(clock.now() <= 40 + due_after(r1 - r0, kTickHz, 1.0));
+    ticker.reschedule();
+    CHECK(armed(io));   // running again: the far wake-up is armed
+}
+
+TEST_CASE("ticker: set_time_scale() changes the pace from the current tick and refuses what is not a scale",
+          "[unit][ticker]")
+{
+    constexpr std::uint32_t kTickHz = 1000;
+    boost::asio::io_context io;
+    Clock clock(kTickHz);
+    Ticker ticker(io, clock, 1.0);
+    ticker.pause();
+    ticker.step(500);
+    ticker.resume();
+
+    const auto t0 = SteadyClock::now();
+    ticker.set_time_scale(100.0);
+    const auto t1 = SteadyClock::now();
+    CHECK(ticker.time_scale() == 100.0);
+    const Ticks at_change = clock.now();
+    CHECK(at_change >= 500);
+    CHECK(at_change <= 500 + due_after(t1 - t0 + 1ms, kTickHz, 1.0));   // no jump at the change
+    std::this_thread::sleep_for(5ms);
+    const auto w0 = SteadyClock::now();
+    ticker.sync();
+    const auto w1 = SteadyClock::now();
+    CHECK(clock.now() >= at_change + due_after(w0 - t1, kTickHz, 100.0));
+    CHECK(clock.now() <= at_change + due_after(w1 - t0, kTickHz, 100.0));
+
+    for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL})
+        CHECK_THROWS_AS(ticker.set_time_scale(bad), std::invalid_argument);
+    CHECK(ticker.time_scale() == 100.0);
+}
+
+TEST_CASE("ticker: run_until_idle() runs wake-up to wake-up until not busy, or until its limit", "[unit][ticker]")
+{
+    constexpr std::uint32_t kTickHz = 1000;
+    boost::asio::io_context io;
+    Clock clock(kTickHz);
+    // Busy until its last wake-up at tick 30,000 (a 30 s homing), with a 100 ms update beside it.
+    Wakeups move({10'000, 20'000, 30'000});
+    Every updates(100);
+    clock.add(&move);
+    clock.add(&updates);
+    Ticker ticker(io, clock, 1.0);
+    ticker.pause();
+    const auto busy = [&] { return move.next_change(clock.now()) != kNever; };
+
+    CHECK(ticker.run_until_idle(5'000, busy) == 5'000);   // the limit comes first
+    CHECK(move.ran.empty());
+    CHECK(updates.count == 50);
+    // Returns with the move done, without running the io_context: nothing waited for wall time.
+    CHECK(ticker.run_until_idle(1'000'000, busy) == 30'000);
+    CHECK(move.ran == std::vector<Ticks>{10'000, 20'000, 30'000});
+    CHECK(updates.count == 300);   // every update on the way ran
+    CHECK(ticker.run_until_idle(1'000, busy) == 30'000);   // not busy: nothing to run
+    CHECK(ticker.paused());
+    CHECK_THROWS_AS(ticker.run_until_idle(-1, busy), std::invalid_argument);
 }
