@@ -148,3 +148,30 @@ TEST_CASE("control: --control refuses a host name and a missing port", "[e2e][co
         CHECK(r.err.find("--control: expected") != std::string::npos);
     }
 }
+
+TEST_CASE("control: the rig's control port becomes ephemeral under --ephemeral-ports", "[e2e][control]")
+{
+    // Port 1 is privileged: the daemon could not bind it, so a control URL proves the port
+    // was replaced by an ephemeral one.
+    Daemon daemon(Daemon::Options{
+        R"({"control": {"port": 1}, "devices": [{"name": "mcs0", "protocol": "mcs", "mcs": {"channels": [{}]}}]})",
+        {}, {}});
+    const auto control = control_endpoint(daemon);
+    CHECK(control.host == "127.0.0.1");
+    CHECK(control.port != 1);
+    TcpClient api(control);
+    CHECK(http(api, "GET", "/api/clock").status == 200);
+}
+
+TEST_CASE("control: a control port in use stops start-up with exit 1 naming it", "[e2e][control]")
+{
+    Daemon first(Daemon::Options{{}, {}, {"--control", "127.0.0.1:0"}});
+    const auto taken = control_endpoint(first);
+    TempDir dir;
+    const auto r = run_rigsimd({"--control", taken.tcp, "--ephemeral-ports", "--pty-dir", dir.path()});
+    INFO(r.err);
+    CHECK(r.exited);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("control API: cannot listen on tcp " + taken.tcp) != std::string::npos);
+    CHECK(first.running());
+}
