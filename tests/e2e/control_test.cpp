@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <csignal>
 #include <cstdlib>
 #include <string>
 
@@ -174,4 +175,19 @@ TEST_CASE("control: a control port in use stops start-up with exit 1 naming it",
     CHECK(r.exit_code == 1);
     CHECK(r.err.find("control API: cannot listen on tcp " + taken.tcp) != std::string::npos);
     CHECK(first.running());
+}
+
+TEST_CASE("control: SIGTERM closes open control connections and the daemon exits 0", "[e2e][control]")
+{
+    Daemon daemon(Daemon::Options{{}, {}, {"--control", "127.0.0.1:0"}});
+    const auto control = control_endpoint(daemon);
+    TcpClient idle(control);
+    CHECK(http(idle, "GET", "/api/clock").status == 200);   // kept alive, now waiting
+    TcpClient half(control);
+    half.send("GET /api/cl");                                // a request cut in the middle
+    const auto status = daemon.stop(SIGTERM);
+    REQUIRE(status);
+    CHECK(describe_wait_status(*status) == "exited 0");
+    CHECK(idle.wait_for_eof(kAnswerTimeout));
+    CHECK(half.wait_for_eof(kAnswerTimeout));
 }
