@@ -1,6 +1,8 @@
 // rigsimd: emulated laboratory motion controllers on pseudo-terminals and TCP sockets.
 // Flags, config, the rig, the loop; exceptions stop here.
 
+#include "emulator/control/control_api.hpp"
+#include "emulator/control/http_server.hpp"
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig.hpp"
@@ -17,6 +19,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,11 +70,16 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
   --check-config FILE    validate FILE and exit: 0 if valid, 2 with a message naming the
                          JSON pointer if not
   --endpoints-json FILE  once every endpoint listens, write FILE (atomically) with
-                         {"devices":[{"name","protocol","model","tcp","pty"}]}
+                         {"devices":[{"name","protocol","model","tcp","pty"}]}, and
+                         "control": "http://HOST:PORT" when the control API is on
   --pty-dir DIR          put each device's pty symlink at DIR/<name> unless the config
                          names a path (default /tmp/rigsim; created if missing)
   --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port)
   --bind ADDR            listen for TCP on ADDR (default 127.0.0.1)
+  --control ADDR:PORT    serve the HTTP control API (docs/control-api.md) on ADDR:PORT;
+                         ADDR an IP address ([::1] for IPv6), PORT 0 picks a free port;
+                         wins over the config's "control" (default: off unless the
+                         config has "control", then on 127.0.0.1)
   --max-connections N    TCP connections open at once, all devices together; more are
                          accepted and closed at once (1..65536; default 256)
   --max-connections-per-device N
@@ -99,7 +108,14 @@ Exit status: 0 on success or after a signal, 1 on a run-time failure (e.g. a por
 use), 2 on a bad flag or config.
 )";
 
+/// Where the control API listens.
+struct ControlListen {
+    boost::asio::ip::address address = boost::asio::ip::make_address("127.0.0.1");
+    std::uint16_t port = 0;
+};
+
 struct Options {
+    std::optional<ControlListen> control;   ///< --control
     std::optional<std::string> config;
     std::optional<std::string> check_config;
     std::optional<std::string> endpoints_json;
@@ -146,6 +162,27 @@ std::uint32_t parse_uint(std::string_view flag, const std::string& value, std::u
         throw UsageError{std::string(flag) + ": expected an integer " + std::to_string(lo) + ".."
                          + std::to_string(hi) + ", got " + echo(value)};
     return static_cast<std::uint32_t>(v);
+}
+
+/// "ADDR:PORT" (IPv6: "[ADDR]:PORT"): an IP literal, no host name, and a port 0..65535.
+ControlListen parse_control(const std::string& value)
+{
+    const UsageError bad{"--control: expected ADDR:PORT with an IP address (e.g. 127.0.0.1:0), got " + echo(value)};
+    const auto colon = value.rfind(':');
+    if (colon == std::string::npos)
+        throw bad;
+    std::string host = value.substr(0, colon);
+    if (host.size() >= 2 && host.front() == '[' && host.back() == ']')
+        host = host.substr(1, host.size() - 2);
+    else if (host.find(':') != std::string::npos)
+        throw bad;   // an IPv6 address needs brackets, or its last group reads as the port
+    boost::system::error_code ec;
+    ControlListen listen;
+    listen.address = boost::asio::ip::make_address(host, ec);
+    if (ec)
+        throw bad;
+    listen.port = static_cast<std::uint16_t>(parse_uint("--control", value.substr(colon + 1), 0, 65535));
+    return listen;
 }
 
 /// Parses argv; returns nullopt when --help or --version has been answered.
@@ -203,7 +240,9 @@ std::optional<Options> parse_args(int argc, char** argv)
             o.rig.bind = boost::asio::ip::make_address(v, ec);
             if (ec)
                 throw UsageError{"--bind: expected an IP address, got " + echo(v)};
-        } else if (arg == "--max-connections")
+        } else if (arg == "--control")
+            o.control = parse_control(value());
+        else if (arg == "--max-connections")
             o.rig.max_connections = parse_uint(arg, value(), 1, 65536);
         else if (arg == "--max-connections-per-device")
             o.rig.max_connections_per_device = parse_uint(arg, value(), 1, 65536);
@@ -226,6 +265,46 @@ std::optional<Options> parse_args(int argc, char** argv)
     return o;
 }
 
+/// Where the control API listens, if it is on: --control, else the config's "control" on
+/// 127.0.0.1 (port 0 under --ephemeral-ports).
+std::optional<ControlListen> control_listen(const rigsim::RigConfig& config, const Options& opts)
+{
+    if (opts.control)
+        return opts.control;
+    if (!config.control)
+        return std::nullopt;
+    ControlListen listen;
+    listen.port = opts.rig.ephemeral_ports ? 0 : config.control->port;
+    return listen;
+}
+
+/// The control API on `listen`, started; throws if it cannot listen.
+std::unique_ptr<rigsim::control::HttpServer> start_control(boost::asio::io_context& io, rigsim::Rig& rig,
+                                                           const ControlListen& listen,
+                                                           std::shared_ptr<spdlog::logger> log)
+{
+    auto api = std::make_shared<rigsim::control::ControlApi>(rig);
+    auto router = [api](std::string_view method, std::string_view target, std::string_view body) {
+        return api->handle(method, target, body);
+    };
+    std::unique_ptr<rigsim::control::HttpServer> server;
+    try {
+        server = std::make_unique<rigsim::control::HttpServer>(io, listen.address, listen.port, router, log);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("control API: cannot listen on tcp "
+                                 + rigsim::tcp_address_text(listen.address, listen.port) + ": " + e.what());
+    }
+    server->start();
+    return server;
+}
+
+/// "http://127.0.0.1:PORT": where a client on this machine reaches `server`.
+std::string control_url(const rigsim::control::HttpServer& server)
+{
+    const auto ep = server.local_endpoint();
+    return "http://" + rigsim::tcp_address_text(rigsim::client_address(ep.address()), ep.port());
+}
+
 /// Runs the rig until a shutdown signal; the exit status.
 int run(const rigsim::RigConfig& config, const Options& opts)
 {
@@ -241,14 +320,18 @@ int run(const rigsim::RigConfig& config, const Options& opts)
         signals.add(signo);
     std::signal(SIGPIPE, SIG_IGN);
     std::optional<rigsim::Rig> rig;
+    std::unique_ptr<rigsim::control::HttpServer> control;
     std::optional<OwnedFile> endpoints_file;
     auto shut_down = [&] {
+        if (control)
+            control->stop();
         if (rig)
             rig->stop();
         boost::system::error_code ignored;
         signals.cancel(ignored);
         io.restart();
         io.run();   // every operation is cancelled: this runs their handlers, then returns
+        control.reset();
         rig.reset();
         if (endpoints_file)
             endpoints_file->remove();
@@ -264,14 +347,22 @@ int run(const rigsim::RigConfig& config, const Options& opts)
         });
 
         rig->start();
+        std::string url;
+        if (const auto listen = control_listen(config, opts)) {
+            control = start_control(io, *rig, *listen, log);
+            url = control_url(*control);
+            log->info("control API on {}", url);
+        }
         for (const auto& e : rig->endpoints())
             std::cout << e.name << " (" << e.protocol << " " << e.model << "): tcp "
                       << e.tcp << " pty " << e.pty << "\n";
+        if (control)
+            std::cout << "control: " << url << "\n";
         std::cout.flush();
         if (opts.endpoints_json) {
             for (const auto& stale : rigsim::remove_stale_temporaries(*opts.endpoints_json))
                 log->info("removed {}, left by a daemon that was killed while writing it", stale);
-            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints()));
+            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints(), url));
             endpoints_file.emplace(*opts.endpoints_json);
         }
         log->info("rig running: {} device(s), tick {} Hz, time scale {}", rig->endpoints().size(),

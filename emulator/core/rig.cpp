@@ -146,13 +146,16 @@ void Rig::stop()
     watcher_.stop();
 }
 
-std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints)
+std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints, const std::string& control_url)
 {
     auto devices = nlohmann::json::array();
     for (const auto& e : endpoints)
         devices.push_back({{"name", e.name}, {"protocol", e.protocol},
                            {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}});
-    return nlohmann::json{{"devices", devices}}.dump(2) + "\n";
+    nlohmann::json doc{{"devices", devices}};
+    if (!control_url.empty())
+        doc["control"] = control_url;
+    return doc.dump(2) + "\n";
 }
 
 } // namespace rigsim

@@ -57,6 +57,10 @@ public:
     const std::vector<DeviceEndpoints>& endpoints() const { return endpoints_; }
     Clock& clock() { return clock_; }
     models::World& world() { return world_; }
+    /// The timer pacing the clock: pause, resume, step, scale (the control API).
+    Ticker& ticker() { return ticker_; }
+    /// Something moves: the world changes by itself at some later tick.
+    bool busy() const { return world_.next_change(clock_.now()) != kNever; }
 
 private:
     struct Entry;
@@ -79,7 +83,8 @@ boost::asio::ip::address client_address(const boost::asio::ip::address& bound);
 /// "127.0.0.1:40100", "[::1]:40100".
 std::string tcp_address_text(const boost::asio::ip::address& address, std::uint16_t port);
 
-/// The endpoints document: {"devices":[{"name","protocol","model","tcp","pty"}]}.
-std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints);
+/// The endpoints document: {"devices":[{"name","protocol","model","tcp","pty"}]}, and
+/// "control": `control_url` when the control API is on (`control_url` not empty).
+std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints, const std::string& control_url = {});
 
 } // namespace rigsim

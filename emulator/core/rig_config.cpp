@@ -30,7 +30,8 @@ constexpr std::size_t kMaxConfigBytes = 4 << 20;
 
 // The keys each object may hold; anything else is an error. A device also holds the section
 // of each family, under the family's name.
-constexpr std::array<std::string_view, 2> kRigKeys{"tick_hz", "devices"};
+constexpr std::array<std::string_view, 3> kRigKeys{"tick_hz", "devices", "control"};
+constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
 
 /// [A-Za-z0-9_.-]: safe in a file name and a logger name.
@@ -178,6 +179,12 @@ public:
             fail("/devices", "expected a non-empty array");
         for (std::size_t i = 0; i < devices.size(); ++i)
             rig.devices.push_back(load_device(devices[i], pointer_to("/devices", i)));
+        if (const auto* c = find(root, "control")) {
+            check_keys(*c, "/control", kControlKeys);
+            ControlConfig control;
+            control.port = static_cast<std::uint16_t>(get_int(require(*c, "/control", "port"), "/control/port", 0, 65535));
+            rig.control = control;
+        }
         return rig;
     }
 

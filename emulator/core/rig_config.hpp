@@ -6,6 +6,7 @@
 // the JSON pointer (docs/config.md).
 
 #include <any>
+#include <optional>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -45,9 +46,15 @@ const Section& section_of(const DeviceConfig& device)
     return std::any_cast<const Section&>(device.section);
 }
 
+/// The control API's listener ("control" in the rig JSON; docs/control-api.md).
+struct ControlConfig {
+    std::uint16_t port = 0;           ///< 0 = ephemeral
+};
+
 struct RigConfig {
     std::uint32_t tick_hz = 1000;     ///< physics tick (1..100000 Hz)
     std::vector<DeviceConfig> devices;
+    std::optional<ControlConfig> control;   ///< the control API; absent = off unless --control
 };
 
 /// A config error: `what()` is the whole message, naming the JSON pointer.

@@ -1,0 +1,205 @@
+#include "emulator/control/http_server.hpp"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <set>
+#include <utility>
+
+namespace rigsim::control {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+using boost::asio::ip::tcp;
+
+class Session;
+
+struct HttpServer::State {
+    State(boost::asio::io_context& io, Router r, std::shared_ptr<spdlog::logger> l, HttpServerLimits lim)
+        : acceptor(io), router(std::move(r)), log(std::move(l)), limits(lim) {}
+
+    tcp::acceptor acceptor;
+    Router router;
+    std::shared_ptr<spdlog::logger> log;
+    HttpServerLimits limits;
+    std::set<Session*> sessions;   ///< open connections, closed by stop()
+    bool stopped = false;
+};
+
+namespace {
+
+std::string error_body(const std::string& message)
+{
+    return nlohmann::json{{"error", message}}.dump() + "\n";
+}
+
+/// A request the parser refused: its status (413 for a body over the limit, 400 otherwise).
+unsigned status_of_parse_error(const boost::system::error_code& ec)
+{
+    return ec == http::error::body_limit ? 413 : 400;
+}
+
+bool is_parse_error(const boost::system::error_code& ec)
+{
+    return ec.category() == http::make_error_code(http::error::bad_target).category()
+           && ec != http::error::end_of_stream && ec != http::error::partial_message;
+}
+
+} // namespace
+
+/// One connection: read a request, answer it, read the next (keep-alive); any error closes it.
+class Session : public std::enable_shared_from_this<Session> {
+public:
+    Session(tcp::socket socket, std::shared_ptr<HttpServer::State> state)
+        : stream_(std::move(socket)), state_(std::move(state))
+    {
+        state_->sessions.insert(this);
+    }
+    ~Session() { state_->sessions.erase(this); }
+
+    void start() { read(); }
+
+    /// Close the socket: the pending operation completes with an error and the session ends.
+    void close()
+    {
+        boost::system::error_code ignored;
+        stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+        stream_.close();
+    }
+
+private:
+    void read()
+    {
+        parser_.emplace();
+        parser_->body_limit(state_->limits.max_body_bytes);
+        parser_->header_limit(static_cast<std::uint32_t>(state_->limits.max_header_bytes));
+        stream_.expires_after(state_->limits.idle_timeout);
+        http::async_read(stream_, buffer_, *parser_,
+                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                             self->on_read(ec);
+                         });
+    }
+
+    void on_read(const boost::system::error_code& ec)
+    {
+        if (ec) {
+            if (is_parse_error(ec) && !state_->stopped) {
+                state_->log->warn("control: bad request: {}", ec.message());
+                // After a malformed request the stream's framing is lost: answer, then close.
+                write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message())}, 11, false);
+            }
+            return;   // end of stream, timeout, reset or stop: the session ends here
+        }
+        const auto& req = parser_->get();
+        HttpReply reply;
+        try {
+            reply = state_->router(std::string_view(req.method_string().data(), req.method_string().size()),
+                                   std::string_view(req.target().data(), req.target().size()), req.body());
+        } catch (const std::exception& e) {
+            state_->log->error("control: {} {}: {}", std::string(req.method_string()), std::string(req.target()),
+                               e.what());
+            reply = HttpReply{500, error_body(std::string("internal error: ") + e.what())};
+        }
+        write(std::move(reply), req.version(), req.keep_alive());
+    }
+
+    void write(HttpReply reply, unsigned version, bool keep_alive)
+    {
+        response_ = {};
+        response_.version(version);
+        response_.result(reply.status);
+        response_.set(http::field::server, "rigsimd");
+        response_.set(http::field::content_type, "application/json");
+        response_.keep_alive(keep_alive);
+        response_.body() = std::move(reply.body);
+        response_.prepare_payload();
+        stream_.expires_after(state_->limits.idle_timeout);
+        http::async_write(stream_, response_,
+                          [self = shared_from_this(), keep_alive](const boost::system::error_code& ec, std::size_t) {
+                              if (ec || !keep_alive || self->state_->stopped) {
+                                  self->close();
+                                  return;
+                              }
+                              self->read();
+                          });
+    }
+
+    beast::tcp_stream stream_;
+    std::shared_ptr<HttpServer::State> state_;
+    beast::flat_buffer buffer_;
+    std::optional<http::request_parser<http::string_body>> parser_;
+    http::response<http::string_body> response_;
+};
+
+namespace {
+
+void accept(const std::shared_ptr<HttpServer::State>& state)
+{
+    state->acceptor.async_accept([state](const boost::system::error_code& ec, tcp::socket socket) {
+        if (ec == boost::asio::error::operation_aborted || state->stopped)
+            return;
+        if (ec) {
+            // A failed accept (e.g. out of descriptors) costs that client only; keep listening.
+            state->log->warn("control: accept failed: {}", ec.message());
+        } else if (state->sessions.size() >= state->limits.max_connections) {
+            state->log->warn("control: {} connections open, closing a new one", state->sessions.size());
+            boost::system::error_code ignored;
+            socket.close(ignored);
+        } else {
+            std::make_shared<Session>(std::move(socket), state)->start();
+        }
+        accept(state);
+    });
+}
+
+} // namespace
+
+HttpServer::HttpServer(boost::asio::io_context& io, const boost::asio::ip::address& address, std::uint16_t port,
+                       Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits)
+    : state_(std::make_shared<State>(io, std::move(router), std::move(log), limits))
+{
+    const tcp::endpoint endpoint(address, port);
+    state_->acceptor.open(endpoint.protocol());
+    state_->acceptor.set_option(tcp::acceptor::reuse_address(true));
+    state_->acceptor.bind(endpoint);
+    state_->acceptor.listen();
+}
+
+HttpServer::~HttpServer()
+{
+    stop();
+}
+
+void HttpServer::start()
+{
+    accept(state_);
+}
+
+void HttpServer::stop()
+{
+    if (state_->stopped)
+        return;
+    state_->stopped = true;
+    boost::system::error_code ignored;
+    state_->acceptor.close(ignored);
+    // close() may end a session at once; copy the set first.
+    const auto sessions = state_->sessions;
+    for (auto* s : sessions)
+        s->close();
+}
+
+tcp::endpoint HttpServer::local_endpoint() const
+{
+    return state_->acceptor.local_endpoint();
+}
+
+std::size_t HttpServer::connections() const
+{
+    return state_->sessions.size();
+}
+
+} // namespace rigsim::control

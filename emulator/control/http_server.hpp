@@ -1,0 +1,62 @@
+#pragma once
+// A small HTTP/1.1 server for the control API (Boost.Beast, on the daemon's one io_context):
+// keep-alive, one request at a time per connection, bounded bodies and connections. It knows
+// no route: each request goes to a Router. Beast stays in http_server.cpp.
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+
+#include <spdlog/logger.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace rigsim::control {
+
+/// A route's answer: an HTTP status and a JSON body.
+struct HttpReply {
+    unsigned status = 200;
+    std::string body;
+};
+
+/// (method, target, body) -> reply; called on the io_context thread, one request at a time.
+using Router = std::function<HttpReply(std::string_view method, std::string_view target, std::string_view body)>;
+
+struct HttpServerLimits {
+    std::size_t max_body_bytes = 64 * 1024;   ///< a larger body gets 413 and the connection closes
+    std::size_t max_header_bytes = 8 * 1024;  ///< larger headers get 400
+    std::size_t max_connections = 64;         ///< more are accepted and closed at once
+    std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);   ///< then closed
+};
+
+class HttpServer {
+public:
+    /// Listens on `address:port` (port 0: an ephemeral one); throws on failure to bind.
+    HttpServer(boost::asio::io_context& io, const boost::asio::ip::address& address, std::uint16_t port,
+               Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits = {});
+    ~HttpServer();
+    HttpServer(const HttpServer&) = delete;
+    HttpServer& operator=(const HttpServer&) = delete;
+
+    void start();
+    /// Close the acceptor and every connection; their handlers then run out on the io_context.
+    void stop();
+
+    boost::asio::ip::tcp::endpoint local_endpoint() const;
+    /// Connections open now.
+    std::size_t connections() const;
+
+    /// The listener and its connections (opaque; shared with the connections, which may end
+    /// after the server object).
+    struct State;
+
+private:
+    std::shared_ptr<State> state_;
+};
+
+} // namespace rigsim::control

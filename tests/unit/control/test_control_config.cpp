@@ -1,0 +1,66 @@
+// The rig JSON's "control" object and the endpoints document's "control" URL.
+#include "emulator/core/rig.hpp"
+#include "emulator/core/rig_families.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+using nlohmann::json;
+using rigsim::ConfigError;
+using rigsim::parse_rig_config;
+
+namespace {
+
+/// The smallest valid rig, with `control` as its "control" value unless null.
+std::string rig_with_control(const json& control)
+{
+    auto rig = json::parse(R"({"devices": [{"name": "mcs0", "protocol": "mcs", "mcs": {"channels": [{}]}}]})");
+    if (!control.is_null())
+        rig["control"] = control;
+    return rig.dump();
+}
+
+std::string error_of(const json& control)
+{
+    try {
+        parse_rig_config(rig_with_control(control), "rig.json");
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+} // namespace
+
+TEST_CASE("rig config: control is off unless the rig has a control object", "[unit][config][control]")
+{
+    CHECK_FALSE(parse_rig_config(rig_with_control(nullptr), "rig.json").control);
+    const auto rig = parse_rig_config(rig_with_control(json{{"port", 40200}}), "rig.json");
+    REQUIRE(rig.control);
+    CHECK(rig.control->port == 40200);
+    CHECK(parse_rig_config(rig_with_control(json{{"port", 0}}), "rig.json").control->port == 0);
+}
+
+TEST_CASE("rig config: a bad control object names the pointer", "[unit][config][control]")
+{
+    CHECK(error_of(json{{"port", 40200}, {"bind", "0.0.0.0"}})
+          == "rig.json: /control: unknown key \"bind\" (allowed: port)");
+    CHECK(error_of(json::object()) == "rig.json: /control/port: required key missing");
+    CHECK(error_of(json{{"port", 65536}}).rfind("rig.json: /control/port: expected an integer 0..65535", 0) == 0);
+    CHECK(error_of(json{{"port", -1}}).rfind("rig.json: /control/port: expected an integer 0..65535", 0) == 0);
+    CHECK(error_of(json{{"port", "80"}}).rfind("rig.json: /control/port:", 0) == 0);
+    CHECK(error_of(json(40200)).rfind("rig.json: /control: expected an object", 0) == 0);
+}
+
+TEST_CASE("endpoints json: control appears only when the control API is on", "[unit][control]")
+{
+    const std::vector<rigsim::DeviceEndpoints> devices{{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/x/mcs0"}};
+    const auto off = json::parse(rigsim::endpoints_json(devices));
+    CHECK(off == json{{"devices", json::array({json{{"name", "mcs0"}, {"protocol", "mcs"}, {"model", "MCS-3D"},
+                                                      {"tcp", "127.0.0.1:40100"}, {"pty", "/tmp/x/mcs0"}}})}});
+    const auto on = json::parse(rigsim::endpoints_json(devices, "http://127.0.0.1:40200"));
+    CHECK(on["control"] == "http://127.0.0.1:40200");
+    CHECK(on["devices"] == off["devices"]);
+}
