@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Install the Debian packages rigsim builds and tests with (python3-serial: the pyserial e2e
-# test), if any is missing (apt-get, as root or with sudo). Sourced by scripts/run.sh and
+# test; python3-pytest: the tests of python/rigsim and its pytest plugin), if any is missing (apt-get, as root or with sudo). Sourced by scripts/run.sh and
 # scripts/test.sh; safe to run again.
 set -euo pipefail
 
 packages=(g++ make cmake libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
-  python3 python3-serial)
+  python3 python3-serial python3-pytest)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,173 @@
+"""Start rigsimd on a rig with ephemeral ports and a private pty dir; stop it and clean up."""
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+from dataclasses import dataclass
+
+from rigsim.control import ControlClient
+
+
+class RigsimError(Exception):
+    """rigsimd did not start, or not as asked; the message carries its log."""
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """Where a client reaches one device."""
+
+    name: str
+    protocol: str   # "mcs", "apt"
+    model: str
+    tcp: str        # "127.0.0.1:40100"
+    pty: str        # the pty's symlink path
+
+    @property
+    def url(self):
+        """pyserial's URL for the TCP endpoint: serial.serial_for_url(endpoint.url)."""
+        return "socket://" + self.tcp
+
+    @property
+    def address(self):
+        """(host, port) of the TCP endpoint, for socket.create_connection()."""
+        host, _, port = self.tcp.rpartition(":")
+        return host.strip("[]"), int(port)
+
+
+def find_rigsimd(explicit=None):
+    """`explicit`, else $RIGSIMD, else rigsimd on PATH."""
+    path = explicit or os.environ.get("RIGSIMD") or shutil.which("rigsimd")
+    if not path:
+        raise RigsimError("rigsimd not found: pass rigsimd=PATH, set RIGSIMD, or put it on PATH")
+    return path
+
+
+class Rigsim:
+    """One rigsimd process on `rig`: a JSON file path, a dict (written to a file), or None for
+    the built-in default rig. Extra command-line flags go in `args`."""
+
+    def __init__(self, rig=None, rigsimd=None, args=(), start_timeout_s=15.0):
+        self.rigsimd = find_rigsimd(rigsimd)
+        self.rig = rig
+        self.args = list(args)
+        self.start_timeout_s = start_timeout_s
+        self.process = None
+        self.control = None
+        self.endpoints = {}
+        self.dir = None
+
+    # ---- lifecycle ----
+
+    def start(self):
+        self.dir = tempfile.mkdtemp(prefix="rigsim-")
+        cmd = [self.rigsimd, "--ephemeral-ports", "--pty-dir", os.path.join(self.dir, "pty"),
+               "--endpoints-json", self._path("endpoints.json"), "--control", "127.0.0.1:0"]
+        if isinstance(self.rig, dict):
+            with open(self._path("rig.json"), "w") as f:
+                json.dump(self.rig, f)
+            cmd += ["--config", self._path("rig.json")]
+        elif self.rig is not None:
+            cmd += ["--config", os.fspath(self.rig)]
+        with open(self._path("rigsimd.log"), "wb") as log:
+            self.process = subprocess.Popen(cmd + self.args, stdout=subprocess.DEVNULL, stderr=log)
+        try:
+            self._wait_for_endpoints()
+        except Exception:
+            self.stop()
+            raise
+        return self
+
+    def stop(self, timeout_s=10.0):
+        """SIGTERM, then SIGKILL after `timeout_s`; removes the pty dir. Returns the exit status."""
+        status = None
+        if self.process is not None:
+            if self.process.poll() is None:
+                self.process.send_signal(signal.SIGTERM)
+                try:
+                    self.process.wait(timeout_s)
+                except subprocess.TimeoutExpired:
+                    self.process.kill()
+                    self.process.wait()
+            status = self.process.returncode
+            self.process = None
+        if self.dir is not None:
+            self._log_copy = self.log()
+            shutil.rmtree(self.dir, ignore_errors=True)
+            self.dir = None
+        return status
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+    def log(self):
+        """The daemon's log (standard error) so far."""
+        if self.dir is None:
+            return getattr(self, "_log_copy", "")
+        try:
+            with open(self._path("rigsimd.log"), errors="replace") as f:
+                return f.read()
+        except FileNotFoundError:
+            return ""
+
+    # ---- what a test uses ----
+
+    def endpoint(self, name):
+        """The device `name`'s endpoints (pty path, TCP address, pyserial URL)."""
+        try:
+            return self.endpoints[name]
+        except KeyError:
+            raise KeyError(f"no device {name!r}; the rig has {sorted(self.endpoints)}") from None
+
+    def pause(self):
+        return self.control.pause()
+
+    def resume(self):
+        return self.control.resume()
+
+    def step(self, ms):
+        return self.control.step(ms)
+
+    def scale(self, factor):
+        return self.control.scale(factor)
+
+    def run_until_idle(self, max_ms=600_000):
+        return self.control.run_until_idle(max_ms)
+
+    def clock(self):
+        return self.control.clock()
+
+    def state(self):
+        """GET /api/rig."""
+        return self.control.rig()
+
+    # ---- internals ----
+
+    def _path(self, name):
+        return os.path.join(self.dir, name)
+
+    def _wait_for_endpoints(self):
+        deadline = time.monotonic() + self.start_timeout_s
+        path = self._path("endpoints.json")
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                raise RigsimError(f"rigsimd exited with status {self.process.returncode}:\n{self.log()}")
+            try:
+                with open(path) as f:
+                    doc = json.load(f)
+                break
+            except (FileNotFoundError, ValueError):
+                time.sleep(0.02)
+        else:
+            raise RigsimError(f"rigsimd wrote no endpoints within {self.start_timeout_s} s:\n{self.log()}")
+        if "control" not in doc:
+            raise RigsimError("the endpoints file names no control API: is this rigsimd older than --control?")
+        self.control = ControlClient(doc["control"])
+        self.endpoints = {d["name"]: Endpoint(d["name"], d["protocol"], d["model"], d["tcp"], d["pty"])
+                          for d in doc["devices"]}

@@ -1,0 +1,104 @@
+"""The rigsim package and its pytest plugin against the real rigsimd (--rigsimd PATH)."""
+
+import os
+import socket
+import time
+
+import pytest
+
+from rigsim import ControlError, RigsimError
+
+
+def mcs_ask(sock, command):
+    """Send one MCS command line and return the answer line (without the newline)."""
+    sock.sendall(command.encode() + b"\n")
+    answer = b""
+    deadline = time.monotonic() + 5
+    while not answer.endswith(b"\n"):
+        assert time.monotonic() < deadline, f"no answer to {command!r}"
+        answer += sock.recv(256)
+    return answer.decode().strip()
+
+
+def test_default_rig_endpoints_and_clock(rigsim):
+    rig = rigsim()
+    mcs0 = rig.endpoint("mcs0")
+    assert mcs0.protocol == "mcs"
+    assert os.path.exists(mcs0.pty)
+    assert mcs0.url.startswith("socket://127.0.0.1:")
+    clock = rig.clock()
+    assert clock["paused"] is False
+    assert clock["tick_hz"] == 1000
+    assert [d["name"] for d in rig.state()["devices"]] == sorted(rig.endpoints, key=list(rig.endpoints).index)
+    with pytest.raises(KeyError, match="no device 'nope'"):
+        rig.endpoint("nope")
+
+
+def test_a_paused_move_finishes_on_step(rigsim):
+    rig = rigsim()
+    rig.pause()
+    with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s:
+        start = mcs_ask(s, ":GP0")
+        assert start.startswith(":P0,")
+        target = int(start[4:]) + 5_000_000   # 5 mm away: half a second at the default speed
+        assert mcs_ask(s, f":MPA0,{target},0") == ":E0,0"
+        time.sleep(1.0)   # wall time passes; the paused clock does not
+        assert mcs_ask(s, ":GP0") == start
+        assert mcs_ask(s, ":GS0") != ":S0,0"   # still moving
+        rig.step(10_000)   # 10 s of clock time: the move is done
+        assert mcs_ask(s, ":GP0") == f":P0,{target}"
+
+
+def test_run_until_idle_finishes_a_move_without_waiting(rigsim):
+    rig = rigsim()
+    rig.pause()
+    with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s:
+        start = int(mcs_ask(s, ":GP0")[4:])
+        assert mcs_ask(s, f":MPA0,{start + 5_000_000},0") == ":E0,0"
+        before = rig.clock()["now_ms"]
+        reached = rig.run_until_idle(600_000)
+        assert before < reached["now_ms"] < before + 600_000
+        assert mcs_ask(s, ":GP0") == f":P0,{start + 5_000_000}"
+
+
+def test_a_bad_request_raises_control_error(rigsim):
+    rig = rigsim()
+    with pytest.raises(ControlError) as e:
+        rig.control.request("POST", "/api/clock", {"step_ms": -1})
+    assert e.value.status == 400
+    assert "step_ms" in e.value.message
+
+
+def test_a_bad_rig_raises_with_the_daemon_message(rigsim):
+    with pytest.raises(RigsimError, match="exited with status 2"):
+        rigsim({"devices": "not a list"})
+
+
+def test_a_failed_test_gets_the_daemon_log_attached(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        def test_fails(rigsim):
+            rigsim()
+            assert False, "failing on purpose"
+        """
+    )
+    result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*rigsimd log (1)*", "*listening on tcp*"])
+
+
+def test_daemons_are_stopped_and_their_ptys_removed_after_the_test(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        import os
+        PTYS = []
+        def test_uses(rigsim):
+            PTYS.append(rigsim().endpoint("mcs0").pty)
+        def test_after():
+            assert PTYS and not os.path.exists(PTYS[0])
+        """
+    )
+    result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(passed=2)
