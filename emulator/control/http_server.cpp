@@ -1,11 +1,16 @@
 #include "emulator/control/http_server.hpp"
 
+#include "emulator/transport/tcp_endpoint.hpp"
+
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <optional>
 #include <set>
 #include <utility>
@@ -20,9 +25,14 @@ class Session;
 
 struct HttpServer::State {
     State(boost::asio::io_context& io, Router r, std::shared_ptr<spdlog::logger> l, HttpServerLimits lim)
-        : acceptor(io), router(std::move(r)), log(std::move(l)), limits(lim) {}
+        : acceptor(io), backoff_timer(io), router(std::move(r)), log(std::move(l)), limits(lim) {}
 
     tcp::acceptor acceptor;
+    /// After an accept that failed for want of resources (EMFILE...), the next waits: the
+    /// pending connection keeps the acceptor readable, so retrying at once would spin.
+    boost::asio::steady_timer backoff_timer;
+    std::chrono::milliseconds backoff{0};
+    std::size_t accept_failures = 0;
     Router router;
     std::shared_ptr<spdlog::logger> log;
     HttpServerLimits limits;
@@ -137,14 +147,39 @@ private:
 
 namespace {
 
+void accept(const std::shared_ptr<HttpServer::State>& state);
+
+/// Retry accepting after a delay that doubles per failure in a row (the device endpoints' back-off).
+void accept_later(const std::shared_ptr<HttpServer::State>& state, const boost::system::error_code& ec)
+{
+    state->backoff = std::clamp(state->backoff * 2, TcpEndpoint::kAcceptBackoffMin, TcpEndpoint::kAcceptBackoffMax);
+    state->log->warn("control: accept failed {} time(s) in a row: {}; retrying in {} ms", state->accept_failures,
+                     ec.message(), state->backoff.count());
+    state->backoff_timer.expires_after(state->backoff);
+    state->backoff_timer.async_wait([state](const boost::system::error_code& wait_ec) {
+        if (!wait_ec && !state->stopped)
+            accept(state);
+    });
+}
+
 void accept(const std::shared_ptr<HttpServer::State>& state)
 {
     state->acceptor.async_accept([state](const boost::system::error_code& ec, tcp::socket socket) {
         if (ec == boost::asio::error::operation_aborted || state->stopped)
             return;
+        if (ec && ec != boost::asio::error::connection_aborted && ec != boost::asio::error::connection_reset) {
+            ++state->accept_failures;
+            accept_later(state, ec);
+            return;
+        }
+        if (state->accept_failures > 0 && !ec) {
+            state->log->info("control: accepting again after {} failed accept(s)", state->accept_failures);
+            state->accept_failures = 0;
+            state->backoff = std::chrono::milliseconds{0};
+        }
         if (ec) {
-            // A failed accept (e.g. out of descriptors) costs that client only; keep listening.
-            state->log->warn("control: accept failed: {}", ec.message());
+            // A client that gave up before we took it: nothing wrong here, take the next one.
+            state->log->info("control: accept failed: {}", ec.message());
         } else if (state->sessions.size() >= state->limits.max_connections) {
             state->log->warn("control: {} connections open, closing a new one", state->sessions.size());
             boost::system::error_code ignored;
@@ -186,6 +221,7 @@ void HttpServer::stop()
     state_->stopped = true;
     boost::system::error_code ignored;
     state_->acceptor.close(ignored);
+    state_->backoff_timer.cancel();
     // close() may end a session at once; copy the set first.
     const auto sessions = state_->sessions;
     for (auto* s : sessions)

@@ -8,7 +8,9 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <memory>
 #include <string>
+#include <vector>
 
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
@@ -190,4 +192,48 @@ TEST_CASE("control: SIGTERM closes open control connections and the daemon exits
     CHECK(describe_wait_status(*status) == "exited 0");
     CHECK(idle.wait_for_eof(kAnswerTimeout));
     CHECK(half.wait_for_eof(kAnswerTimeout));
+}
+
+TEST_CASE("control: out of descriptors, the control API's accept backs off instead of spinning",
+          "[e2e][control][resources]")
+{
+    Daemon::Options options;
+    options.config_json = R"({"devices":[{"name":"mcs0","protocol":"mcs","mcs":{"channels":[{}]}}]})";
+    options.extra_args = {"--control", "127.0.0.1:0"};
+    constexpr unsigned long kMaxFiles = 32;
+    Daemon daemon(options, Daemon::Limits{kMaxFiles});
+    const auto control = control_endpoint(daemon);
+    {
+        // One request first: a sanitizer build's run-time checks open a pipe the first time
+        // they meet a type, which they could not do once descriptors run out.
+        TcpClient api(control);
+        REQUIRE(http(api, "GET", "/api/clock").status == 200);
+    }
+    const std::size_t at_start = open_fds(daemon.pid()).size();
+    REQUIRE(at_start < kMaxFiles);
+
+    // More clients than the daemon has descriptors left: every accept fails with EMFILE.
+    std::vector<std::unique_ptr<TcpClient>> clients;
+    for (std::size_t i = 0; i < kMaxFiles - at_start + 4; ++i)
+        clients.push_back(std::make_unique<TcpClient>(control));
+    REQUIRE(wait_until([&] { return daemon.log().find("control: accept failed") != std::string::npos; }, 5000ms));
+
+    // A polling window of 1.5 s: with the back-off (100 ms doubling to 1 s) at most a handful
+    // of failures are logged; a loop that re-arms at once logs thousands.
+    const auto window_end = SteadyClock::now() + 1500ms;
+    wait_until([&] { return SteadyClock::now() >= window_end; }, 2000ms);
+    const std::string log = daemon.log();
+    INFO("log tail:\n" << log.substr(log.size() > 2000 ? log.size() - 2000 : 0));
+    CHECK(count_of(log, "control: accept failed") <= 10);
+    CHECK(daemon.running());
+
+    // Descriptors free up: the control API accepts and answers again.
+    clients.clear();
+    CHECK(wait_until(
+        [&] {
+            TcpClient api(control);
+            return http(api, "GET", "/api/clock").status == 200;
+        },
+        5000ms));
+    CHECK(daemon.log().find("control: accepting again") != std::string::npos);
 }
