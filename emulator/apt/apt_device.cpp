@@ -71,12 +71,12 @@ private:
 };
 
 AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
-                     StateStore* store)
+                     StateStore* store, EventBus* events)
     : config_(config), clock_(world.clock()), log_(std::move(log)), model_(*find_controller(config.model)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       unit_{config.model, model_, serial_,
             std::max(model_.rack ? config_of(config).bays.size() : std::size_t{1}, static_cast<std::size_t>(model_.max_bays))},
-      store_(store)
+      store_(store), events_(events)
 {
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).

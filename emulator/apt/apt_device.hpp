@@ -27,6 +27,7 @@ class logger;
 }
 
 namespace rigsim {
+class EventBus;     // emulator/core/event_bus.hpp
 class StateStore;   // emulator/core/state_store.hpp (nlohmann/json, spdlog: kept out of this header)
 }
 
@@ -49,7 +50,7 @@ public:
 
     /// The device's bodies join `world` under "<device name>/<bay>". `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
     AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
-              StateStore* store = nullptr);
+              StateStore* store = nullptr, EventBus* events = nullptr);
     ~AptDevice() override;
     AptDevice(const AptDevice&) = delete;
     AptDevice& operator=(const AptDevice&) = delete;
@@ -138,6 +139,7 @@ private:
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     StateStore* store_;
+    EventBus* events_;   ///< the control API's event stream, or nullptr
     std::map<std::pair<std::size_t, std::uint16_t>, SavedSet> last_set_;   ///< (bay, SET id) -> the last accepted
 };
 

@@ -11,6 +11,8 @@
 
 namespace rigsim {
 
+class ControlSurface;   // emulator/core/control_surface.hpp
+
 /// Hands bytes to the client of one connection. Each call is one frame (or one batch of
 /// answers) that the transport writes in one piece.
 using SendFn = std::function<void(std::string_view bytes)>;
@@ -32,6 +34,8 @@ public:
     /// Baud rate at which the serial port (pty) paces the device's output; 0 = no pacing
     /// (the rig's `faithful_timing` is off).
     virtual std::uint32_t serial_baud() const { return 0; }
+    /// What the control API reads and steers (nullptr: a device with none, as in transport tests).
+    virtual ControlSurface* control() { return nullptr; }
 };
 
 /// Printable form of client bytes for log lines (non-printable bytes as \xNN, at most `max` bytes).

@@ -25,13 +25,15 @@ class World;
 class ConfigReader;
 class Device;
 class StateStore;
+class EventBus;
 
-/// What a family's factory may hand its device: the rig's world, the device's logger and the
-/// non-volatile store.
+/// What a family's factory may hand its device: the rig's world, the device's logger, the
+/// non-volatile store and the control API's event stream.
 struct DeviceContext {
     models::World& world;
     std::shared_ptr<spdlog::logger> log;
     StateStore& store;
+    EventBus* events = nullptr;
 };
 
 /// One protocol family.

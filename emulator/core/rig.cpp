@@ -50,12 +50,12 @@ private:
 };
 
 std::unique_ptr<Device> make_device(const DeviceConfig& config, models::World& world,
-                                    std::shared_ptr<spdlog::logger> log, StateStore& store)
+                                    std::shared_ptr<spdlog::logger> log, StateStore& store, EventBus& events)
 {
     const auto* family = rig_families().find(config.protocol);
     if (!family)
         throw ConfigError("device \"" + config.name + "\": unknown protocol \"" + config.protocol + "\"");
-    return family->make(config, DeviceContext{world, std::move(log), store});
+    return family->make(config, DeviceContext{world, std::move(log), store, &events});
 }
 
 } // namespace
@@ -96,7 +96,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
-        e->device = make_device(dc, world_, log, *store_);
+        e->device = make_device(dc, world_, log, *store_, events_);
         e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
         try {

@@ -4,6 +4,7 @@
 #include "emulator/core/atomic_file.hpp"
 #include "models/clock.hpp"
 #include "emulator/core/device.hpp"
+#include "emulator/core/event_bus.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
@@ -59,6 +60,8 @@ public:
     models::World& world() { return world_; }
     /// The timer pacing the clock: pause, resume, step, scale (the control API).
     Ticker& ticker() { return ticker_; }
+    /// The control API's event stream (GET /api/events).
+    EventBus& events() { return events_; }
     /// Something moves: the world changes by itself at some later tick.
     bool busy() const { return world_.next_change(clock_.now()) != kNever; }
 
@@ -69,6 +72,8 @@ private:
     /// Before the devices: every device's bodies live here, and the world ticks first.
     models::World world_;
     Ticker ticker_;
+    /// Before the devices, which publish to it.
+    EventBus events_;
     std::unique_ptr<StateStore> store_;
     /// Shared by every endpoint, so declared before (destroyed after) the entries.
     InotifyWatcher watcher_;

@@ -15,11 +15,12 @@ FamilyRegistry make_families()
     FamilyRegistry families;
     families.add(Family{"mcs", "an MCS device", &mcs::load_device_section,
                         [](const DeviceConfig& config, const DeviceContext& context) -> std::unique_ptr<Device> {
-                            return std::make_unique<mcs::McsDevice>(config, context.world, context.log);
+                            return std::make_unique<mcs::McsDevice>(config, context.world, context.log, context.events);
                         }});
     families.add(Family{"apt", "an APT device", &apt::load_device_section,
                         [](const DeviceConfig& config, const DeviceContext& context) -> std::unique_ptr<Device> {
-                            return std::make_unique<apt::AptDevice>(config, context.world, context.log, &context.store);
+                            return std::make_unique<apt::AptDevice>(config, context.world, context.log, &context.store,
+                                                             context.events);
                         }});
     return families;
 }

@@ -63,9 +63,10 @@ private:
     std::string out_;
 };
 
-McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log)
+McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
+                     EventBus* events)
     : config_(config), clock_(world.clock()), log_(std::move(log)), controller_(config_of(config), world, config.name),
-      handler_(controller_)
+      handler_(controller_), events_(events)
 {
     clock_.add(this);
 }

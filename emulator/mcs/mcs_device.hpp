@@ -16,6 +16,10 @@ namespace spdlog {
 class logger;
 }
 
+namespace rigsim {
+class EventBus;   // emulator/core/event_bus.hpp
+}
+
 namespace rigsim::mcs {
 
 class McsSession;
@@ -23,7 +27,8 @@ class McsSession;
 class McsDevice : public Device, public Tickable {
 public:
     /// The device's bodies join `world` under "<device name>/<channel>".
-    McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log);
+    McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
+              EventBus* events = nullptr);
     ~McsDevice() override;
     McsDevice(const McsDevice&) = delete;
     McsDevice& operator=(const McsDevice&) = delete;
@@ -55,6 +60,7 @@ private:
     Controller controller_;
     Handler handler_;
     std::vector<McsSession*> sessions_;
+    EventBus* events_;   ///< the control API's event stream, or nullptr
 };
 
 } // namespace rigsim::mcs

@@ -1,0 +1,63 @@
+#pragma once
+// What the control API asks of a device (docs/control-api.md): its state read from the world
+// and the protocol machine, set-up of a channel, the faults that act inside the device, a power
+// cycle, and its wire log. Core defines the seam; each protocol family implements it. The faults
+// that act on the wire (unplugged, dropped or corrupted bytes, latency) are core's own: the
+// device never sees them.
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace rigsim {
+
+class WireLog;
+
+/// A control request the device refuses: 400 (a bad field, named), 404 (no such channel),
+/// 409 (not now: the channel moves).
+struct Refusal {
+    unsigned status = 400;
+    std::string message;
+};
+using Refused = std::optional<Refusal>;
+
+/// A fault that acts inside a device (kinds: docs/control-api.md "Faults").
+struct DeviceFault {
+    std::uint64_t id = 0;
+    std::string kind;                    ///< "stall", "slip", "sensor_failure", "reference_lost", "limit_switch"
+    std::optional<std::size_t> channel;  ///< MCS channel index, APT bay index (0-based); absent: the device picks (0)
+    const nlohmann::json* params = nullptr;   ///< the POST body's other keys (an object)
+};
+
+/// What POST /api/reset and the power_cycle fault do.
+struct PowerCycle {
+    bool keep_saved = true;          ///< saved settings (non-volatile memory) survive
+    bool restore_positions = false;  ///< stages back to their configured start positions (reset only)
+};
+
+class ControlSurface {
+public:
+    virtual ~ControlSurface() = default;
+
+    /// GET /api/devices/{name}: fills `out` (an object) with "channels" (one object per
+    /// channel, bay or module: physical position in SI units and in the protocol's units,
+    /// velocity, moving, referenced/homed, status decoded, limits, queued commands) and the
+    /// family's device-wide state. Core adds name, protocol, model, endpoints and faults.
+    virtual void describe(nlohmann::json& out) const = 0;
+    /// PATCH /api/devices/{name}/channels/{index}: test set-up (physical position, reference
+    /// known or lost, limit switch pressed, sensor power). 409 while the channel moves.
+    virtual Refused patch_channel(std::size_t index, const nlohmann::json& body) = 0;
+    /// Start fault `f` (validating its params); a fault whose effect is one-off (reference_lost)
+    /// acts at once and is not kept (*kept = false).
+    virtual Refused add_fault(const DeviceFault& f, bool* kept) = 0;
+    /// End fault `id`: its lasting effect goes away as the hardware's would once fixed.
+    virtual void remove_fault(std::uint64_t id) = 0;
+    /// Power down and up: protocol state back to power-up.
+    virtual void power_cycle(const PowerCycle& how) = 0;
+    virtual WireLog& wire_log() = 0;
+};
+
+} // namespace rigsim
