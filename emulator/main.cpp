@@ -85,8 +85,11 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
   --max-connections-per-device N
                          TCP connections open at once on one device (1..65536;
                          default 32)
-  --time-scale X         run the physics X times faster than wall time (default 1;
-                         0.001..1000)
+  --time-scale X         run the physics X times faster than wall time (0.001..1000;
+                         default: the config's clock.time_scale, else 1)
+  --paused               start with the clock paused (also the config's clock.paused):
+                         devices answer, nothing moves until the control API resumes or
+                         steps the clock
   --tick-hz N            physics tick rate in Hz, overriding the config's tick_hz
                          (1..100000; default 1000)
   --state-file FILE      keep what devices save in non-volatile memory (APT
@@ -120,6 +123,7 @@ struct Options {
     std::optional<std::string> check_config;
     std::optional<std::string> endpoints_json;
     std::optional<std::uint32_t> tick_hz;
+    std::optional<double> time_scale;   ///< --time-scale
     rigsim::RigOptions rig;
 };
 
@@ -185,6 +189,57 @@ ControlListen parse_control(const std::string& value)
     return listen;
 }
 
+/// One option of the command line other than --help and --version; `value` takes its value,
+/// `no_value` refuses one.
+template <class Value, class NoValue>
+void parse_option(const std::string& arg, Value& value, NoValue& no_value, Options& o)
+{
+    if (arg == "--config")
+        o.config = value();
+    else if (arg == "--check-config")
+        o.check_config = value();
+    else if (arg == "--endpoints-json")
+        o.endpoints_json = value();
+    else if (arg == "--pty-dir") {
+        o.rig.pty_dir = value();
+        if (o.rig.pty_dir.empty())
+            throw UsageError{"--pty-dir: expected a directory, got \"\""};
+        while (o.rig.pty_dir.size() > 1 && o.rig.pty_dir.back() == '/')
+            o.rig.pty_dir.pop_back();
+    } else if (arg == "--ephemeral-ports") {
+        no_value();
+        o.rig.ephemeral_ports = true;
+    } else if (arg == "--bind") {
+        const auto v = value();
+        boost::system::error_code ec;
+        o.rig.bind = boost::asio::ip::make_address(v, ec);
+        if (ec)
+            throw UsageError{"--bind: expected an IP address, got " + echo(v)};
+    } else if (arg == "--control")
+        o.control = parse_control(value());
+    else if (arg == "--max-connections")
+        o.rig.max_connections = parse_uint(arg, value(), 1, 65536);
+    else if (arg == "--max-connections-per-device")
+        o.rig.max_connections_per_device = parse_uint(arg, value(), 1, 65536);
+    else if (arg == "--time-scale")
+        o.time_scale = parse_double(arg, value(), 0.001, 1000);
+    else if (arg == "--paused") {
+        no_value();
+        o.rig.paused = true;
+    }
+    else if (arg == "--state-file") {
+        o.rig.state_file = value();
+        if (o.rig.state_file.empty())
+            throw UsageError{"--state-file: expected a file name, got \"\""};
+    } else if (arg == "--tick-hz")
+        o.tick_hz = parse_uint(arg, value(), 1, 100000);
+    else if (arg == "--log-level") {
+        if (auto err = rigsim::apply_log_level(value(), o.rig.log_levels))
+            throw UsageError{*err};
+    } else
+        throw UsageError{"unknown option " + echo(arg) + " (see --help)"};
+}
+
 /// Parses argv; returns nullopt when --help or --version has been answered.
 std::optional<Options> parse_args(int argc, char** argv)
 {
@@ -219,46 +274,7 @@ std::optional<Options> parse_args(int argc, char** argv)
             std::cout << "rigsimd " RIGSIM_VERSION "\n";
             return std::nullopt;
         }
-        if (arg == "--config")
-            o.config = value();
-        else if (arg == "--check-config")
-            o.check_config = value();
-        else if (arg == "--endpoints-json")
-            o.endpoints_json = value();
-        else if (arg == "--pty-dir") {
-            o.rig.pty_dir = value();
-            if (o.rig.pty_dir.empty())
-                throw UsageError{"--pty-dir: expected a directory, got \"\""};
-            while (o.rig.pty_dir.size() > 1 && o.rig.pty_dir.back() == '/')
-                o.rig.pty_dir.pop_back();
-        } else if (arg == "--ephemeral-ports") {
-            no_value();
-            o.rig.ephemeral_ports = true;
-        } else if (arg == "--bind") {
-            const auto v = value();
-            boost::system::error_code ec;
-            o.rig.bind = boost::asio::ip::make_address(v, ec);
-            if (ec)
-                throw UsageError{"--bind: expected an IP address, got " + echo(v)};
-        } else if (arg == "--control")
-            o.control = parse_control(value());
-        else if (arg == "--max-connections")
-            o.rig.max_connections = parse_uint(arg, value(), 1, 65536);
-        else if (arg == "--max-connections-per-device")
-            o.rig.max_connections_per_device = parse_uint(arg, value(), 1, 65536);
-        else if (arg == "--time-scale")
-            o.rig.time_scale = parse_double(arg, value(), 0.001, 1000);
-        else if (arg == "--state-file") {
-            o.rig.state_file = value();
-            if (o.rig.state_file.empty())
-                throw UsageError{"--state-file: expected a file name, got \"\""};
-        } else if (arg == "--tick-hz")
-            o.tick_hz = parse_uint(arg, value(), 1, 100000);
-        else if (arg == "--log-level") {
-            if (auto err = rigsim::apply_log_level(value(), o.rig.log_levels))
-                throw UsageError{*err};
-        } else
-            throw UsageError{"unknown option " + echo(arg) + " (see --help)"};
+        parse_option(arg, value, no_value, o);
     }
     if (o.config && o.check_config)
         throw UsageError{"--config and --check-config exclude each other"};
@@ -365,8 +381,8 @@ int run(const rigsim::RigConfig& config, const Options& opts)
             rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints(), url));
             endpoints_file.emplace(*opts.endpoints_json);
         }
-        log->info("rig running: {} device(s), tick {} Hz, time scale {}", rig->endpoints().size(),
-                  config.tick_hz, opts.rig.time_scale);
+        log->info("rig running: {} device(s), tick {} Hz, time scale {}{}", rig->endpoints().size(),
+                  config.tick_hz, opts.rig.time_scale, opts.rig.paused ? ", clock paused" : "");
         io.run();
     } catch (const std::exception& e) {
         log->critical("{}", e.what());
@@ -417,5 +433,7 @@ int main(int argc, char** argv)
     }
     if (opts.tick_hz)
         config.tick_hz = *opts.tick_hz;
+    opts.rig.time_scale = opts.time_scale.value_or(config.clock.time_scale);
+    opts.rig.paused = opts.rig.paused || config.clock.paused;
     return run(config, opts);
 }

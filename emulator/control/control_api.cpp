@@ -1,7 +1,12 @@
 #include "emulator/control/control_api.hpp"
 
+#include "emulator/control/json_reply.hpp"
+#include "emulator/core/control_surface.hpp"
+#include "emulator/core/wire_log.hpp"
+
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -14,50 +19,14 @@ namespace rigsim::control {
 namespace {
 
 using nlohmann::json;
-
-/// `value` as compact JSON; bytes that are not UTF-8 (a raw request target) become U+FFFD
-/// rather than an exception.
-std::string dump(const json& value)
-{
-    return value.dump(-1, ' ', false, json::error_handler_t::replace);
-}
-
-HttpReply ok(const json& body)
-{
-    return HttpReply{200, dump(body) + "\n"};
-}
-
-HttpReply error(unsigned status, const std::string& message)
-{
-    return HttpReply{status, dump(json{{"error", message}}) + "\n"};
-}
-
-/// An error naming the field that was wrong; thrown while reading a body, caught in handle().
-struct BadField {
-    std::string message;
-};
+using BadField = BadRequest;
 
 /// `key`'s value as `true` (the only value pause, resume and run_until_idle take).
 void require_true(const json& body, const char* key)
 {
     const auto& v = body.at(key);
     if (!v.is_boolean() || !v.get<bool>())
-        throw BadField{std::string("\"") + key + "\": expected true, got " + dump(v)};
-}
-
-/// `key`'s value as an integer in lo..hi (a float with no fraction is refused too: the
-/// contract is an integer).
-std::int64_t require_int(const json& body, const char* key, std::int64_t lo, std::int64_t hi)
-{
-    const auto& v = body.at(key);
-    const bool integer = v.is_number_integer() || v.is_number_unsigned();
-    if (integer && v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(hi))
-        throw BadField{std::string("\"") + key + "\": expected an integer " + std::to_string(lo) + ".."
-                       + std::to_string(hi) + ", got " + dump(v)};
-    if (!integer || v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi)
-        throw BadField{std::string("\"") + key + "\": expected an integer " + std::to_string(lo) + ".."
-                       + std::to_string(hi) + ", got " + dump(v)};
-    return v.get<std::int64_t>();
+        throw BadField{400, std::string("\"") + key + "\": expected true, got " + dump(v)};
 }
 
 /// The action keys of POST /api/clock; exactly one per request.
@@ -72,63 +41,337 @@ std::string clock_action(const json& body)
         for (const auto* a : kClockActions)
             known = known || key == a;
         if (!known)
-            throw BadField{"unknown key \"" + key + "\" (expected one of pause, resume, step_ms, scale, "
+            throw BadField{400, "unknown key \"" + key + "\" (expected one of pause, resume, step_ms, scale, "
                            "run_until_idle)"};
         if (key == "max_ms")
             continue;
         if (action)
-            throw BadField{"\"" + *action + "\" and \"" + key + "\": expected exactly one action"};
+            throw BadField{400, "\"" + *action + "\" and \"" + key + "\": expected exactly one action"};
         action = key;
     }
     if (!action)
-        throw BadField{"expected exactly one of pause, resume, step_ms, scale, run_until_idle"};
+        throw BadField{400, "expected exactly one of pause, resume, step_ms, scale, run_until_idle"};
     if (*action != "run_until_idle" && body.contains("max_ms"))
-        throw BadField{"\"max_ms\": only with run_until_idle"};
+        throw BadField{400, "\"max_ms\": only with run_until_idle"};
     return *action;
 }
 
-/// The path of a request target: without its query string.
-std::string_view path_of(std::string_view target)
+} // namespace
+
+namespace {
+
+std::vector<ControlledDevice> bare(std::vector<DeviceEndpoints> endpoints)
 {
-    return target.substr(0, target.find('?'));
+    std::vector<ControlledDevice> out;
+    for (auto& e : endpoints)
+        out.push_back(ControlledDevice{std::move(e), nullptr, nullptr});
+    return out;
+}
+
+/// "/api/devices/x/log" -> {"api", "devices", "x", "log"} (percent-decoded; empty parts kept).
+std::vector<std::string> split_path(std::string_view path)
+{
+    std::vector<std::string> parts;
+    if (!path.empty() && path.front() == '/')
+        path.remove_prefix(1);
+    while (true) {
+        const auto slash = path.find('/');
+        const auto part = path.substr(0, slash);
+        parts.push_back(query_of("?x=" + std::string(part))["x"]);
+        if (slash == std::string_view::npos)
+            break;
+        path.remove_prefix(slash + 1);
+    }
+    return parts;
+}
+
+HttpReply not_allowed(std::string_view method, std::string_view path, const char* allowed)
+{
+    return error(405, std::string(method) + " " + std::string(path) + ": method not allowed (" + allowed + ")");
 }
 
 } // namespace
 
 ControlApi::ControlApi(Rig& rig)
-    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.endpoints())
+    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events())
 {
 }
 
 ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<DeviceEndpoints> devices)
-    : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices))
+    : ControlApi(clock, ticker, std::move(busy), bare(std::move(devices)), nullptr)
+{
+}
+
+ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
+                       EventBus* events)
+    : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices)), events_(events),
+      faults_(clock_, devices_)
 {
 }
 
 HttpReply ControlApi::handle(std::string_view method, std::string_view target, std::string_view body)
 {
-    const auto path = path_of(target);
     try {
-        if (path == "/api/rig") {
-            if (method != "GET")
-                return error(405, std::string(method) + " " + std::string(path) + ": method not allowed (GET)");
-            return get_rig();
-        }
-        if (path == "/api/clock") {
-            if (method == "GET")
-                return get_clock();
-            if (method == "POST")
-                return post_clock(body);
-            return error(405, std::string(method) + " " + std::string(path) + ": method not allowed (GET, POST)");
-        }
-    } catch (const BadField& e) {
-        return error(400, e.message);
+        return route(method, target, body);
+    } catch (const BadRequest& e) {
+        return error(e.status, e.message);
     } catch (const std::exception& e) {
         // Any other failure is the request's (an out-of-range number the clock refused):
         // the daemon answers and goes on.
         return error(400, e.what());
     }
+}
+
+HttpReply ControlApi::route(std::string_view method, std::string_view target, std::string_view body)
+{
+    const auto path = path_of(target);
+    const auto parts = split_path(path);
+    const auto p = [&](std::size_t i) -> std::string_view { return i < parts.size() ? parts[i] : std::string_view{}; };
+    if (parts.size() < 2 || parts[0] != "api")
+        return error(404, "no route " + dump(json(std::string(path))));
+    if (parts.size() == 2 && p(1) == "rig")
+        return method == "GET" ? get_rig() : not_allowed(method, path, "GET");
+    if (parts.size() == 2 && p(1) == "clock") {
+        if (method == "GET")
+            return get_clock();
+        return method == "POST" ? post_clock(body) : not_allowed(method, path, "GET, POST");
+    }
+    if (parts.size() == 2 && p(1) == "reset")
+        return method == "POST" ? post_reset(body) : not_allowed(method, path, "POST");
+    if (parts.size() == 2 && p(1) == "events")
+        return method == "GET" ? get_events(target) : not_allowed(method, path, "GET");
+    if (p(1) == "devices" && parts.size() >= 3)
+        return device_route(method, parts, target, body);
+    if (p(1) == "faults" && parts.size() <= 3)
+        return fault_route(method, parts, body);
     return error(404, "no route " + dump(json(std::string(path))));
+}
+
+ControlledDevice& ControlApi::device(const std::string& name)
+{
+    for (auto& d : devices_)
+        if (d.endpoints.name == name)
+            return d;
+    std::string names;
+    for (const auto& d : devices_)
+        names += (names.empty() ? "" : ", ") + d.endpoints.name;
+    throw BadRequest{404, "no device named " + dump(json(name)) + " (devices: " + names + ")"};
+}
+
+ControlSurface& ControlApi::surface(ControlledDevice& d)
+{
+    if (!d.surface)
+        throw BadRequest{404, "device \"" + d.endpoints.name + "\" has no control surface"};
+    return *d.surface;
+}
+
+void ControlApi::publish(std::string_view device, std::string_view type, const json& data)
+{
+    if (events_ && events_->active())
+        events_->publish(device, type, clock_.seconds(clock_.now()) * 1000.0, data);
+}
+
+HttpReply ControlApi::device_route(std::string_view method, const std::vector<std::string>& parts,
+                                   std::string_view target, std::string_view body)
+{
+    const auto path = path_of(target);
+    auto& d = device(parts[2]);
+    if (parts.size() == 3)
+        return method == "GET" ? get_device(d) : not_allowed(method, path, "GET");
+    if (parts.size() == 4 && parts[3] == "log") {
+        if (method == "GET")
+            return get_log(d, target);
+        if (method != "DELETE")
+            return not_allowed(method, path, "GET, DELETE");
+        surface(d).wire_log().clear();
+        return ok(json{{"device", d.endpoints.name}, {"cleared", true}});
+    }
+    if (parts.size() == 5 && parts[3] == "channels") {
+        if (method == "PATCH")
+            return patch_channel(d, parts[4], body);
+        if (method != "GET")
+            return not_allowed(method, path, "GET, PATCH");
+        ticker_.sync();
+        auto state = json::object();
+        surface(d).describe(state);
+        const auto& channels = state["channels"];
+        for (const auto& ch : channels)
+            if (ch.value("index", -1) >= 0 && std::to_string(ch.value("index", -1)) == parts[4])
+                return ok(ch);
+        throw BadRequest{404, "device \"" + d.endpoints.name + "\" has no channel " + dump(json(parts[4]))};
+    }
+    return error(404, "no route " + dump(json(std::string(path))));
+}
+
+HttpReply ControlApi::get_device(const ControlledDevice& d)
+{
+    ticker_.sync();
+    json state{{"name", d.endpoints.name},
+               {"protocol", d.endpoints.protocol},
+               {"model", d.endpoints.model},
+               {"endpoints", {{"tcp", d.endpoints.tcp}, {"pty", d.endpoints.pty}}}};
+    if (d.surface)
+        d.surface->describe(state);
+    state["faults"] = faults_.list(&d.endpoints.name);
+    if (d.link)
+        state["link"] = json{{"unplugged", d.link->unplugged()},
+                             {"dropped_bytes", d.link->dropped()},
+                             {"corrupted_bytes", d.link->corrupted()},
+                             {"held_answers", d.link->held()}};
+    return ok(state);
+}
+
+HttpReply ControlApi::patch_channel(ControlledDevice& d, const std::string& index, std::string_view text)
+{
+    auto& s = surface(d);
+    const auto body = parse_object(text);
+    std::size_t n = 0;
+    if (index.empty() || index.size() > 3 || index.find_first_not_of("0123456789") != std::string::npos)
+        throw BadRequest{404, "device \"" + d.endpoints.name + "\" has no channel " + dump(json(index))};
+    n = static_cast<std::size_t>(std::stoul(index));
+    ticker_.sync();
+    const auto refused = s.patch_channel(n, body);
+    ticker_.reschedule();
+    if (refused)
+        throw BadRequest{refused->status, refused->message};
+    auto state = json::object();
+    s.describe(state);
+    for (const auto& ch : state["channels"])
+        if (ch.value("index", -1) == static_cast<int>(n)) {
+            publish(d.endpoints.name, "channel_set", json{{"channel", n}, {"set", body}});
+            return ok(ch);
+        }
+    return ok(json::object());
+}
+
+HttpReply ControlApi::get_log(ControlledDevice& d, std::string_view target)
+{
+    auto& log = surface(d).wire_log();
+    std::size_t last = log.capacity();
+    const auto q = query_of(target);
+    if (const auto it = q.find("last"); it != q.end()) {
+        const auto& v = it->second;
+        if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos)
+            throw BadRequest{400, "\"last\": expected a count of entries, got " + dump(json(v))};
+        last = std::stoul(v);
+    }
+    return ok(json{{"device", d.endpoints.name},
+                   {"capacity", log.capacity()},
+                   {"noted", log.noted()},
+                   {"entries", log.to_json(last)}});
+}
+
+HttpReply ControlApi::fault_route(std::string_view method, const std::vector<std::string>& parts, std::string_view body)
+{
+    const std::string path = "/api/faults" + (parts.size() == 3 ? "/" + parts[2] : std::string());
+    if (parts.size() == 2) {
+        if (method == "GET")
+            return ok(json{{"faults", faults_.list()}});
+        if (method == "DELETE") {
+            ticker_.sync();
+            const auto ids = faults_.remove_all();
+            ticker_.reschedule();
+            for (const auto id : ids)
+                publish("", "fault_removed", json{{"id", id}});
+            return ok(json{{"removed", ids}});
+        }
+        if (method != "POST")
+            return not_allowed(method, path, "GET, POST, DELETE");
+        const auto request = parse_object(body);
+        ticker_.sync();
+        const auto record = faults_.add(request);
+        ticker_.reschedule();
+        publish(record["device"].get<std::string>(), "fault_added", record);
+        return ok(record, 201);
+    }
+    const auto& id_text = parts[2];
+    const bool numeric = !id_text.empty() && id_text.size() <= 18
+                         && id_text.find_first_not_of("0123456789") == std::string::npos;
+    const std::uint64_t id = numeric ? std::stoull(id_text) : 0;
+    if (method == "GET") {
+        for (const auto& f : faults_.list())
+            if (numeric && f["id"] == id)
+                return ok(f);
+        throw BadRequest{404, "no active fault " + dump(json(id_text))};
+    }
+    if (method != "DELETE")
+        return not_allowed(method, path, "GET, DELETE");
+    ticker_.sync();
+    if (!numeric || !faults_.remove(id))
+        throw BadRequest{404, "no active fault " + dump(json(id_text))};
+    ticker_.reschedule();
+    publish("", "fault_removed", json{{"id", id}});
+    return ok(json{{"id", id}, {"removed", true}});
+}
+
+HttpReply ControlApi::post_reset(std::string_view text)
+{
+    const auto body = parse_object(text, true);
+    for (const auto& [key, value] : body.items())
+        if (key != "keep_saved")
+            throw BadRequest{400, "unknown key \"" + key + "\" (expected keep_saved)"};
+    const bool keep = !body.contains("keep_saved") || require_bool(body, "keep_saved");
+    ticker_.sync();
+    faults_.remove_all();
+    auto names = json::array();
+    for (auto& d : devices_) {
+        if (d.surface) {
+            d.surface->power_cycle(PowerCycle{keep, true});
+            d.surface->wire_log().clear();
+        }
+        names.push_back(d.endpoints.name);
+    }
+    ticker_.reschedule();
+    json answer{{"reset", names}, {"keep_saved", keep}, {"now_ms", clock_.seconds(clock_.now()) * 1000.0}};
+    publish("", "reset", answer);
+    return ok(answer);
+}
+
+HttpReply ControlApi::get_events(std::string_view target)
+{
+    if (!events_)
+        throw BadRequest{404, "no event stream here"};
+    const auto q = query_of(target);
+    std::vector<std::string> only_devices, only_types;
+    const auto list = [](const std::string& text) {
+        std::vector<std::string> out;
+        std::size_t start = 0;
+        while (start <= text.size()) {
+            const auto comma = text.find(',', start);
+            const auto item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+            if (!item.empty())
+                out.push_back(item);
+            if (comma == std::string::npos)
+                break;
+            start = comma + 1;
+        }
+        return out;
+    };
+    for (const auto& [key, value] : q) {
+        if (key == "device")
+            only_devices = list(value);
+        else if (key == "type")
+            only_types = list(value);
+        else
+            throw BadRequest{400, "unknown query parameter \"" + key + "\" (expected device, type)"};
+    }
+    for (const auto& name : only_devices)
+        device(name);   // 404 for a name that is not a device
+    HttpReply reply;
+    reply.stream = [bus = events_, only_devices, only_types](StreamWriter write) -> std::function<void()> {
+        write(": rigsim event stream\n\n");
+        const auto handle = bus->subscribe([=](const Event& e) {
+            const auto in = [](const std::vector<std::string>& set, const std::string& v) {
+                return set.empty() || std::find(set.begin(), set.end(), v) != set.end();
+            };
+            // Rig-wide events (clock, reset, fault removal) reach every stream.
+            if ((!e.device.empty() && !in(only_devices, e.device)) || !in(only_types, e.type))
+                return;
+            write("event: " + e.type + "\nid: " + std::to_string(e.seq) + "\ndata: " + e.json + "\n\n");
+        });
+        return [bus, handle] { bus->unsubscribe(handle); };
+    };
+    return reply;
 }
 
 namespace {
@@ -155,24 +398,25 @@ HttpReply ControlApi::get_rig()
 {
     ticker_.sync();
     auto devices = json::array();
-    for (const auto& d : devices_)
-        devices.push_back({{"name", d.name}, {"protocol", d.protocol}, {"model", d.model},
-                           {"tcp", d.tcp}, {"pty", d.pty}});
+    for (const auto& d : devices_) {
+        const auto& e = d.endpoints;
+        json entry{{"name", e.name}, {"protocol", e.protocol}, {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}};
+        if (d.surface) {
+            auto state = json::object();
+            d.surface->describe(state);
+            auto channels = json::array();
+            for (const auto& ch : state["channels"])
+                channels.push_back({{"index", ch.value("index", -1)}, {"kind", ch.value("kind", "")}});
+            entry["channels"] = channels;
+        }
+        devices.push_back(entry);
+    }
     return ok(json{{"clock", clock_state(clock_, ticker_)}, {"devices", devices}});
 }
 
 HttpReply ControlApi::post_clock(std::string_view text)
 {
-    json body;
-    try {
-        body = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
-        throw BadField{"body: expected a JSON object, got invalid JSON (at byte " + std::to_string(e.byte) + ")"};
-    } catch (const json::out_of_range&) {
-        throw BadField{"body: expected a JSON object, got a number too large for a double"};
-    }
-    if (!body.is_object())
-        throw BadField{"body: expected a JSON object, got " + std::string(body.type_name())};
+    const auto body = parse_object(text);
     const auto action = clock_action(body);
     ticker_.sync();
     std::optional<Ticks> reached;
@@ -187,12 +431,12 @@ HttpReply ControlApi::post_clock(std::string_view text)
     } else if (action == "scale") {
         const auto& v = body.at("scale");
         if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() <= 0)
-            throw BadField{"\"scale\": expected a finite number > 0, got " + dump(v)};
+            throw BadField{400, "\"scale\": expected a finite number > 0, got " + dump(v)};
         ticker_.set_time_scale(v.get<double>());
     } else {
         require_true(body, "run_until_idle");
         if (!body.contains("max_ms"))
-            throw BadField{"\"max_ms\": required with run_until_idle"};
+            throw BadField{400, "\"max_ms\": required with run_until_idle"};
         const auto max_ms = require_int(body, "max_ms", 1, kMaxStepMs);
         reached = ticker_.run_until_idle(clock_.ticks_from_ms(max_ms), busy_);
     }
@@ -200,6 +444,7 @@ HttpReply ControlApi::post_clock(std::string_view text)
     auto state = clock_state(clock_, ticker_);
     if (reached)
         state["reached_ms"] = clock_.seconds(*reached) * 1000.0;
+    publish("", "clock", state);
     return ok(state);
 }
 

@@ -3,7 +3,9 @@
 // over the rig, so that it is tested without sockets. The HTTP server (http_server.hpp)
 // only carries requests here.
 
+#include "emulator/control/fault_book.hpp"
 #include "emulator/control/http_server.hpp"
+#include "emulator/core/event_bus.hpp"
 #include "emulator/core/rig.hpp"
 #include "emulator/core/ticker.hpp"
 #include "models/clock.hpp"
@@ -24,19 +26,40 @@ public:
     explicit ControlApi(Rig& rig);
     /// The routes over a clock, its ticker, "something moves" and a device list (tests).
     ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<DeviceEndpoints> devices);
+    /// The routes over a clock, its ticker, "something moves", devices and their event stream (tests).
+    ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
+               EventBus* events);
+    ControlApi(const ControlApi&) = delete;
+    ControlApi& operator=(const ControlApi&) = delete;
 
     /// Answer one request; never throws for any input.
     HttpReply handle(std::string_view method, std::string_view target, std::string_view body);
 
 private:
+    /// A route of /api/...; throws BadRequest.
+    HttpReply route(std::string_view method, std::string_view target, std::string_view body);
     HttpReply get_rig();
     HttpReply get_clock();
     HttpReply post_clock(std::string_view body);
+    HttpReply device_route(std::string_view method, const std::vector<std::string>& parts, std::string_view target,
+                           std::string_view body);
+    HttpReply get_device(const ControlledDevice& d);
+    HttpReply patch_channel(ControlledDevice& d, const std::string& index, std::string_view body);
+    HttpReply get_log(ControlledDevice& d, std::string_view target);
+    HttpReply fault_route(std::string_view method, const std::vector<std::string>& parts, std::string_view body);
+    HttpReply post_reset(std::string_view body);
+    HttpReply get_events(std::string_view target);
+    /// The device named `name`; throws BadRequest 404.
+    ControlledDevice& device(const std::string& name);
+    ControlSurface& surface(ControlledDevice& d);
+    void publish(std::string_view device, std::string_view type, const nlohmann::json& data);
 
     Clock& clock_;
     Ticker& ticker_;
     std::function<bool()> busy_;
-    std::vector<DeviceEndpoints> devices_;
+    std::vector<ControlledDevice> devices_;
+    EventBus* events_;
+    FaultBook faults_;   ///< after devices_, which it refers to
 };
 
 } // namespace rigsim::control

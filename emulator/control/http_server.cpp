@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <array>
+#include <deque>
 #include <optional>
 #include <set>
 #include <utility>
@@ -69,13 +71,18 @@ public:
     {
         state_->sessions.insert(this);
     }
-    ~Session() { state_->sessions.erase(this); }
+    ~Session()
+    {
+        end_stream();
+        state_->sessions.erase(this);
+    }
 
     void start() { read(); }
 
     /// Close the socket: the pending operation completes with an error and the session ends.
     void close()
     {
+        end_stream();
         boost::system::error_code ignored;
         stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
         stream_.close();
@@ -100,7 +107,7 @@ private:
             if (is_parse_error(ec) && !state_->stopped) {
                 state_->log->warn("control: bad request: {}", ec.message());
                 // After a malformed request the stream's framing is lost: answer, then close.
-                write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message())}, 11, false);
+                write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message()), {}}, 11, false);
             }
             return;   // end of stream, timeout, reset or stop: the session ends here
         }
@@ -112,9 +119,86 @@ private:
         } catch (const std::exception& e) {
             state_->log->error("control: {} {}: {}", std::string(req.method_string()), std::string(req.target()),
                                e.what());
-            reply = HttpReply{500, error_body(std::string("internal error: ") + e.what())};
+            reply = HttpReply{500, error_body(std::string("internal error: ") + e.what()), {}};
         }
-        write(std::move(reply), req.version(), req.keep_alive());
+        if (reply.stream)
+            start_stream(std::move(reply.stream));
+        else
+            write(std::move(reply), req.version(), req.keep_alive());
+    }
+
+    // ---- A stream (GET /api/events): headers, then events as they come, until the client goes.
+    // The answer has no length: it ends when the connection closes (RFC 9112 6.3).
+
+    void start_stream(StreamStart start)
+    {
+        stream_.expires_never();
+        queue("HTTP/1.1 200 OK\r\nServer: rigsimd\r\nContent-Type: text/event-stream\r\n"
+              "Cache-Control: no-cache\r\nConnection: close\r\n\r\n");
+        std::weak_ptr<Session> weak = shared_from_this();
+        stop_stream_ = start([weak](std::string_view bytes) {
+            if (auto self = weak.lock())
+                self->queue(bytes);
+        });
+        // The client sends nothing more; a read ends when it closes the connection.
+        stream_.socket().async_read_some(boost::asio::buffer(sink_),
+                                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                                             if (ec)
+                                                 self->close();
+                                             else
+                                                 self->drain_client();
+                                         });
+    }
+
+    /// Bytes a stream's client sent anyway are read and ignored.
+    void drain_client()
+    {
+        stream_.socket().async_read_some(boost::asio::buffer(sink_),
+                                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                                             if (ec)
+                                                 self->close();
+                                             else
+                                                 self->drain_client();
+                                         });
+    }
+
+    void queue(std::string_view bytes)
+    {
+        if (closed_)
+            return;
+        backlog_ += bytes.size();
+        if (backlog_ > state_->limits.max_stream_backlog_bytes) {
+            state_->log->warn("control: an event stream's client is {} bytes behind, closing it", backlog_);
+            close();
+            return;
+        }
+        out_.emplace_back(bytes);
+        if (out_.size() == 1)
+            write_next();
+    }
+
+    void write_next()
+    {
+        boost::asio::async_write(stream_.socket(), boost::asio::buffer(out_.front()),
+                                 [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                                     if (ec || self->closed_) {
+                                         self->close();
+                                         return;
+                                     }
+                                     self->backlog_ -= self->out_.front().size();
+                                     self->out_.pop_front();
+                                     if (!self->out_.empty())
+                                         self->write_next();
+                                 });
+    }
+
+    void end_stream()
+    {
+        closed_ = true;
+        if (auto stop = std::move(stop_stream_)) {
+            stop_stream_ = nullptr;
+            stop();
+        }
     }
 
     void write(HttpReply reply, unsigned version, bool keep_alive)
@@ -143,6 +227,12 @@ private:
     beast::flat_buffer buffer_;
     std::optional<http::request_parser<http::string_body>> parser_;
     http::response<http::string_body> response_;
+    // A stream's state.
+    std::function<void()> stop_stream_;
+    std::deque<std::string> out_;
+    std::size_t backlog_ = 0;
+    bool closed_ = false;
+    std::array<char, 512> sink_{};
 };
 
 namespace {

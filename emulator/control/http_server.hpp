@@ -18,10 +18,18 @@
 
 namespace rigsim::control {
 
-/// A route's answer: an HTTP status and a JSON body.
+/// Queues bytes of a stream for its client (called on the io_context thread).
+using StreamWriter = std::function<void(std::string_view bytes)>;
+/// Starts a stream on a connection: called once with its writer; returns what ends the stream
+/// (called once when the client goes away or the server stops).
+using StreamStart = std::function<std::function<void()>(StreamWriter writer)>;
+
+/// A route's answer: an HTTP status and a JSON body, or a stream (Server-Sent Events).
 struct HttpReply {
     unsigned status = 200;
     std::string body;
+    /// Set: the answer is `200 text/event-stream` that lasts until the client closes; `body` unused.
+    StreamStart stream;
 };
 
 /// (method, target, body) -> reply; called on the io_context thread, one request at a time.
@@ -31,7 +39,8 @@ struct HttpServerLimits {
     std::size_t max_body_bytes = 64 * 1024;   ///< a larger body gets 413 and the connection closes
     std::size_t max_header_bytes = 8 * 1024;  ///< larger headers get 400
     std::size_t max_connections = 64;         ///< more are accepted and closed at once
-    std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);   ///< then closed
+    std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);   ///< then closed (not streams)
+    std::size_t max_stream_backlog_bytes = 4 * 1024 * 1024;   ///< a stream's client this far behind is closed
 };
 
 class HttpServer {

@@ -79,6 +79,7 @@ std::string tcp_address_text(const boost::asio::ip::address& address, std::uint1
 
 struct Rig::Entry {
     std::unique_ptr<Device> device;
+    std::unique_ptr<Link> link;
     std::unique_ptr<PacedDevice> paced;
     std::unique_ptr<TcpEndpoint> tcp;
     std::unique_ptr<PtyEndpoint> pty;
@@ -91,13 +92,16 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
                  : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
       watcher_(io)
 {
+    if (options.paused)
+        ticker_.pause();
     tcp_budget_.max_total = options.max_connections;
     tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {
         auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
         e->device = make_device(dc, world_, log, *store_, events_);
-        e->paced = std::make_unique<PacedDevice>(*e->device, ticker_);
+        e->link = std::make_unique<Link>(*e->device, clock_);
+        e->paced = std::make_unique<PacedDevice>(*e->link, ticker_);
         const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
         try {
             e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log, tcp_budget_);
@@ -144,6 +148,14 @@ void Rig::stop()
         e->pty->stop();
     }
     watcher_.stop();
+}
+
+std::vector<ControlledDevice> Rig::controlled()
+{
+    std::vector<ControlledDevice> out;
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+        out.push_back(ControlledDevice{endpoints_[i], entries_[i]->device->control(), entries_[i]->link.get()});
+    return out;
 }
 
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints, const std::string& control_url)

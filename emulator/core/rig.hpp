@@ -5,6 +5,7 @@
 #include "models/clock.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/event_bus.hpp"
+#include "emulator/core/link.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
@@ -28,6 +29,7 @@ struct RigOptions {
     bool ephemeral_ports = false;           ///< every TCP endpoint on port 0
     boost::asio::ip::address bind = boost::asio::ip::make_address("127.0.0.1");
     double time_scale = 1.0;
+    bool paused = false;                    ///< the clock starts paused (--paused, "clock": {"paused"})
     LogLevels log_levels;
     std::string state_file;                 ///< --state-file; empty: non-volatile saves last the run
     std::size_t max_connections = 256;      ///< TCP connections open at once, all devices together
@@ -41,6 +43,13 @@ struct DeviceEndpoints {
     std::string model;
     std::string tcp;   ///< "127.0.0.1:40100", "[::1]:40100" (where a local client connects)
     std::string pty;   ///< symlink path
+};
+
+/// A device as the control API steers it.
+struct ControlledDevice {
+    DeviceEndpoints endpoints;
+    ControlSurface* surface = nullptr;   ///< state, set-up, device faults, power cycle, wire log
+    Link* link = nullptr;                ///< faults on the wire
 };
 
 class Rig {
@@ -62,6 +71,8 @@ public:
     Ticker& ticker() { return ticker_; }
     /// The control API's event stream (GET /api/events).
     EventBus& events() { return events_; }
+    /// Every device, in config order, as the control API steers it.
+    std::vector<ControlledDevice> controlled();
     /// Something moves: the world changes by itself at some later tick.
     bool busy() const { return world_.next_change(clock_.now()) != kNever; }
 

@@ -30,8 +30,9 @@ constexpr std::size_t kMaxConfigBytes = 4 << 20;
 
 // The keys each object may hold; anything else is an error. A device also holds the section
 // of each family, under the family's name.
-constexpr std::array<std::string_view, 3> kRigKeys{"tick_hz", "devices", "control"};
+constexpr std::array<std::string_view, 4> kRigKeys{"tick_hz", "devices", "control", "clock"};
 constexpr std::array<std::string_view, 1> kControlKeys{"port"};
+constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
 
 /// [A-Za-z0-9_.-]: safe in a file name and a logger name.
@@ -185,10 +186,29 @@ public:
             control.port = static_cast<std::uint16_t>(get_int(require(*c, "/control", "port"), "/control/port", 0, 65535));
             rig.control = control;
         }
+        if (const auto* c = find(root, "clock"))
+            rig.clock = load_clock(*c);
         return rig;
     }
 
 private:
+    ClockStart load_clock(const json& c) const
+    {
+        check_keys(c, "/clock", kClockKeys);
+        ClockStart clock;
+        if (const auto* v = find(c, "time_scale")) {
+            if (!v->is_number() || v->get<double>() < 0.001 || v->get<double>() > 1000)
+                fail("/clock/time_scale", "expected a number 0.001..1000, got " + describe(*v));
+            clock.time_scale = v->get<double>();
+        }
+        if (const auto* v = find(c, "paused")) {
+            if (!v->is_boolean())
+                fail("/clock/paused", "expected true or false, got " + describe(*v));
+            clock.paused = v->get<bool>();
+        }
+        return clock;
+    }
+
     DeviceConfig load_device(const json& v, const std::string& pointer)
     {
         DeviceConfig d;

@@ -51,8 +51,15 @@ struct ControlConfig {
     std::uint16_t port = 0;           ///< 0 = ephemeral
 };
 
+/// How the clock starts ("clock" in the rig JSON; --time-scale and --paused win).
+struct ClockStart {
+    double time_scale = 1.0;          ///< 0.001..1000
+    bool paused = false;
+};
+
 struct RigConfig {
     std::uint32_t tick_hz = 1000;     ///< physics tick (1..100000 Hz)
+    ClockStart clock;
     std::vector<DeviceConfig> devices;
     std::optional<ControlConfig> control;   ///< the control API; absent = off unless --control
 };

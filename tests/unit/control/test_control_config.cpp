@@ -64,3 +64,38 @@ TEST_CASE("endpoints json: control appears only when the control API is on", "[u
     CHECK(on["control"] == "http://127.0.0.1:40200");
     CHECK(on["devices"] == off["devices"]);
 }
+
+namespace {
+
+/// The smallest valid rig with `clock` as its "clock" value.
+std::string rig_with_clock(const json& clock)
+{
+    auto rig = json::parse(R"({"devices": [{"name": "mcs0", "protocol": "mcs", "mcs": {"channels": [{}]}}]})");
+    rig["clock"] = clock;
+    return rig.dump();
+}
+
+std::string clock_error_of(const json& clock)
+{
+    try {
+        parse_rig_config(rig_with_clock(clock), "rig.json");
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+} // namespace
+
+TEST_CASE("rig config: the clock's start mode, real time unless the rig says otherwise", "[unit][config][control]")
+{
+    const auto plain = parse_rig_config(rig_with_control(nullptr), "rig.json");
+    CHECK(plain.clock.time_scale == 1.0);
+    CHECK_FALSE(plain.clock.paused);
+    const auto set = parse_rig_config(rig_with_clock(json{{"time_scale", 10}, {"paused", true}}), "rig.json");
+    CHECK(set.clock.time_scale == 10.0);
+    CHECK(set.clock.paused);
+    CHECK(clock_error_of(json{{"time_scale", 0}}) == "rig.json: /clock/time_scale: expected a number 0.001..1000, got 0");
+    CHECK(clock_error_of(json{{"paused", "yes"}}) == "rig.json: /clock/paused: expected true or false, got \"yes\"");
+    CHECK(clock_error_of(json{{"mode", "fast"}}) == "rig.json: /clock: unknown key \"mode\" (allowed: time_scale, paused)");
+}

@@ -197,7 +197,7 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     SECTION("top level")
     {
         rig["tickhz"] = 1000;
-        CHECK(error_of(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices, control)");
+        CHECK(error_of(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices, control, clock)");
     }
     SECTION("device")
     {

@@ -1,0 +1,197 @@
+#include "emulator/control/fault_book.hpp"
+
+#include "emulator/control/json_reply.hpp"
+#include "emulator/core/control_surface.hpp"
+
+#include <algorithm>
+
+namespace rigsim::control {
+
+using nlohmann::json;
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names)
+{
+    std::string out;
+    for (const auto& n : names)
+        out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+/// Refuses keys of `params` other than `allowed`.
+void only_keys(const json& params, const std::string& kind, std::initializer_list<const char*> allowed)
+{
+    for (const auto& [key, value] : params.items()) {
+        const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
+        if (!known) {
+            std::string list;
+            for (const auto* a : allowed)
+                list += (list.empty() ? "" : ", ") + std::string(a);
+            throw BadRequest{400, "\"" + key + "\": not a parameter of a " + kind + " fault"
+                                      + (list.empty() ? " (it takes none)" : " (it takes " + list + ")")};
+        }
+    }
+}
+
+std::uint32_t seed_of(const json& params)
+{
+    return params.contains("seed") ? static_cast<std::uint32_t>(require_int(params, "seed", 0, 0xFFFFFFFF)) : 1;
+}
+
+} // namespace
+
+const std::vector<std::string>& FaultBook::device_kinds()
+{
+    static const std::vector<std::string> kinds{"stall", "slip", "sensor_failure", "reference_lost", "limit_switch"};
+    return kinds;
+}
+
+const std::vector<std::string>& FaultBook::link_kinds()
+{
+    static const std::vector<std::string> kinds{"unplugged", "drop_bytes", "corrupt_bytes", "latency"};
+    return kinds;
+}
+
+FaultBook::FaultBook(const Clock& clock, std::vector<ControlledDevice>& devices) : clock_(clock), devices_(devices)
+{
+}
+
+std::size_t FaultBook::device_index(const json& body) const
+{
+    if (!body.contains("device"))
+        throw BadRequest{400, "\"device\": required (the device's name)"};
+    const auto& v = body.at("device");
+    if (!v.is_string())
+        throw BadRequest{400, "\"device\": expected a device name, got " + dump(v)};
+    for (std::size_t i = 0; i < devices_.size(); ++i)
+        if (devices_[i].endpoints.name == v.get<std::string>())
+            return i;
+    std::vector<std::string> names;
+    for (const auto& d : devices_)
+        names.push_back(d.endpoints.name);
+    throw BadRequest{404, "\"device\": no device named " + dump(v) + " (devices: " + joined(names) + ")"};
+}
+
+json FaultBook::add(const json& body)
+{
+    const auto index = device_index(body);
+    if (!body.contains("kind") || !body.at("kind").is_string())
+        throw BadRequest{400, "\"kind\": required, one of " + joined(device_kinds()) + ", " + joined(link_kinds())
+                                  + ", power_cycle"};
+    const auto kind = body.at("kind").get<std::string>();
+    const bool device_kind = std::count(device_kinds().begin(), device_kinds().end(), kind) > 0;
+    const bool link_kind = std::count(link_kinds().begin(), link_kinds().end(), kind) > 0;
+    if (!device_kind && !link_kind && kind != "power_cycle")
+        throw BadRequest{400, "\"kind\": unknown fault " + dump(body.at("kind")) + " (expected one of "
+                                  + joined(device_kinds()) + ", " + joined(link_kinds()) + ", power_cycle)"};
+    json params = json::object();
+    for (const auto& [key, value] : body.items())
+        if (key != "device" && key != "kind" && key != "channel")
+            params[key] = value;
+    std::optional<std::size_t> channel;
+    if (body.contains("channel")) {
+        if (!device_kind)
+            throw BadRequest{400, "\"channel\": a " + kind + " fault acts on the whole device"};
+        channel = static_cast<std::size_t>(require_int(body, "channel", 0, 255));
+    }
+    auto& dev = devices_[index];
+    const std::uint64_t id = next_id_;
+    bool kept = true;
+    if (device_kind) {
+        if (!dev.surface)
+            throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no device faults"};
+        if (auto refused = dev.surface->add_fault(DeviceFault{id, kind, channel, &params}, &kept))
+            throw BadRequest{refused->status, refused->message};
+    } else if (link_kind) {
+        add_link(id, kind, params, *dev.link);
+    } else {
+        only_keys(params, kind, {"keep_saved"});
+        const bool keep = !params.contains("keep_saved") || require_bool(params, "keep_saved");
+        if (dev.surface)
+            dev.surface->power_cycle(PowerCycle{keep, false});
+        kept = false;
+    }
+    ++next_id_;
+    json record{{"id", id},
+                {"device", dev.endpoints.name},
+                {"channel", device_kind ? json(channel.value_or(0)) : json(nullptr)},
+                {"kind", kind},
+                {"params", params},
+                {"active", kept},
+                {"since_ms", clock_.seconds(clock_.now()) * 1000.0}};
+    if (kept)
+        active_.emplace(id, Record{index, link_kind, record});
+    return record;
+}
+
+void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link)
+{
+    if (kind == "unplugged") {
+        only_keys(params, kind, {});
+        link.set_unplugged(id, true);
+        return;
+    }
+    if (kind == "latency") {
+        only_keys(params, kind, {"latency_ms", "jitter_ms", "seed"});
+        if (!params.contains("latency_ms"))
+            throw BadRequest{400, "\"latency_ms\": required for a latency fault"};
+        LatencyFault f;
+        f.id = id;
+        f.latency = clock_.ticks_from_ms(require_int(params, "latency_ms", 0, 600'000));
+        f.jitter = params.contains("jitter_ms") ? clock_.ticks_from_ms(require_int(params, "jitter_ms", 0, 600'000)) : 0;
+        f.seed = seed_of(params);
+        link.add(f);
+        return;
+    }
+    only_keys(params, kind, {"direction", "probability", "seed"});
+    ByteFault f;
+    f.id = id;
+    f.corrupt = kind == "corrupt_bytes";
+    if (params.contains("direction")) {
+        const auto& d = params.at("direction");
+        if (d != "in" && d != "out" && d != "both")
+            throw BadRequest{400, "\"direction\": expected \"in\", \"out\" or \"both\", got " + dump(d)};
+        f.inbound = d != "out";
+        f.outbound = d != "in";
+    }
+    f.probability = params.contains("probability") ? require_number(params, "probability", 0, 1) : 1.0;
+    f.seed = seed_of(params);
+    link.add(f);
+}
+
+bool FaultBook::remove(std::uint64_t id)
+{
+    const auto it = active_.find(id);
+    if (it == active_.end())
+        return false;
+    auto& dev = devices_[it->second.device];
+    if (it->second.link)
+        dev.link->remove(id);
+    else if (dev.surface)
+        dev.surface->remove_fault(id);
+    active_.erase(it);
+    return true;
+}
+
+std::vector<std::uint64_t> FaultBook::remove_all(const std::string* device)
+{
+    std::vector<std::uint64_t> ids;
+    for (const auto& [id, r] : active_)
+        if (!device || devices_[r.device].endpoints.name == *device)
+            ids.push_back(id);
+    for (const auto id : ids)
+        remove(id);
+    return ids;
+}
+
+json FaultBook::list(const std::string* device) const
+{
+    auto out = json::array();
+    for (const auto& [id, r] : active_)
+        if (!device || devices_[r.device].endpoints.name == *device)
+            out.push_back(r.json);
+    return out;
+}
+
+} // namespace rigsim::control

@@ -1,0 +1,185 @@
+#include "emulator/core/link.hpp"
+
+#include <algorithm>
+
+namespace rigsim {
+
+/// One connection through the link: client bytes to the device's session, the device's bytes
+/// to the client, each through the link's faults.
+class Link::LinkSession : public Session {
+public:
+    LinkSession(Link& link, SendFn send, std::string peer) : link_(link), send_(std::move(send))
+    {
+        link_.sessions_.push_back(this);
+        inner_ = link_.inner_.open_session([this](std::string_view bytes) { out(bytes); }, std::move(peer));
+    }
+    ~LinkSession() override
+    {
+        inner_.reset();   // before the link forgets us: it may still send while closing
+        auto& s = link_.sessions_;
+        s.erase(std::remove(s.begin(), s.end(), this), s.end());
+    }
+
+    void receive(std::string_view bytes) override
+    {
+        if (link_.unplugged())
+            return;
+        if (link_.byte_faults_.empty()) {
+            inner_->receive(bytes);
+            return;
+        }
+        const auto kept = link_.filter(bytes, true);
+        if (!kept.empty())
+            inner_->receive(kept);
+    }
+
+    /// Held bytes whose time has come go out.
+    void release(Ticks now)
+    {
+        while (!held_.empty() && held_.front().first <= now) {
+            send_(held_.front().second);
+            held_.pop_front();
+        }
+    }
+    Ticks next_due() const { return held_.empty() ? kNever : held_.front().first; }
+    std::size_t held() const { return held_.size(); }
+
+private:
+    void out(std::string_view bytes)
+    {
+        if (link_.unplugged())
+            return;
+        std::string filtered;
+        if (!link_.byte_faults_.empty()) {
+            filtered = link_.filter(bytes, false);
+            if (filtered.empty())
+                return;
+            bytes = filtered;
+        }
+        const Ticks now = link_.clock_.now();
+        const Ticks at = link_.due(now);
+        if (at <= now && held_.empty()) {
+            send_(bytes);
+            return;
+        }
+        // A serial line keeps its order: a later answer never overtakes an earlier one.
+        held_.emplace_back(std::max(at, held_.empty() ? at : held_.back().first), std::string(bytes));
+    }
+
+    Link& link_;
+    SendFn send_;
+    std::unique_ptr<Session> inner_;
+    std::deque<std::pair<Ticks, std::string>> held_;
+};
+
+Link::Link(Device& inner, Clock& clock) : inner_(inner), clock_(clock)
+{
+    clock_.add(this);
+}
+
+Link::~Link()
+{
+    clock_.remove(this);
+}
+
+std::unique_ptr<Session> Link::open_session(SendFn send, std::string peer)
+{
+    return std::make_unique<LinkSession>(*this, std::move(send), std::move(peer));
+}
+
+void Link::set_unplugged(std::uint64_t id, bool unplugged)
+{
+    unplugged_ = unplugged ? id : 0;
+}
+
+void Link::add(const ByteFault& f)
+{
+    byte_faults_.push_back(ActiveByteFault{f, std::mt19937(f.seed)});
+}
+
+void Link::add(const LatencyFault& f)
+{
+    latency_ = f;
+    latency_rng_.seed(f.seed);
+}
+
+bool Link::remove(std::uint64_t id)
+{
+    if (id == 0)
+        return false;
+    if (unplugged_ == id) {
+        unplugged_ = 0;
+        return true;
+    }
+    if (latency_.id == id) {
+        latency_ = LatencyFault{};
+        return true;
+    }
+    const auto it = std::find_if(byte_faults_.begin(), byte_faults_.end(),
+                                 [&](const ActiveByteFault& a) { return a.f.id == id; });
+    if (it == byte_faults_.end())
+        return false;
+    byte_faults_.erase(it);
+    return true;
+}
+
+std::size_t Link::held() const
+{
+    std::size_t n = 0;
+    for (const auto* s : sessions_)
+        n += s->held();
+    return n;
+}
+
+std::string Link::filter(std::string_view bytes, bool inbound)
+{
+    std::string out(bytes);
+    for (auto& a : byte_faults_) {
+        if (inbound ? !a.f.inbound : !a.f.outbound)
+            continue;
+        std::uniform_real_distribution<double> chance(0.0, 1.0);
+        std::string kept;
+        kept.reserve(out.size());
+        for (const char c : out) {
+            if (chance(a.rng) >= a.f.probability) {
+                kept.push_back(c);
+            } else if (a.f.corrupt) {
+                kept.push_back(static_cast<char>(static_cast<unsigned char>(c) ^ (1u << (a.rng() % 8))));
+                ++corrupted_;
+            } else {
+                ++dropped_;
+            }
+        }
+        out.swap(kept);
+    }
+    return out;
+}
+
+Ticks Link::due(Ticks now)
+{
+    if (latency_.id == 0)
+        return now;
+    Ticks jitter = 0;
+    if (latency_.jitter > 0)
+        jitter = std::uniform_int_distribution<Ticks>(0, latency_.jitter)(latency_rng_);
+    return now + latency_.latency + jitter;
+}
+
+Ticks Link::next_change(Ticks now) const
+{
+    Ticks next = kNever;
+    for (const auto* s : sessions_)
+        next = std::min(next, s->next_due());
+    return next <= now ? now + 1 : next;
+}
+
+void Link::tick(Ticks now)
+{
+    // A session may close while it sends (a write error): walk a copy.
+    const auto sessions = sessions_;
+    for (auto* s : sessions)
+        if (std::find(sessions_.begin(), sessions_.end(), s) != sessions_.end())
+            s->release(now);
+}
+
+} // namespace rigsim

@@ -1,0 +1,163 @@
+// Faults on the wire (emulator/core/link.hpp): unplugged, dropped and corrupted bytes, late
+// answers. The device behind the link echoes; the clock is stepped.
+#include "emulator/core/link.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+using namespace rigsim;
+
+namespace {
+
+/// Echoes every batch of bytes back, and remembers what it received.
+class EchoDevice : public Device {
+public:
+    std::unique_ptr<Session> open_session(SendFn send, std::string) override
+    {
+        return std::make_unique<EchoSession>(*this, std::move(send));
+    }
+    std::string received;
+
+private:
+    class EchoSession : public Session {
+    public:
+        EchoSession(EchoDevice& d, SendFn send) : d_(d), send_(std::move(send)) {}
+        void receive(std::string_view bytes) override
+        {
+            d_.received.append(bytes);
+            send_(bytes);
+        }
+
+    private:
+        EchoDevice& d_;
+        SendFn send_;
+    };
+};
+
+struct Fixture {
+    Clock clock{1000};
+    EchoDevice echo;
+    Link link{echo, clock};
+    std::string out;
+    std::unique_ptr<Session> session = link.open_session([this](std::string_view b) { out.append(b); }, "test");
+};
+
+} // namespace
+
+TEST_CASE("a link without faults passes bytes both ways at once", "[link]")
+{
+    Fixture f;
+    f.session->receive("abc");
+    CHECK(f.echo.received == "abc");
+    CHECK(f.out == "abc");
+    CHECK(f.link.next_change(0) == kNever);
+}
+
+TEST_CASE("an unplugged link loses bytes both ways until it is plugged in again", "[link]")
+{
+    Fixture f;
+    f.link.set_unplugged(7, true);
+    f.session->receive("lost");
+    CHECK(f.echo.received.empty());
+    CHECK(f.out.empty());
+    CHECK(f.link.unplugged());
+    CHECK_FALSE(f.link.remove(8));
+    CHECK(f.link.remove(7));
+    f.session->receive("back");
+    CHECK(f.out == "back");
+}
+
+TEST_CASE("dropped bytes: with probability 1 every byte of the chosen direction is lost", "[link]")
+{
+    Fixture f;
+    ByteFault drop;
+    drop.id = 3;
+    drop.inbound = false;   // answers only
+    f.link.add(drop);
+    f.session->receive("12345");
+    CHECK(f.echo.received == "12345");
+    CHECK(f.out.empty());
+    CHECK(f.link.dropped() == 5);
+    REQUIRE(f.link.remove(3));
+    f.session->receive("6");
+    CHECK(f.out == "6");
+}
+
+TEST_CASE("corrupted bytes: each chosen byte has exactly one bit flipped, the same with the same seed", "[link]")
+{
+    const std::string sent = "hello, world";
+    std::string first;
+    for (int run = 0; run < 2; ++run) {
+        Fixture f;
+        ByteFault c;
+        c.id = 1;
+        c.corrupt = true;
+        c.outbound = false;
+        c.seed = 42;
+        f.link.add(c);
+        f.session->receive(sent);
+        REQUIRE(f.echo.received.size() == sent.size());
+        for (std::size_t i = 0; i < sent.size(); ++i) {
+            const unsigned diff = static_cast<unsigned char>(sent[i] ^ f.echo.received[i]);
+            CHECK(diff != 0);
+            CHECK((diff & (diff - 1)) == 0);   // one bit
+        }
+        CHECK(f.link.corrupted() == sent.size());
+        if (run == 0)
+            first = f.echo.received;
+        else
+            CHECK(f.echo.received == first);
+    }
+}
+
+TEST_CASE("a probability of 0.5 drops about half of the bytes, deterministically per seed", "[link]")
+{
+    Fixture f;
+    ByteFault drop;
+    drop.id = 1;
+    drop.outbound = false;
+    drop.probability = 0.5;
+    f.link.add(drop);
+    f.session->receive(std::string(10000, 'x'));
+    CHECK(f.echo.received.size() > 4500);
+    CHECK(f.echo.received.size() < 5500);
+}
+
+TEST_CASE("latency holds answers for clock time, in order, and a step releases them", "[link]")
+{
+    Fixture f;
+    LatencyFault late;
+    late.id = 9;
+    late.latency = 50;
+    late.jitter = 20;
+    f.link.add(late);
+    f.session->receive("a");
+    f.clock.advance(1);
+    f.session->receive("b");
+    CHECK(f.out.empty());
+    CHECK(f.link.held() == 2);
+    CHECK(f.link.next_change(f.clock.now()) >= 50);
+    f.clock.advance(49);   // tick 50: not yet past the shortest possible delay of "b"
+    f.clock.advance(21);   // tick 71: both due (50 + 20 at most, "b" no earlier than "a")
+    CHECK(f.out == "ab");
+    CHECK(f.link.held() == 0);
+    CHECK(f.link.remove(9));
+    f.session->receive("c");
+    CHECK(f.out == "abc");
+}
+
+TEST_CASE("a paused clock holds late answers: nothing goes out without clock time", "[link]")
+{
+    Fixture f;
+    LatencyFault late;
+    late.id = 2;
+    late.latency = 10;
+    f.link.add(late);
+    f.session->receive("x");
+    f.clock.advance(9);
+    CHECK(f.out.empty());
+    f.clock.advance(1);
+    CHECK(f.out == "x");
+}
