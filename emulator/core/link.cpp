@@ -1,6 +1,7 @@
 #include "emulator/core/link.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rigsim {
 
@@ -8,7 +9,8 @@ namespace rigsim {
 /// to the client, each through the link's faults.
 class Link::LinkSession : public Session {
 public:
-    LinkSession(Link& link, SendFn send, std::string peer) : link_(link), send_(std::move(send))
+    LinkSession(Link& link, SendFn send, std::string peer)
+        : link_(link), send_(std::move(send)), serial_(peer.rfind("pty ", 0) == 0)
     {
         link_.sessions_.push_back(this);
         inner_ = link_.inner_.open_session([this](std::string_view bytes) { out(bytes); }, std::move(peer));
@@ -37,8 +39,10 @@ public:
     void release(Ticks now)
     {
         while (!held_.empty() && held_.front().first <= now) {
-            send_(held_.front().second);
+            held_bytes_ -= held_.front().second.size();
+            const auto bytes = std::move(held_.front().second);
             held_.pop_front();
+            send_(bytes);
         }
     }
     Ticks next_due() const { return held_.empty() ? kNever : held_.front().first; }
@@ -57,11 +61,22 @@ private:
             bytes = filtered;
         }
         const Ticks now = link_.clock_.now();
-        const Ticks at = link_.due(now);
+        Ticks at = link_.due(now);
+        // Faithful timing (a PtyEndpoint names its session "pty <path>"): the bytes arrive when
+        // the line has carried them, 10 bits per byte at the device's baud rate, after
+        // whatever it still carries.
+        if (const auto baud = serial_ ? link_.inner_.serial_baud() : 0; baud > 0) {
+            const double ticks = static_cast<double>(bytes.size()) * 10.0 * link_.clock_.tick_hz() / baud;
+            line_free_ = std::max(line_free_, static_cast<double>(at)) + ticks;
+            at = static_cast<Ticks>(std::ceil(line_free_));
+        }
         if (at <= now && held_.empty()) {
             send_(bytes);
             return;
         }
+        if (held_bytes_ + bytes.size() > kMaxHeldBytes)
+            return;   // nobody reads the port: as the pty would, drop rather than grow
+        held_bytes_ += bytes.size();
         // A serial line keeps its order: a later answer never overtakes an earlier one.
         held_.emplace_back(std::max(at, held_.empty() ? at : held_.back().first), std::string(bytes));
     }
@@ -69,7 +84,10 @@ private:
     Link& link_;
     SendFn send_;
     std::unique_ptr<Session> inner_;
+    bool serial_;
+    double line_free_ = 0;   ///< tick (fractional) at which the serial line has sent all it was given
     std::deque<std::pair<Ticks, std::string>> held_;
+    std::size_t held_bytes_ = 0;
 };
 
 Link::Link(Device& inner, Clock& clock) : inner_(inner), clock_(clock)

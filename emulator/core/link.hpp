@@ -1,8 +1,9 @@
 #pragma once
-// Faults on the wire between a device and its clients (docs/control-api.md "Faults"): a cable
-// unplugged, bytes dropped or corrupted, answers late. The link sits between the transports and
-// the device: the device never knows. Delays run on clock time, so a paused clock holds late
-// answers and a step releases them.
+// The wire between a device and its clients: the serial line's pace (faithful timing) and the
+// faults on the wire (docs/control-api.md "Faults"): a cable unplugged, bytes dropped or
+// corrupted, answers late. The link sits between the transports and the device: the device
+// never knows. Both run on clock time, so a paused clock holds paced and late answers and a
+// step releases them; a scaled clock paces the line faster.
 
 #include "emulator/core/device.hpp"
 #include "models/clock.hpp"
@@ -43,12 +44,17 @@ public:
     Link& operator=(const Link&) = delete;
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
-    std::uint32_t serial_baud() const override { return inner_.serial_baud(); }
+    /// 0: the link paces a serial line itself, on clock time (the transport must not again).
+    std::uint32_t serial_baud() const override { return 0; }
     ControlSurface* control() override { return inner_.control(); }
 
     /// Unplugged: client bytes are lost and the device's answers too (the pty stays).
     void set_unplugged(std::uint64_t id, bool unplugged);
     bool unplugged() const { return unplugged_ != 0; }
+    /// Bytes held for one serial connection (paced, not yet sent) beyond which new answers are
+    /// dropped: nobody reads the port (the pty keeps as much).
+    static constexpr std::size_t kMaxHeldBytes = 1 << 20;
+
     void add(const ByteFault& f);
     void add(const LatencyFault& f);
     /// Ends fault `id` (held late bytes still go out at their time); false if it is not a link fault.

@@ -14,6 +14,8 @@ namespace {
 /// Echoes every batch of bytes back, and remembers what it received.
 class EchoDevice : public Device {
 public:
+    std::uint32_t serial_baud() const override { return baud; }
+    std::uint32_t baud = 0;
     std::unique_ptr<Session> open_session(SendFn send, std::string) override
     {
         return std::make_unique<EchoSession>(*this, std::move(send));
@@ -160,4 +162,37 @@ TEST_CASE("a paused clock holds late answers: nothing goes out without clock tim
     CHECK(f.out.empty());
     f.clock.advance(1);
     CHECK(f.out == "x");
+}
+
+TEST_CASE("faithful timing: a serial line's answers arrive when the line has carried them, in clock time",
+          "[link]")
+{
+    Clock clock{1000};
+    EchoDevice echo;
+    echo.baud = 9600;
+    Link link{echo, clock};
+    CHECK(link.serial_baud() == 0);   // the transport must not pace a second time
+    std::string pty_out, tcp_out;
+    auto pty = link.open_session([&](std::string_view b) { pty_out.append(b); }, "pty /tmp/x/mcs0");
+    auto tcp = link.open_session([&](std::string_view b) { tcp_out.append(b); }, "tcp 127.0.0.1:5000");
+    tcp->receive(std::string(96, 't'));
+    CHECK(tcp_out.size() == 96);   // TCP is not a serial line
+    pty->receive(std::string(96, 'a'));   // 960 bits at 9600 baud: 100 ms
+    pty->receive(std::string(48, 'b'));   // 50 ms more, after the first
+    CHECK(pty_out.empty());
+    clock.advance(99);
+    CHECK(pty_out.empty());
+    clock.advance(1);
+    CHECK(pty_out == std::string(96, 'a'));
+    clock.advance(49);
+    CHECK(pty_out.size() == 96);
+    clock.advance(1);
+    CHECK(pty_out.size() == 144);
+    // The line idle since: the next answer starts now.
+    clock.advance(1000);
+    pty->receive(std::string(10, 'c'));   // 100 bits: 10.4 ms -> 11 ticks
+    clock.advance(10);
+    CHECK(pty_out.size() == 144);
+    clock.advance(1);
+    CHECK(pty_out.size() == 154);
 }
