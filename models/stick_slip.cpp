@@ -33,7 +33,60 @@ double StickSlipPositioner::rest_position(Ticks now) const
         return rest_nm_;
     const double drifted = rest_nm_ + config_.drift_nm_per_s * clock_.seconds(now - rest_since_);
     // Drift stops at an end stop (and never pulls a stage placed beyond one further out).
-    return std::clamp(drifted, std::min(config_.travel_min_nm, rest_nm_), std::max(config_.travel_max_nm, rest_nm_));
+    return std::clamp(drifted, std::min(stop_min_nm(), rest_nm_), std::max(stop_max_nm(), rest_nm_));
+}
+
+double StickSlipPositioner::velocity_nm_per_s() const
+{
+    const Ticks now = clock_.now();
+    switch (motion_) {
+    case Motion::Rest: {
+        const double drifted = config_.drift_nm_per_s * clock_.seconds(now - rest_since_);
+        const bool creeping = config_.drift_nm_per_s != 0 && !hold_ && !blocked_;
+        return creeping && rest_position(now) == rest_nm_ + drifted ? config_.drift_nm_per_s : 0.0;
+    }
+    case Motion::Profile:
+        return now >= profile_end_ ? 0.0 : profile_.sample(clock_.seconds(now - profile_start_)).velocity;
+    case Motion::Burst:
+        catch_up();
+        if (replay_.limit_met || (burst_.steps > 0 && replay_.done >= burst_.steps) || blocked_)
+            return 0.0;
+        return burst_.direction * step_width_nm_ * burst_.frequency_hz;
+    case Motion::Scan:
+        if (now >= scanner_.end_tick() || blocked_)
+            return 0.0;
+        return (scanner_.displacement_nm(now + 1) - scanner_.displacement_nm(now)) * clock_.tick_hz();
+    }
+    return 0.0;
+}
+
+void StickSlipPositioner::set_blocked(bool blocked)
+{
+    if (blocked == blocked_)
+        return;
+    if (!blocked) {
+        catch_up();   // the steps due so far were made against the obstacle
+        blocked_ = false;
+        if (motion_ == Motion::Rest)
+            rest_since_ = clock_.now();
+        return;
+    }
+    const bool driven = motion_ == Motion::Profile;
+    catch_up();
+    block_nm_ = position_nm();
+    if (driven) {   // a closed-loop move or search meets the obstacle where the stage is
+        settle();
+        blocked_ = true;
+        end_motion(Outcome::Blocked);
+        reschedule();
+        return;
+    }
+    if (motion_ == Motion::Rest) {
+        rest_nm_ = block_nm_;
+        rest_since_ = clock_.now();
+    }
+    blocked_ = true;
+    reschedule();
 }
 
 double StickSlipPositioner::position_nm() const
@@ -49,7 +102,7 @@ double StickSlipPositioner::position_nm() const
         return replay_.position_nm;
     case Motion::Scan:
         // End stops clamp a scan; the software range limit does not (MCS 2.3.4).
-        return std::clamp(rest_nm_ + scanner_.displacement_nm(now), config_.travel_min_nm, config_.travel_max_nm);
+        return std::clamp(rest_nm_ + scanner_.displacement_nm(now), stop_min_nm(), stop_max_nm());
     }
     return rest_nm_;
 }
@@ -99,6 +152,8 @@ void StickSlipPositioner::place(double position_nm)
 {
     settle();
     rest_nm_ = position_nm;
+    if (blocked_)
+        block_nm_ = position_nm;   // the obstacle goes where the stage was put
     reschedule();
 }
 
@@ -107,7 +162,9 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     settle();
     outcome_ = Outcome::None;
     const Ticks now = clock_.now();
-    profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, target_nm, speed_nm_per_s, acceleration_nm_per_s2);
+    target_nm = std::clamp(target_nm, std::min(stop_min_nm(), rest_nm_), std::max(stop_max_nm(), rest_nm_));
+    profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, target_nm, speed_nm_per_s * (1.0 - slip_),
+                                   acceleration_nm_per_s2);
     profile_start_ = now;
     profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     if (profile_end_ <= now)
@@ -123,7 +180,9 @@ bool StickSlipPositioner::start_legs(std::vector<double> legs_nm, double speed_n
     settle();
     outcome_ = Outcome::None;
     legs_nm_ = std::move(legs_nm);
-    leg_speed_nm_per_s_ = speed_nm_per_s;
+    if (blocked_)   // the search meets the obstacle at once, in either direction
+        std::fill(legs_nm_.begin(), legs_nm_.end(), rest_nm_);
+    leg_speed_nm_per_s_ = speed_nm_per_s * (1.0 - slip_);
     const bool moving = next_leg(clock_.now());
     reschedule();
     return moving;
@@ -153,7 +212,7 @@ void StickSlipPositioner::start_burst(const StepBurst& burst)
     settle();
     outcome_ = Outcome::None;
     burst_ = burst;
-    step_width_nm_ = config_.step_width_nm * burst.amplitude_levels / 4095.0;
+    step_width_nm_ = config_.step_width_nm * burst.amplitude_levels / 4095.0 * (1.0 - slip_);
     burst_start_ = clock_.now();
     replay_ = Replay{rest_nm_, 0, jitter_state_, false};
     motion_ = Motion::Burst;
@@ -182,15 +241,15 @@ bool StickSlipPositioner::step(double& position_nm, double delta_nm) const
 {
     const StepLimit& l = burst_.limit;
     const double base = l.follows_stage ? position_nm : 0.0;
-    const double lo = std::max(config_.travel_min_nm, base + l.min_nm);
-    const double hi = std::min(config_.travel_max_nm, base + l.max_nm);
+    const double lo = std::max(stop_min_nm(), base + l.min_nm);
+    const double hi = std::min(stop_max_nm(), base + l.max_nm);
     const double target = position_nm + delta_nm;
     const double reached = std::clamp(target, std::min(lo, position_nm), std::max(hi, position_nm));
     position_nm = reached;
     if (reached == target)
         return true;
     // Against a mechanical end stop the steps go on without moving; a range limit ends them.
-    const bool at_end_stop = reached <= config_.travel_min_nm || reached >= config_.travel_max_nm;
+    const bool at_end_stop = reached <= stop_min_nm() || reached >= stop_max_nm();
     return !l.active || at_end_stop;
 }
 
@@ -242,7 +301,7 @@ bool StickSlipPositioner::start_scan(double target_levels, double speed_levels_p
     const bool over = scanner_.end_tick() <= now;
     if (over) {
         scanner_.settle(now);
-        rest_nm_ = std::clamp(rest_nm_, config_.travel_min_nm, config_.travel_max_nm);
+        rest_nm_ = std::clamp(rest_nm_, stop_min_nm(), stop_max_nm());
     } else {
         motion_ = Motion::Scan;
     }

@@ -19,6 +19,12 @@
 //   (rest + drift · elapsed, clamped at the end stops); that is no event: it just stops
 //   at an end stop, and nobody is told.
 // Once an event has been handled, outcome() says what happened, and the listener is called.
+//
+// Faults (the control API's "stall" and "slip"): a blocked stage moves no further than where
+// it stood when it was blocked (end stops at that point: steps go on without moving, a
+// closed-loop move or search in progress ends at once, outcome Blocked); a slipping stage makes
+// every step shorter by a fraction and drives closed-loop moves slower by it (from the next
+// movement on).
 
 #include "models/clock.hpp"
 #include "models/motion_profile.hpp"
@@ -69,7 +75,7 @@ class StickSlipPositioner : public Body {
 public:
     enum class Motion { Rest, Profile, Burst, Scan };
     /// What the last event did.
-    enum class Outcome { None, Arrived, BurstDone, LimitMet, ScanDone };
+    enum class Outcome { None, Arrived, BurstDone, LimitMet, ScanDone, Blocked };
     /// Steps replayed ahead per wake-up while looking for the one that meets a range limit.
     static constexpr std::int64_t kLookAheadSteps = 1 << 16;
 
@@ -81,6 +87,20 @@ public:
     void set_travel(double min_nm, double max_nm);
     double travel_min_nm() const { return config_.travel_min_nm; }
     double travel_max_nm() const { return config_.travel_max_nm; }
+    /// The end stops the stage meets now: the mechanical ones, or the obstacle of a stall.
+    double stop_min_nm() const { return blocked_ ? block_nm_ : config_.travel_min_nm; }
+    double stop_max_nm() const { return blocked_ ? block_nm_ : config_.travel_max_nm; }
+
+    /// Stall: the stage moves no further than where it is now; a closed-loop move in progress
+    /// ends there (outcome Blocked). `false`: free again, at rest where it stands.
+    void set_blocked(bool blocked);
+    bool blocked() const { return blocked_; }
+    /// Slip: steps shorter and closed-loop moves slower by `fraction` (0 <= fraction < 1),
+    /// from the next movement on.
+    void set_slip(double fraction) { slip_ = fraction; }
+    double slip() const { return slip_; }
+    /// Velocity at the clock's now (nm/s): a profile's, a burst's mean, a scan's, the drift.
+    double velocity_nm_per_s() const;
 
     /// The stage is held at its closed-loop target (no drift) until any motion command
     /// (halt included) or `false` releases it.
@@ -172,6 +192,10 @@ private:
     std::uint32_t jitter_state_;      ///< at rest: the generator's state for the next burst
     // Scan.
     PiezoScanner scanner_;
+    // Faults.
+    bool blocked_ = false;
+    double block_nm_ = 0;             ///< where a stalled stage is held
+    double slip_ = 0;                 ///< fraction lost per step / of the closed-loop speed
 };
 
 } // namespace rigsim::models

@@ -126,12 +126,19 @@ void Channel::set_sensor_mode(SensorMode mode)
     sensor_mode_ = mode;
 }
 
-std::optional<ErrorCode> Channel::check_linear_sensor() const
+std::optional<ErrorCode> Channel::sensor_error() const
 {
-    if (!sensor_)
+    if (!sensor_ || sensor_failed_)   // a failed sensor is not detected: as if none were attached
         return ErrorCode::NoSensorPresent;
     if (sensor_mode_ == SensorMode::Disabled)
         return ErrorCode::SensorDisabled;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::check_linear_sensor() const
+{
+    if (auto err = sensor_error())
+        return err;
     if (sensor_->kind != SensorKind::Linear)
         return ErrorCode::WrongSensorType;
     return std::nullopt;
@@ -140,6 +147,8 @@ std::optional<ErrorCode> Channel::check_linear_sensor() const
 void Channel::post_error(ErrorCode code)
 {
     events_.push_back(ChannelEvent{ChannelEvent::Kind::Error, code});
+    if (code == ErrorCode::RangeLimitReached)
+        outcome_ = "range_limit";
 }
 
 bool Channel::angular() const
@@ -183,10 +192,8 @@ std::pair<double, double> Channel::physical_limit() const
 
 std::optional<ErrorCode> Channel::check_angular_sensor() const
 {
-    if (!sensor_)
-        return ErrorCode::NoSensorPresent;
-    if (sensor_mode_ == SensorMode::Disabled)
-        return ErrorCode::SensorDisabled;
+    if (auto err = sensor_error())
+        return err;
     if (sensor_->kind == SensorKind::Linear)
         return ErrorCode::WrongSensorType;
     return std::nullopt;
@@ -350,7 +357,9 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
     limit_hit_ = reachable != target_physical;
     // A target beyond a mechanical end stop: the stage runs into the stop and the move
     // is aborted there (MPA: "If a mechanical end stop is detected ... aborted").
-    const double clamped = std::clamp(reachable, travel_min(), travel_max());
+    // A stalled stage (control API) meets its obstacle like an end stop.
+    const double clamped = std::clamp(reachable, std::max(travel_min(), body_.stop_min_nm()),
+                                      std::min(travel_max(), body_.stop_max_nm()));
     end_stop_hit_ = clamped != reachable;
     if (end_stop_hit_)
         limit_hit_ = false;
@@ -370,11 +379,19 @@ void Channel::on_body_event(Ticks now)
     const Outcome outcome = body_.take_outcome();
     switch (motion_) {
     case Motion::Targeting:
-        if (outcome == Outcome::Arrived)
+        if (outcome == Outcome::Blocked) {   // stalled on the way: as at an end stop (142)
+            end_stop_hit_ = true;
+            limit_hit_ = false;
+        }
+        if (outcome == Outcome::Arrived || outcome == Outcome::Blocked)
             arrive(now);
+        if (outcome == Outcome::Blocked)
+            outcome_ = "stalled";
         return;
     case Motion::Referencing:
-        if (outcome == Outcome::Arrived)
+        if (outcome == Outcome::Blocked)
+            reference_found_ = false;   // both ways blocked: "a second end stop" (2.3.3)
+        if (outcome == Outcome::Arrived || outcome == Outcome::Blocked)
             finish_reference(now);
         return;
     case Motion::Stepping:
@@ -403,6 +420,7 @@ void Channel::arrive(Ticks now)
         // 147 likewise at a software range limit (2.3.4).
         motion_ = Motion::Idle;
         post_error(end_stop_hit_ ? ErrorCode::EndStopReached : ErrorCode::RangeLimitReached);
+        outcome_ = end_stop_hit_ ? (body_.blocked() ? "stalled" : "end_stop") : "range_limit";
         if (end_stop_hit_ && broadcast_stop_)
             broadcast_request_ = true;   // 2.2.3: an end stop halts every channel
         return;
@@ -419,6 +437,7 @@ void Channel::arrive(Ticks now)
 
 void Channel::finish_movement()
 {
+    outcome_ = "completed";
     // SRC: the "completed" report (the controller words it: docs/protocol/mcs.md).
     if (report_on_complete_)
         events_.push_back(ChannelEvent{ChannelEvent::Kind::Completed});
@@ -426,10 +445,8 @@ void Channel::finish_movement()
 
 std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero)
 {
-    if (!sensor_)
-        return ErrorCode::NoSensorPresent;
-    if (sensor_mode_ == SensorMode::Disabled)
-        return ErrorCode::SensorDisabled;
+    if (auto err = sensor_error())
+        return err;
     if ((direction != 0 && direction != 1) || (auto_zero != 0 && auto_zero != 1))
         return ErrorCode::InvalidParameter;
     if (auto err = check_move(hold_ms))
@@ -450,6 +467,8 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
         const double dir = sensor_->reference == ReferenceType::EndStop ? (safe_direction_ == 0 ? 1.0 : -1.0)
                                                                         : (direction == 0 ? 1.0 : -1.0);
         plan_reference_search(here, dir, lo, hi);
+        if (body_.blocked())
+            reference_found_ = false;   // a stalled stage meets "end stops" both ways at once
         motion_ = Motion::Referencing;
         if (!body_.start_legs(std::move(reference_legs_), search_speed_))
             finish_reference(now);
@@ -523,6 +542,7 @@ void Channel::finish_reference(Ticks now)
         // will abort unsuccessfully" (2.3.3): 144 in async mode, status 0.
         motion_ = Motion::Idle;
         post_error(ErrorCode::CouldNotFindReferenceMark);
+        outcome_ = "reference_not_found";
         return;
     }
     become_known(reference_point_, auto_zero_);
@@ -634,10 +654,8 @@ std::optional<ErrorCode> Channel::calibrate()
 {
     if (locked_)
         return ErrorCode::MovementLocked;
-    if (!sensor_)
-        return ErrorCode::NoSensorPresent;
-    if (sensor_mode_ == SensorMode::Disabled)
-        return ErrorCode::SensorDisabled;
+    if (auto err = sensor_error())
+        return err;
     begin_movement([this](Ticks now) {
         body_.halt();
         motion_ = Motion::Calibrating;
@@ -662,6 +680,8 @@ void Channel::stop()
     }
     if (motion_ == Motion::Scanning && outcome == Outcome::ScanDone)
         finish_movement();
+    if (motion_ != Motion::Idle)
+        outcome_ = "stopped";
     body_.halt();
     body_event_ = false;
     blind_logical_.reset();
@@ -672,10 +692,8 @@ void Channel::stop()
 
 std::optional<ErrorCode> Channel::set_position(std::int64_t position)
 {
-    if (!sensor_)
-        return ErrorCode::NoSensorPresent;
-    if (sensor_mode_ == SensorMode::Disabled)
-        return ErrorCode::SensorDisabled;
+    if (auto err = sensor_error())
+        return err;
     // 3.2 SP: on a rotary positioner the angle is 0 .. 359,999,999 µ° (revolution 0).
     if (angular() && (position < 0 || position > 359'999'999))
         return ErrorCode::InvalidParameter;
@@ -829,6 +847,54 @@ void Channel::tick(Ticks now)
     case Motion::Scanning:
         return;   // their events come from the body
     }
+}
+
+void Channel::place(double physical)
+{
+    body_.place(physical);
+}
+
+void Channel::set_referenced(bool known)
+{
+    if (known) {
+        become_known(static_cast<double>(config_.reference_position), false);
+        return;
+    }
+    if (!known_)
+        return;
+    unknown_base_nm_ = body_.position_nm() - static_cast<double>(position());   // the reading stays
+    known_ = false;
+}
+
+void Channel::set_sensor_failed(bool failed)
+{
+    if (failed == sensor_failed_)
+        return;
+    if (failed) {
+        // Without feedback no closed-loop movement can go on; open-loop steps can.
+        if (motion_ != Motion::Idle && motion_ != Motion::Stepping && motion_ != Motion::Scanning) {
+            stop();
+            outcome_ = "sensor_failure";
+        }
+        known_ = false;
+    } else {
+        // "position calculation is done incrementally" (2.3.2): what moved meanwhile is lost.
+        known_ = false;
+        unknown_base_nm_ = body_.position_nm();
+    }
+    sensor_failed_ = failed;
+}
+
+void Channel::restore_defaults()
+{
+    sensor_ = config_.sensor_type == "none" ? nullptr : sensor_type_by_symbol(config_.sensor_type);
+    sensor_mode_ = SensorMode::Enabled;
+    scale_offset_ = 0;
+    scale_inverted_ = false;
+    safe_direction_ = 0;
+    es_default_mode_ = 0;
+    es_mode_ = 0;
+    body_.set_travel(travel_min(), travel_max());
 }
 
 } // namespace rigsim::mcs

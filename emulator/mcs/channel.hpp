@@ -184,6 +184,33 @@ public:
 
     /// The positioner in the world.
     const models::StickSlipPositioner& body() const { return body_; }
+    models::StickSlipPositioner& body() { return body_; }
+
+    // ---- Control API (docs/control-api/mcs.md): set-up and faults, not reachable by wire ----
+
+    /// How the last movement ended: "completed", "stopped", "end_stop" (142), "range_limit"
+    /// (147), "reference_not_found" (144), "stalled", "sensor_failure"; "" before any.
+    const char* last_outcome() const { return outcome_; }
+    /// The stage put at `physical` (nm or µ°), at rest; a sensor that is on sees the move.
+    void place(double physical);
+    /// The physical position becomes known (as after FRM at the configured mark) or unknown
+    /// (the reading stays where it is, GPPK answers 0).
+    void set_referenced(bool known);
+    /// A failed sensor reads as none (129 for closed-loop commands, GP, FRM, CS, SP); a
+    /// closed-loop movement stops and the physical position is lost. Repaired: the reading
+    /// starts again at 0 where the stage stands, position unknown.
+    void set_sensor_failed(bool failed);
+    bool sensor_failed() const { return sensor_failed_; }
+    /// Non-volatile settings back to the config: sensor type and mode, scale, safe
+    /// direction, default emergency stop mode (a power cycle that erases them).
+    void restore_defaults();
+    /// The stage back at its configured start position (at rest).
+    void place_at_start() { body_.place(static_cast<double>(config_.start_position_nm)); }
+    /// The command queue as commands (queued, with their trigger sources).
+    const std::vector<std::pair<std::int32_t, Command>>& queued() const { return queue_; }
+    /// The physical travel a stage may be placed in (end stops; ±infinity when endless).
+    std::pair<double, double> travel() const { return {travel_min(), travel_max()}; }
+    bool rotary() const { return angular(); }
 
     /// Protocol timers (hold, move delay, calibration) and events of the body not yet
     /// handled: the next tick tick() must run at, or kNever. Never now + 1 merely because
@@ -222,6 +249,8 @@ private:
     void become_known(double reference_physical, bool auto_zero);
     /// Queue an unprompted error of this channel (async mode: 142, 144, 147).
     void post_error(ErrorCode code);
+    /// 129 (no sensor, or a failed one), 140 (sensor disabled).
+    std::optional<ErrorCode> sensor_error() const;
     /// The range limit as the body's open-loop bursts see it.
     models::StepLimit step_limit() const;
     /// Stepping with the sensor disabled (2.3.2): once a step is made the physical position
@@ -296,6 +325,8 @@ private:
     std::optional<double> blind_logical_;
     double target_physical_nm_ = 0;  ///< MPR accumulates onto this while targeting
     std::vector<ChannelEvent> events_;
+    bool sensor_failed_ = false;
+    const char* outcome_ = "";
 };
 
 } // namespace rigsim::mcs

@@ -116,7 +116,25 @@ void Controller::reset()
         if (e)
             e->reset();   // the end effector type (SEET) is kept, like the sensor types
     effector_report_.assign(channels_.size(), false);
+    keep_alive_expired_ = false;
     esm_mode_ = 0;        // SESM: 0 is "the default mode"; channels restart in their default
+}
+
+void Controller::restore_defaults()
+{
+    sensor_mode_ = SensorMode::Enabled;
+    configured_baudrate_ = kDefaultBaudrate;
+    for (auto& c : channels_)
+        c->restore_defaults();
+    for (auto& e : effectors_)
+        if (e)
+            e->restore_defaults();
+}
+
+void Controller::place_at_start()
+{
+    for (auto& c : channels_)
+        c->place_at_start();
 }
 
 void Controller::stop_all()
@@ -187,6 +205,7 @@ void Controller::tick(Ticks now)
         for (auto& c : channels_)
             c->stop();
         keep_alive_deadline_ = kNever;
+        keep_alive_expired_ = true;
     }
     for (auto& c : channels_)
         if (c->next_change(now - 1) <= now)

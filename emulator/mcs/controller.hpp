@@ -75,6 +75,22 @@ public:
     /// R: power-down/power-up: channels back to their power-up state, synchronous mode,
     /// keep-alive off; non-volatile settings (sensor types and mode, scales, baud rate) kept.
     void reset();
+    /// Non-volatile settings back to the config (sensor types and mode, scales, safe
+    /// directions, baud rate, end effector types): a power cycle that erases them.
+    void restore_defaults();
+    /// Every stage back at its configured start position.
+    void place_at_start();
+    /// The keep-alive timeout expired since the last call (K).
+    bool take_keep_alive_expired()
+    {
+        const bool e = keep_alive_expired_;
+        keep_alive_expired_ = false;
+        return e;
+    }
+    std::int32_t keep_alive_ms() const { return keep_alive_ms_; }
+    std::int32_t hcm_mode() const { return hcm_mode_; }
+    /// The baud rate CB stored for the next reset.
+    std::int32_t configured_baudrate() const { return configured_baudrate_; }
 
     void stop_all();
 
@@ -108,6 +124,7 @@ private:
     std::int32_t esm_mode_ = 0;
     std::int32_t keep_alive_ms_ = 0;
     Ticks keep_alive_deadline_ = kNever;
+    bool keep_alive_expired_ = false;
     std::int32_t baudrate_ = kDefaultBaudrate;
     std::int32_t configured_baudrate_ = kDefaultBaudrate;
     std::vector<Reply> outbox_;

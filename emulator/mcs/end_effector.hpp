@@ -66,6 +66,13 @@ public:
     /// Power-up (R): stopped, gripper voltage 0 (fully open), force zero lost; the type
     /// configured with SEET is kept.
     void reset();
+    /// The type back to None (SEET required), as a power cycle that erases saved settings leaves it.
+    void restore_defaults()
+    {
+        type_ = EndEffectorType::None;
+        param1_ = 0;
+        param2_ = 0;
+    }
 
     /// True once after a movement or SZF has completed (for SRC reports); clears the flag.
     bool take_completed();

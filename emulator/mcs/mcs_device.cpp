@@ -1,6 +1,10 @@
 #include "emulator/mcs/mcs_device.hpp"
 
+#include "emulator/core/event_bus.hpp"
 #include "emulator/mcs/line_framer.hpp"
+#include "emulator/mcs/wire_names.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
@@ -11,8 +15,9 @@ namespace rigsim::mcs {
 
 class McsSession : public Session {
 public:
-    McsSession(McsDevice& device, SendFn send, std::string peer, spdlog::logger& log)
-        : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log)
+    McsSession(McsDevice& device, SendFn send, std::string peer, spdlog::logger& log, Clock& clock)
+        : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log), clock_(clock),
+          paced_(peer_.rfind("pty", 0) == 0)
     {
         device_.attach(this);
     }
@@ -25,6 +30,9 @@ public:
     {
         out_.clear();
         std::size_t ignored = 0;
+        // A client that waits for each answer (sync mode, 2.1) never has a command ready
+        // while the last answer is still on the serial line, nor two in one read.
+        auto early = paced_ && clock_.now() < line_free_ ? McsDevice::Early::Paced : McsDevice::Early::No;
         while (!bytes.empty()) {
             const auto r = framer_.parse(bytes);
             bytes.remove_prefix(r.consumed);
@@ -33,14 +41,21 @@ public:
             case LineFramer::Status::NeedMore:
                 break;
             case LineFramer::Status::Command:
-                device_.execute(r.line, peer_, out_);
+                device_.execute(r.line, peer_, out_, early);
+                early = device_.controller().communication_mode() == CommunicationMode::Sync ? McsDevice::Early::SameRead
+                                                                                               : McsDevice::Early::No;
                 break;
             case LineFramer::Status::Oversize:
                 // Not in the manual: a line too long for the controller's buffer is a
                 // syntax error, answered when its '\n' arrives (docs/protocol/mcs.md).
                 log_.warn("{}: command longer than {} bytes discarded: error 1", peer_,
                           LineFramer::kDefaultMaxLine);
-                encode(Error{kSystem, ErrorCode::Syntax}, out_);
+                {
+                    const auto at = out_.size();
+                    encode(Error{kSystem, ErrorCode::Syntax}, out_);
+                    device_.log_answer(peer_, std::string_view(out_).substr(at),
+                                       "command longer than the controller's buffer: E-1,1 Syntax Error (appendix 4.2)");
+                }
                 break;
             case LineFramer::Status::Interrupted:
                 log_.warn("{}: ':' inside a command, dropped \"{}\"", peer_, printable(r.line));
@@ -49,9 +64,15 @@ public:
         }
         if (ignored > 0)
             log_.warn("{}: ignored {} byte(s) outside ':'...'\\n'", peer_, ignored);
-        if (!out_.empty())
+        if (!out_.empty()) {
             send_(out_);
+            if (const auto baud = device_.serial_baud(); paced_ && baud > 0) {   // 8N1: 10 bits a byte
+                const auto transmit_ms = static_cast<std::int64_t>(out_.size() * 10 * 1000 / baud);
+                line_free_ = std::max(line_free_, clock_.now()) + clock_.ticks_from_ms(transmit_ms);
+            }
+        }
         device_.flush_outbox();
+        device_.publish_changes();
     }
 
 private:
@@ -59,6 +80,9 @@ private:
     SendFn send_;
     std::string peer_;
     spdlog::logger& log_;
+    Clock& clock_;
+    bool paced_;            ///< a serial line: answers take time to go out (faithful_timing)
+    Ticks line_free_ = 0;   ///< when the last answer has left the serial line
     LineFramer framer_;
     std::string out_;
 };
@@ -66,8 +90,9 @@ private:
 McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      EventBus* events)
     : config_(config), clock_(world.clock()), log_(std::move(log)), controller_(config_of(config), world, config.name),
-      handler_(controller_), events_(events)
+      handler_(controller_), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
+    wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_line(e.bytes, e.inbound, out); });
     clock_.add(this);
 }
 
@@ -84,7 +109,11 @@ void McsDevice::detach(McsSession* s)
 void McsDevice::tick(Ticks now)
 {
     controller_.tick(now);
+    if (controller_.take_keep_alive_expired())
+        wire_log_.annotate_last("keep-alive expired: no command for " + std::to_string(controller_.keep_alive_ms())
+                                + " ms, all positioners stopped (K)");
     flush_outbox();
+    publish_changes();
 }
 
 void McsDevice::flush_outbox()
@@ -100,8 +129,11 @@ void McsDevice::flush_outbox()
     if (outbox.empty())
         return;
     std::string text;
-    for (const auto& r : outbox)
+    for (const auto& r : outbox) {
+        const auto at = text.size();
         encode(r, text);
+        wire_log_.add(clock_.now(), false, "all", std::string_view(text).substr(at), {}, true);
+    }
     outbox.clear();
     if (log_->should_log(spdlog::level::debug))
         log_->debug("unprompted: \"{}\"", printable(text));
@@ -111,15 +143,28 @@ void McsDevice::flush_outbox()
 
 std::unique_ptr<Session> McsDevice::open_session(SendFn send, std::string peer)
 {
-    return std::make_unique<McsSession>(*this, std::move(send), std::move(peer), *log_);
+    return std::make_unique<McsSession>(*this, std::move(send), std::move(peer), *log_, clock_);
 }
 
-void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out)
+void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out, Early early)
 {
+    line_.assign(1, ':');
+    line_.append(line);
+    line_.push_back('\n');
+    const auto at = out.size();
+    std::vector<std::string> notes;   // empty, no allocation, unless the client slipped
+    if (early == Early::SameRead)
+        notes.emplace_back("sent before the answer to the previous command arrived (in one read with it; sync mode "
+                           "answers every command, 2.1)");
+    else if (early == Early::Paced)
+        notes.emplace_back("sent while the previous answer was still going out on the serial line (1.2, CB)");
     const auto decoded = decode(line);
     if (!decoded.command) {
         log_->warn("{}: \"{}\": error {}", peer, printable(line), static_cast<int>(decoded.error.code));
         encode(decoded.error, out);
+        note_command(nullptr, decoded.error, notes);
+        wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
+        wire_log_.add(clock_.now(), false, peer, std::string_view(out).substr(at));
         return;
     }
     controller_.note_command();   // K: any command that could be parsed
@@ -133,6 +178,10 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
     else if (log_->should_log(spdlog::level::debug))   // printable() is not free: only when logged
         log_->debug("{}: \"{}\"", peer, printable(line));
     encode(reply, out);
+    note_command(&*decoded.command, reply, notes);
+    wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
+    if (out.size() > at)
+        wire_log_.add(clock_.now(), false, peer, std::string_view(out).substr(at));
     if (handler_.take_reset_request()) {
         log_->info("{}: reset", peer);
         controller_.reset();

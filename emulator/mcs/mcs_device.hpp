@@ -4,12 +4,15 @@
 
 #include "models/clock.hpp"
 #include "models/world.hpp"
+#include "emulator/core/control_surface.hpp"
 #include "emulator/core/device.hpp"
+#include "emulator/core/wire_log.hpp"
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/controller.hpp"
 #include "emulator/mcs/handler.hpp"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace spdlog {
@@ -24,7 +27,7 @@ namespace rigsim::mcs {
 
 class McsSession;
 
-class McsDevice : public Device, public Tickable {
+class McsDevice : public Device, public Tickable, public ControlSurface {
 public:
     /// The device's bodies join `world` under "<device name>/<channel>".
     McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
@@ -41,9 +44,24 @@ public:
     }
 
     Controller& controller() { return controller_; }
+    ControlSurface* control() override { return this; }
 
+    /// A command the client sent before the previous answer could have reached it (a note).
+    enum class Early { No, SameRead, Paced };
     /// Handle one framed command string; appends the encoded answer (if any) to `out`.
-    void execute(std::string_view line, std::string_view peer, std::string& out);
+    void execute(std::string_view line, std::string_view peer, std::string& out, Early early = Early::No);
+    /// Record an answer the session made without the handler (oversize line: error 1).
+    void log_answer(std::string_view peer, std::string_view bytes, std::string note);
+    /// After a batch of commands or a tick: "status", "move_started", "move_ended" events.
+    void publish_changes();
+
+    // ---- ControlSurface (docs/control-api/mcs.md) ----
+    void describe(nlohmann::json& out) const override;
+    Refused patch_channel(std::size_t index, const nlohmann::json& body) override;
+    Refused add_fault(const DeviceFault& f, bool* kept) override;
+    void remove_fault(std::uint64_t id) override;
+    void power_cycle(const PowerCycle& how) override;
+    WireLog& wire_log() override { return wire_log_; }
     /// Send what the controller has to say by itself to every connection.
     void flush_outbox();
 
@@ -54,6 +72,21 @@ public:
     void tick(Ticks now) override;
 
 private:
+    /// A fault acting on a channel (stall, slip, sensor_failure).
+    struct ActiveFault {
+        std::uint64_t id;
+        std::string kind;
+        std::size_t channel;
+        double fraction;   ///< slip
+    };
+    /// Channel `index`'s physics and sensor as its remaining faults make them.
+    void apply_faults(std::size_t index);
+    void channel_json(std::size_t index, nlohmann::json& out) const;
+    /// Appendix 4.1 status code of channel `index` (positioner or end effector).
+    int status_code(std::size_t index) const;
+    /// Notes for the inbound entry of `line` answered with `reply` (docs/control-api/mcs.md "Notes").
+    void note_command(const Command* command, const Reply& reply, std::vector<std::string>& notes) const;
+
     DeviceConfig config_;
     Clock& clock_;
     std::shared_ptr<spdlog::logger> log_;
@@ -61,6 +94,11 @@ private:
     Handler handler_;
     std::vector<McsSession*> sessions_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
+    WireLog wire_log_;
+    std::string line_;   ///< scratch: the inbound command string as it crossed the wire
+    std::vector<ActiveFault> faults_;
+    std::vector<int> last_status_;   ///< per channel, for "status" events
+    bool status_known_ = false;      ///< last_status_ is current (someone listened last time)
 };
 
 } // namespace rigsim::mcs

@@ -31,10 +31,12 @@ inline DeviceConfig mcs_device_config(std::size_t channels = 3)
 
 class McsHarness {
 public:
-    explicit McsHarness(const DeviceConfig& config = mcs_device_config(), std::uint32_t tick_hz = 1000)
+    explicit McsHarness(const DeviceConfig& config = mcs_device_config(), std::uint32_t tick_hz = 1000,
+                        EventBus* events = nullptr)
         : clock_(tick_hz), world_(clock_),
           device_(config, world_,
-                  std::make_shared<spdlog::logger>("mcs-test", std::make_shared<spdlog::sinks::null_sink_st>())),
+                  std::make_shared<spdlog::logger>("mcs-test", std::make_shared<spdlog::sinks::null_sink_st>()),
+                  events),
           session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
     }
@@ -49,9 +51,9 @@ public:
         return result;
     }
     /// A second connection to the same device.
-    std::unique_ptr<Session> open(std::string& sink)
+    std::unique_ptr<Session> open(std::string& sink, std::string peer = "test2")
     {
-        return device_.open_session([&sink](std::string_view b) { sink.append(b); }, "test2");
+        return device_.open_session([&sink](std::string_view b) { sink.append(b); }, std::move(peer));
     }
 
     void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }

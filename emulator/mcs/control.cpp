@@ -1,0 +1,355 @@
+// McsDevice as the control API sees it (docs/control-api/mcs.md): state, set-up, faults,
+// power cycle, wire-log notes and events. Nothing here runs on the wire's hot path except
+// note_command() (a few compares unless the client slipped) and publish_changes() (a branch
+// unless someone listens).
+
+#include "emulator/mcs/mcs_device.hpp"
+
+#include "emulator/core/event_bus.hpp"
+#include "emulator/mcs/wire_names.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rigsim::mcs {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Appendix 4.1 (8 per the errata).
+const char* status_name(int code)
+{
+    static constexpr const char* kNames[] = {"stopped",     "stepping",    "scanning",
+                                             "holding",     "targeting",   "move_delay",
+                                             "calibrating", "finding_reference_mark", "gripper_moving",
+                                             "locked"};
+    return code >= 0 && code <= 9 ? kNames[code] : "unknown";
+}
+
+const char* sensor_mode_name(SensorMode m)
+{
+    switch (m) {
+    case SensorMode::Disabled:
+        return "disabled";
+    case SensorMode::Enabled:
+        return "enabled";
+    case SensorMode::PowerSave:
+        return "power_save";
+    }
+    return "enabled";
+}
+
+bool idle(int status)
+{
+    return status == static_cast<int>(ChannelStatus::Stopped) || status == static_cast<int>(ChannelStatus::Locked);
+}
+
+/// nm (µ°) -> m (rad).
+double si_of(const Channel& ch, double physical)
+{
+    return ch.rotary() ? physical * 1e-6 * kPi / 180.0 : physical * 1e-9;
+}
+
+nlohmann::json finite_or_null(double v)
+{
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+Refusal bad(std::string message)
+{
+    return Refusal{400, std::move(message)};
+}
+
+} // namespace
+
+int McsDevice::status_code(std::size_t i) const
+{
+    const auto index = static_cast<std::int32_t>(i);
+    if (const auto* ee = controller_.effector(index))
+        return static_cast<int>(ee->status());
+    const auto* ch = controller_.channel(index);
+    return ch ? static_cast<int>(ch->status()) : 0;
+}
+
+void McsDevice::channel_json(std::size_t i, nlohmann::json& j) const
+{
+    const auto index = static_cast<std::int32_t>(i);
+    const int code = status_code(i);
+    j["index"] = i;
+    j["status"] = {{"code", code}, {"name", status_name(code)}};
+    j["moving"] = !idle(code);
+    if (const auto* ee = controller_.effector(index)) {
+        j["kind"] = "end_effector";
+        j["type"] = static_cast<int>(ee->type());
+        std::int32_t v = 0;
+        j["opening_cv"] = ee->opening_cv(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+        j["force_dun"] = ee->force_dun(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+        return;
+    }
+    const auto& ch = *controller_.channel(index);
+    const auto& body = ch.body();
+    j["kind"] = ch.rotary() ? "rotary" : "linear";
+    j["position_si"] = si_of(ch, body.position_nm());
+    j["si_unit"] = ch.rotary() ? "rad" : "m";
+    const bool readable = ch.rotary() ? !ch.check_angular_sensor() : !ch.check_linear_sensor();
+    j["position_protocol"] = readable ? nlohmann::json(ch.position()) : nlohmann::json(nullptr);
+    j["protocol_unit"] = ch.rotary() ? "udeg" : "nm";
+    j["velocity_si"] = si_of(ch, body.velocity_nm_per_s());
+    j["referenced"] = ch.physical_position_known();
+    const auto [tmin, tmax] = ch.travel();
+    nlohmann::json range = nullptr;
+    if (const auto [lo, hi] = ch.range_limit(); lo != hi)
+        range = {{"min", lo}, {"max", hi}};
+    j["limits"] = {{"range_limit", range},
+                   {"end_stops_si", {finite_or_null(si_of(ch, tmin)), finite_or_null(si_of(ch, tmax))}}};
+    auto queued = nlohmann::json::array();
+    for (const auto& [source, command] : ch.queued())
+        queued.push_back({{"text", command_text(command)}, {"trigger_source", source}});
+    j["queued"] = std::move(queued);
+    j["queue_armed"] = ch.armed_queue_source() ? nlohmann::json(*ch.armed_queue_source()) : nlohmann::json(nullptr);
+    if (const auto* s = ch.sensor())
+        j["sensor"] = {{"type", s->code}, {"name", s->symbol}, {"mode", sensor_mode_name(ch.sensor_mode())},
+                       {"failed", ch.sensor_failed()}};
+    else
+        j["sensor"] = nullptr;
+    j["stalled"] = body.blocked();
+    j["slip"] = body.slip();
+    j["last_outcome"] = ch.last_outcome();
+}
+
+void McsDevice::describe(nlohmann::json& out) const
+{
+    auto channels = nlohmann::json::array();
+    for (std::size_t i = 0; i < controller_.channel_count(); ++i) {
+        nlohmann::json j = nlohmann::json::object();
+        channel_json(i, j);
+        channels.push_back(std::move(j));
+    }
+    out["channels"] = std::move(channels);
+    out["communication_mode"] = controller_.communication_mode() == CommunicationMode::Sync ? "sync" : "async";
+    out["sensor_mode"] = sensor_mode_name(controller_.sensor_mode());
+    out["keep_alive_ms"] = controller_.keep_alive_ms();
+    out["baudrate"] = controller_.baudrate();
+    out["baudrate_after_reset"] = controller_.configured_baudrate();
+    out["system_id"] = controller_.system_id();
+    out["emergency_stop_mode"] = controller_.emergency_stop_mode();
+}
+
+Refused McsDevice::patch_channel(std::size_t index, const nlohmann::json& body)
+{
+    if (index >= controller_.channel_count())
+        return Refusal{404, "no channel " + std::to_string(index) + " (the device has "
+                                + std::to_string(controller_.channel_count()) + ")"};
+    if (!body.is_object())
+        return bad("the body must be an object");
+    auto* ch = controller_.channel(static_cast<std::int32_t>(index));
+    // Validate every key before changing anything.
+    for (const auto& [key, value] : body.items()) {
+        if (key == "limit_switch")
+            return bad("limit_switch: an MCS positioner has no limit switches (its end stops are mechanical; "
+                       "see the stall fault)");
+        if (key != "position_si" && key != "referenced" && key != "sensor")
+            return bad(key + ": unknown key (position_si, referenced, sensor)");
+        if (!ch)
+            return bad(key + ": channel " + std::to_string(index) + " is an end effector");
+        if (key == "position_si") {
+            if (!value.is_number())
+                return bad("position_si: a number is required");
+            const auto [lo, hi] = ch->travel();
+            const double si = value.get<double>();
+            const double physical = ch->rotary() ? si * 180.0 / kPi * 1e6 : si * 1e9;
+            if (!std::isfinite(si) || physical < lo - 1e-6 || physical > hi + 1e-6)
+                return bad("position_si: outside the travel between the end stops");
+        } else if (key == "referenced") {
+            if (!value.is_boolean())
+                return bad("referenced: true or false is required");
+            if (!ch->sensor() || ch->sensor_failed())
+                return bad("referenced: the channel has no working sensor");
+        } else {
+            if (!value.is_string() || (value != "enabled" && value != "disabled" && value != "power_save"))
+                return bad("sensor: \"enabled\", \"disabled\" or \"power_save\" is required");
+            if (!ch->sensor())
+                return bad("sensor: the channel has no sensor (2.2.5)");
+        }
+    }
+    if (ch && ch->status() != ChannelStatus::Stopped && ch->status() != ChannelStatus::Locked)
+        return Refusal{409, "channel " + std::to_string(index) + " is not stopped (status "
+                                + std::to_string(static_cast<int>(ch->status())) + ")"};
+    if (!ch)
+        return std::nullopt;   // an empty body on an end effector
+    if (const auto it = body.find("sensor"); it != body.end())
+        ch->set_sensor_mode(*it == "enabled" ? SensorMode::Enabled
+                                             : *it == "disabled" ? SensorMode::Disabled : SensorMode::PowerSave);
+    if (const auto it = body.find("position_si"); it != body.end()) {
+        const double si = it->get<double>();
+        const auto [lo, hi] = ch->travel();
+        ch->place(std::clamp(ch->rotary() ? si * 180.0 / kPi * 1e6 : si * 1e9, lo, hi));
+    }
+    if (const auto it = body.find("referenced"); it != body.end())
+        ch->set_referenced(it->get<bool>());
+    publish_changes();
+    return std::nullopt;
+}
+
+void McsDevice::apply_faults(std::size_t index)
+{
+    auto* ch = controller_.channel(static_cast<std::int32_t>(index));
+    if (!ch)
+        return;
+    bool stalled = false;
+    bool failed = false;
+    double slip = 0;
+    for (const auto& f : faults_) {
+        if (f.channel != index)
+            continue;
+        stalled = stalled || f.kind == "stall";
+        failed = failed || f.kind == "sensor_failure";
+        if (f.kind == "slip")
+            slip = std::max(slip, f.fraction);
+    }
+    ch->body().set_slip(slip);
+    ch->body().set_blocked(stalled);
+    ch->set_sensor_failed(failed);
+}
+
+Refused McsDevice::add_fault(const DeviceFault& f, bool* kept)
+{
+    if (kept)
+        *kept = false;
+    const std::size_t index = f.channel.value_or(0);
+    const bool known_kind = f.kind == "stall" || f.kind == "slip" || f.kind == "sensor_failure"
+                            || f.kind == "reference_lost" || f.kind == "limit_switch";
+    if (!known_kind)
+        return bad("kind: unknown fault kind \"" + f.kind + "\" (stall, slip, sensor_failure, reference_lost)");
+    if (f.kind == "limit_switch")
+        return bad("kind: limit_switch: an MCS positioner has no limit switches (its end stops are mechanical; "
+                   "use stall)");
+    if (index >= controller_.channel_count())
+        return Refusal{404, "no channel " + std::to_string(index)};
+    auto* ch = controller_.channel(static_cast<std::int32_t>(index));
+    if (!ch)
+        return bad("channel: channel " + std::to_string(index) + " is an end effector");
+    double fraction = 0.5;
+    if (f.params && f.params->is_object())
+        for (const auto& [key, value] : f.params->items()) {
+            if (key == "device" || key == "channel" || key == "kind")
+                continue;
+            if (f.kind != "slip" || key != "fraction")
+                return bad(key + ": not a parameter of " + f.kind
+                           + (f.kind == "slip" ? " (fraction)" : " (it takes none)"));
+            if (!value.is_number() || value.get<double>() < 0 || value.get<double>() >= 1)
+                return bad("fraction: a number from 0 up to (not including) 1 is required");
+            fraction = value.get<double>();
+        }
+    if ((f.kind == "sensor_failure" || f.kind == "reference_lost") && !ch->sensor())
+        return bad("kind: channel " + std::to_string(index) + " has no sensor");
+    if (f.kind == "reference_lost") {   // one-off: the position becomes unknown now
+        ch->set_referenced(false);
+        publish_changes();
+        return std::nullopt;
+    }
+    faults_.push_back(ActiveFault{f.id, f.kind, index, fraction});
+    apply_faults(index);
+    tick(clock_.now());   // a movement the fault ended is over now: its 142 goes out (async mode)
+    if (kept)
+        *kept = true;
+    return std::nullopt;
+}
+
+void McsDevice::remove_fault(std::uint64_t id)
+{
+    for (auto it = faults_.begin(); it != faults_.end(); ++it)
+        if (it->id == id) {
+            const auto index = it->channel;
+            faults_.erase(it);
+            apply_faults(index);
+            tick(clock_.now());
+            return;
+        }
+}
+
+void McsDevice::power_cycle(const PowerCycle& how)
+{
+    if (!how.keep_saved)
+        controller_.restore_defaults();
+    if (how.restore_positions)
+        controller_.place_at_start();
+    controller_.reset();   // R: the stages read 0 where they stand, position unknown
+    for (std::size_t i = 0; i < controller_.channel_count(); ++i)
+        apply_faults(i);   // a stall or a dead sensor outlasts the power cycle
+    publish_changes();
+}
+
+void McsDevice::log_answer(std::string_view peer, std::string_view bytes, std::string note)
+{
+    std::vector<std::string> notes;
+    notes.push_back(std::move(note));
+    wire_log_.add(clock_.now(), false, peer, bytes, std::move(notes));
+}
+
+void McsDevice::note_command(const Command* command, const Reply& reply, std::vector<std::string>& notes) const
+{
+    if (const auto* err = std::get_if<Error>(&reply)) {
+        const auto code = static_cast<int>(err->code);
+        const std::string answer = "E" + std::to_string(err->channel) + "," + std::to_string(code) + " "
+                                   + std::string(error_name(code)) + " (appendix 4.2)";
+        const bool setting = line_.size() > 1 && (line_[1] == 'S' || line_[1] == 'K' || line_.rfind(":CB", 0) == 0);
+        if (err->code == ErrorCode::InvalidParameter && setting)
+            notes.push_back("setting out of the documented range: answered " + answer);
+        else
+            notes.push_back("answered with an error: " + answer);
+        return;
+    }
+    if (!command)
+        return;
+    // An absolute closed-loop target means a physical place only once the position is
+    // known (2.3.3: at power-up "it simply assumes its starting position as the zero").
+    std::int32_t index = -1;
+    if (const auto* c = std::get_if<MovePositionAbsolute>(command))
+        index = c->channel;
+    else if (const auto* c = std::get_if<MoveAngleAbsolute>(command))
+        index = c->channel;
+    if (index < 0)
+        return;
+    if (const auto* ch = controller_.channel(index); ch && !ch->physical_position_known())
+        notes.push_back("absolute move while the physical position is unknown (GPPK 0): the target is relative "
+                        "to where the stage stood at power-up or SP (2.3.3); FRM first");
+}
+
+void McsDevice::publish_changes()
+{
+    if (!events_ || !events_->active()) {
+        status_known_ = false;
+        return;
+    }
+    const auto n = controller_.channel_count();
+    const double time_ms = static_cast<double>(clock_.now()) * 1000.0 / clock_.tick_hz();
+    if (!status_known_) {   // someone started listening: the state now is the baseline
+        last_status_.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            last_status_[i] = status_code(i);
+        status_known_ = true;
+        return;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const int code = status_code(i);
+        const int was = last_status_[i];
+        if (code == was)
+            continue;
+        last_status_[i] = code;
+        if (idle(was) && !idle(code))
+            events_->publish(config_.name, "move_started", time_ms, {{"channel", i}});
+        events_->publish(config_.name, "status", time_ms,
+                         {{"channel", i}, {"status", {{"code", code}, {"name", status_name(code)}}}});
+        if (!idle(was) && idle(code)) {
+            const auto* ch = controller_.channel(static_cast<std::int32_t>(i));
+            events_->publish(config_.name, "move_ended", time_ms,
+                             {{"channel", i}, {"outcome", ch ? ch->last_outcome() : "completed"}});
+        }
+    }
+}
+
+} // namespace rigsim::mcs
