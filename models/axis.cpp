@@ -30,7 +30,16 @@ double Axis::profile_at(Ticks k) const
 
 Axis::Track Axis::now_track() const
 {
-    return moving_ ? scan(anchor_, clock_.now(), false).track : anchor_;
+    if (!moving_)
+        return anchor_;
+    if (!jammed_)
+        return scan(anchor_, clock_.now(), false).track;
+    const Ticks now = clock_.now();
+    if (config_.drive == Drive::Servo)
+        return Track{now, anchor_.position_counts, anchor_.lost_counts, 0};
+    // The motor runs its profile (motor position = profile + offset); the carriage stays.
+    const double motor = profile_at(now) + motor_offset_;
+    return Track{now, jam_position_counts_, motor - jam_position_counts_, 0};
 }
 
 double Axis::position_counts() const
@@ -52,7 +61,7 @@ double Axis::motor_position_counts() const
 double Axis::velocity_counts_per_s() const
 {
     const Ticks now = clock_.now();
-    if (!moving_ || now >= end_ || now_track().contact != 0)
+    if (!moving_ || now >= end_ || jammed_ || now_track().contact != 0)
         return 0;   // at rest, or pressed on an end stop
     // On the tick a motion is commanded the axis still moves as it did: a profile without an
     // acceleration limit starts at full speed, from the next tick.
@@ -67,6 +76,66 @@ void Axis::set_limits(double min_counts, double max_counts)
     limit_min_counts_ = min_counts;
     limit_max_counts_ = max_counts;
     replan();
+}
+
+void Axis::place(double counts)
+{
+    anchor_ = now_track();
+    anchor_.position_counts = config_.rotary ? counts : std::clamp(counts, config_.travel_min_counts, config_.travel_max_counts);
+    anchor_.contact = 0;
+    jam_position_counts_ = anchor_.position_counts;
+    moving_ = false;
+    replan();
+}
+
+void Axis::set_jammed(bool jammed)
+{
+    if (jammed == jammed_)
+        return;
+    settle();   // anchored under the rules the motion ran by so far
+    jammed_ = jammed;
+    jam_position_counts_ = anchor_.position_counts;
+    replan();
+}
+
+void Axis::set_slip(double counts, double fraction)
+{
+    slip_counts_ = std::max(counts, 0.0);
+    slip_fraction_ = std::clamp(fraction, 0.0, 1.0);
+}
+
+void Axis::set_switch_pressed(int side)
+{
+    if (side == switch_pressed_)
+        return;
+    settle();
+    switch_pressed_ = side;
+    replan();
+}
+
+int Axis::motion_direction() const
+{
+    return moving_ ? sign(profile_.target() - profile_at(clock_.now())) : 0;
+}
+
+std::optional<Axis::Hit> Axis::forced_hit() const
+{
+    if (!moving_)
+        return std::nullopt;
+    const Ticks next = std::max(anchor_.tick, clock_.now()) + 1;
+    if (jammed_ && config_.drive == Drive::Servo)
+        return Hit{AxisEvent::Stalled, Track{next, anchor_.position_counts, anchor_.lost_counts, 0}};
+    if (jammed_)
+        return Hit{AxisEvent::Arrived,
+                   Track{end_, jam_position_counts_, profile_.target() + motor_offset_ - jam_position_counts_, 0}};
+    const int dir = motion_direction();
+    if (switch_pressed_ != 0 && dir == switch_pressed_ && !config_.rotary && stops_at(dir > 0)) {
+        Track at = scan(anchor_, next, false).track;
+        at.tick = next;
+        at.contact = 0;
+        return Hit{AxisEvent::StoppedAtLimit, at};
+    }
+    return std::nullopt;
 }
 
 void Axis::set_limit_switches(bool forward_stops, bool reverse_stops)
@@ -140,6 +209,10 @@ void Axis::move_to(double target_counts, double velocity_counts_per_s, double ac
     if (!config_.rotary && (target > limit_max_counts_ || target < limit_min_counts_)
         && stops_at(target > limit_max_counts_))
         target = std::clamp(target, limit_min_counts_, limit_max_counts_);
+    // A pressed limit switch ahead that stops the axis: the motion ends where it starts.
+    const int dir = sign(target - from.position);
+    if (!config_.rotary && switch_pressed_ != 0 && dir == switch_pressed_ && stops_at(dir > 0))
+        target = from.position;
     start(jerk_counts_per_s3 > 0 ? MotionProfile::plan_s_curve(from, target, velocity_counts_per_s,
                                                                acceleration_counts_per_s2, jerk_counts_per_s3)
                                  : MotionProfile::plan(from, target, velocity_counts_per_s, acceleration_counts_per_s2),
@@ -176,6 +249,8 @@ void Axis::start(MotionProfile profile, double from_velocity_counts_per_s)
     end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
     motor_offset_ = anchor_.lost_counts;
     anchor_ = Track{now, anchor_.position_counts, anchor_.lost_counts, 0};
+    motion_from_counts_ = anchor_.position_counts;
+    jam_position_counts_ = anchor_.position_counts;
     // The profile turns round only where a segment ends at rest: those ticks bound the pieces
     // over which its position is monotone.
     turns_.clear();
@@ -317,7 +392,10 @@ void Axis::settle()
 
 void Axis::replan()
 {
-    pending_ = moving_ ? scan(anchor_, end_, true).hit : std::nullopt;
+    if (auto forced = forced_hit())
+        pending_ = forced;
+    else
+        pending_ = moving_ ? scan(anchor_, end_, true).hit : std::nullopt;
     reschedule();
 }
 
@@ -335,6 +413,13 @@ void Axis::on_event(Ticks now)
 void Axis::apply(Hit hit)
 {
     const bool ends = hit.event != AxisEvent::LostSteps || hit.after.tick >= end_;
+    if (hit.event == AxisEvent::Arrived && config_.drive == Drive::Stepper && !jammed_) {
+        // Lost microsteps (set_slip): the motor arrived, the carriage fell short.
+        const double run = hit.after.position_counts - motion_from_counts_;
+        const double lost = std::min(std::abs(run), slip_counts_ + slip_fraction_ * std::abs(run));
+        hit.after.position_counts -= sign(run) * lost;
+        hit.after.lost_counts += sign(run) * lost;
+    }
     anchor_ = hit.after;
     if (ends) {
         moving_ = false;

@@ -93,6 +93,23 @@ public:
     /// Decelerate to rest at `acceleration_counts_per_s2`; Arrived where it comes to rest.
     void stop_profiled(double acceleration_counts_per_s2);
 
+    /// Put the carriage at `counts` (clamped to the end stops), at rest: a hand moved it, or a
+    /// test sets it up. The motor's lost steps stay, so the counters follow the carriage.
+    void place(double counts);
+    /// A jammed axis does not follow its motor: a servo stalls on the tick after a motion
+    /// starts (Stalled, where it stands); a stepper's motor runs its profile while the carriage
+    /// stays (the microsteps are lost, the motion ends Arrived when the profile does).
+    void set_jammed(bool jammed);
+    bool jammed() const { return jammed_; }
+    /// A stepper loses microsteps in every motion that arrives: `counts` plus `fraction` of the
+    /// motion's length (at most all of it). The carriage stops that much short of the target
+    /// while the motor, and so the counters, reach it. Servos close the loop and lose nothing.
+    void set_slip(double counts, double fraction);
+    /// A limit switch reads pressed where the carriage stands (+1 forward, -1 reverse, 0 none):
+    /// a motion toward it ends at once as at that limit (if the switch stops the axis).
+    void set_switch_pressed(int side);
+    int switch_pressed() const { return switch_pressed_; }
+
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
 
@@ -134,6 +151,10 @@ private:
     void settle();
     void replan();
     void apply(Hit hit);
+    /// The event a jam or a pressed switch forces on the current motion, if any.
+    std::optional<Hit> forced_hit() const;
+    /// The direction of the current motion (+1, -1, 0).
+    int motion_direction() const;
 
     const Clock& clock_;
     AxisConfig config_;
@@ -155,6 +176,12 @@ private:
     Track anchor_;               ///< last tick the state was settled at (rest: the state)
     std::optional<Hit> pending_;
     Listener listener_;
+    bool jammed_ = false;
+    double jam_position_counts_ = 0;   ///< where a jammed stepper's carriage stays
+    double slip_counts_ = 0;
+    double slip_fraction_ = 0;
+    double motion_from_counts_ = 0;    ///< where the current motion started (the carriage)
+    int switch_pressed_ = 0;
 };
 
 } // namespace rigsim::models

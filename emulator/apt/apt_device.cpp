@@ -5,6 +5,7 @@
 #include "emulator/apt/brushless_module.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
+#include "emulator/apt/wire_decode.hpp"
 
 #include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
@@ -39,6 +40,9 @@ public:
             const auto n = framer_.discard_partial();
             log_.warn("{}: dropped {} byte(s) of an unfinished APT message after {} ms without its rest", peer_, n,
                       AptDevice::kInterByteTimeout_ms);
+            device_.record(true, peer_, {},
+                           {std::to_string(n) + " byte(s) of an unfinished message dropped: the rest did not come within "
+                            + std::to_string(AptDevice::kInterByteTimeout_ms) + " ms"});
         }
         if (!bytes.empty())
             last_byte_ = now;
@@ -54,12 +58,18 @@ public:
             if (!reply.empty())
                 send_(reply);   // one frame, one write
         }
-        if (dropped > 0)
+        if (dropped > 0) {
             log_.warn("{}: skipped {} byte(s) that start no valid APT message", peer_, dropped);
+            // The bytes are gone (the framer resyncs byte by byte); the entry says how many.
+            device_.record(true, peer_, {},
+                           {"ignored by the unit: " + std::to_string(dropped)
+                            + " byte(s) that start no valid message (an unknown message ID, address or data length)"});
+        }
         device_.flush();
     }
 
     void send(std::string_view frame) { send_(frame); }
+    const std::string& peer() const { return peer_; }
 
 private:
     AptDevice& device_;
@@ -76,8 +86,9 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       unit_{config.model, model_, serial_,
             std::max(model_.rack ? config_of(config).bays.size() : std::size_t{1}, static_cast<std::size_t>(model_.max_bays))},
-      store_(store), events_(events)
+      store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
+    wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_for_log(e.bytes, out); });
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).
     const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
@@ -89,6 +100,10 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
         channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config_of(config).stage), world, key(0)));
     for (std::size_t bay = 0; bay < channels_.size(); ++bay)
         modules_.push_back(make_module(bay));
+    patched_switch_.assign(channels_.size(), 0);
+    published_status_.assign(channels_.size(), 0);
+    was_moving_.assign(channels_.size(), false);
+    stalled_.assign(channels_.size(), false);
     if (model_.rack) {
         motherboard_ = std::make_unique<RackMotherboard>(unit_, channels_.size(), *log_);
         for (std::size_t bay = channels_.size(); bay < unit_.built_in_bays; ++bay)
@@ -343,6 +358,27 @@ void AptDevice::start_updates()
 
 void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply)
 {
+    notes_.clear();
+    const std::size_t before = reply.size();
+    route(f, peer, reply);
+    // The wire log: the frame as it came (re-encoded: the framer keeps no copy), then the answers.
+    record(true, peer,
+           f.has_data ? encode_with_data(f.id, f.dest, f.source, f.data)
+                      : encode_header_only(f.id, f.param1, f.param2, f.dest, f.source),
+           std::move(notes_));
+    notes_.clear();
+    std::string_view out(reply);
+    out.remove_prefix(before);
+    while (out.size() >= 6) {
+        const bool data = (static_cast<unsigned char>(out[4]) & 0x80) != 0;
+        const std::size_t n = std::min(out.size(), 6 + (data ? std::size_t{get_u16(out, 2)} : 0));
+        record(false, peer, out.substr(0, n));
+        out.remove_prefix(n);
+    }
+}
+
+void AptDevice::route(const Frame& f, std::string_view peer, std::string& reply)
+{
     host_ = f.source;
     const auto m = msg::decode(f);
     Request r{f, peer, reply, host_};
@@ -351,6 +387,7 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         // that clients address to the motherboard (0x11) or bay 0 (0x21).
         if (f.dest != kGenericUsb && f.dest != kRack && f.dest != kBay0) {
             log_->warn("{}: {} to 0x{:02x}: no such module, ignored", peer, f.info->name, f.dest);
+            note(fmt::format("ignored by the unit: no module at destination 0x{:02x} (a single unit answers as 0x50)", f.dest));
             return;
         }
         return handle_bay(0, m, r);
@@ -368,16 +405,22 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
         return;
     }
     log_->warn("{}: {} to 0x{:02x}: no module in that bay, ignored", peer, f.info->name, f.dest);
+    note(fmt::format("ignored by the unit: no module at destination 0x{:02x}", f.dest));
 }
 
 void AptDevice::handle_bay(std::size_t bay, const msg::Message& m, Request& r)
 {
     if (handle_system(m, r.peer))
         return;
+    if (msg::holds<msg::MoveAbsolute>(m) && !channels_[bay]->homed())
+        note("MOVE_ABSOLUTE while not homed: the position counter is not referenced to the stage "
+             "(p. 28: home the stage after power-up)");
     modules_[bay]->handle(m, r);
     // What MOT_SET_EEPROMPARAMS can save: the last SET the bay accepted.
     if (!r.ignored)
         remember(bay, m);
+    else
+        note("ignored by the unit: " + r.why);
 }
 
 bool AptDevice::handle_system(const msg::Message& m, std::string_view peer)
@@ -437,10 +480,12 @@ void AptDevice::on(const msg::AckDcStatusUpdate&, std::string_view)
         next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
 }
 
-void AptDevice::broadcast(const std::string& frame)
+void AptDevice::broadcast(const std::string& frame, std::vector<std::string> notes)
 {
-    for (auto* s : sessions_)
+    for (auto* s : sessions_) {
         s->send(frame);
+        record(false, s->peer(), frame, notes, true);
+    }
 }
 
 std::string AptDevice::fault_report(std::size_t bay) const
@@ -451,7 +496,11 @@ std::string AptDevice::fault_report(std::size_t bay) const
     if (model_.rich_fault_reports) {
         // Later protocol issues: MsgIdent word (what caused it), Code word, Notes char[64].
         msg::HwRichResponse r{modules_[bay]->last_move(), kFaultCodeStalled, {}};
-        const std::string_view notes = "Motor stalled at the end of travel: current limit reached";
+        // The control API's faults stop the motor mid-travel (docs/control-api/apt.md "Faults").
+        const MotorChannel& ch = *channels_[bay];
+        const std::string_view notes = ch.encoder_failed() ? "Motion error: encoder signal lost, position loop open"
+                                       : ch.stalled()      ? "Motor stalled: current limit reached"
+                                                           : "Motor stalled at the end of travel: current limit reached";
         notes.copy(r.notes.data(), r.notes.size());
         return msg::encode(r, host_, address_of(bay));
     }
@@ -463,7 +512,8 @@ void AptDevice::flush()
 {
     for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
         const std::uint8_t me = address_of(bay);
-        for (const auto event : channels_[bay]->take_events()) {
+        const auto events = channels_[bay]->take_events();
+        for (const auto event : events) {
             if (!end_of_move_messages_)
                 continue;
             // USB "server alive" (p. 80): end-of-move messages count as status update type
@@ -474,19 +524,20 @@ void AptDevice::flush()
                 ++updates_since_ack_;
             switch (event) {
             case MotorEvent::MoveCompleted:
-                broadcast(msg::encode(msg::MoveCompleted{modules_[bay]->motor_status()}, host_, me));
+                broadcast(msg::encode(msg::MoveCompleted{modules_[bay]->motor_status()}, host_, me), update_notes());
                 break;
             case MotorEvent::Stopped:
-                broadcast(msg::encode(msg::MoveStopped{modules_[bay]->motor_status()}, host_, me));
+                broadcast(msg::encode(msg::MoveStopped{modules_[bay]->motor_status()}, host_, me), update_notes());
                 break;
             case MotorEvent::Homed:
-                broadcast(msg::encode(msg::MoveHomed{kChan1}, host_, me));
+                broadcast(msg::encode(msg::MoveHomed{kChan1}, host_, me), update_notes());
                 break;
             case MotorEvent::Fault:
-                broadcast(fault_report(bay));
+                broadcast(fault_report(bay), update_notes());
                 break;
             }
         }
+        publish_events(bay, events);
     }
 }
 
@@ -507,7 +558,7 @@ void AptDevice::tick(Ticks now)
         if (updates_since_ack_ < kUpdatesWithoutAck) {
             ++updates_since_ack_;
             for (const auto& module : modules_)
-                broadcast(module->status_update(host_));
+                broadcast(module->status_update(host_), update_notes());
         }
     }
 }

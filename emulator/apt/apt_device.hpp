@@ -10,8 +10,10 @@
 #include "emulator/apt/motor_channel.hpp"
 #include "emulator/apt/motor_module.hpp"
 #include "emulator/apt/rack_modules.hpp"
+#include "emulator/core/control_surface.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/rig_config.hpp"
+#include "emulator/core/wire_log.hpp"
 #include "models/clock.hpp"
 #include "models/world.hpp"
 
@@ -35,12 +37,14 @@ namespace rigsim::apt {
 
 class AptSession;
 
-class AptDevice : public Device, public Tickable {
+class AptDevice : public Device, public Tickable, public ControlSurface {
 public:
     /// Status updates every 100 ms of clock time (section 5 (c)).
     static constexpr std::int64_t kUpdatePeriod_ms = 100;
     /// USB units stop their update messages after 50 without MOT_ACK_DCSTATUSUPDATE.
     static constexpr int kUpdatesWithoutAck = 50;
+    /// The wire log warns when this many went unacknowledged (docs/control-api/apt.md "Notes").
+    static constexpr int kUpdatesWarnAt = 40;
     /// A frame whose bytes stop for longer than this (clock time) is dropped when the next bytes
     /// arrive. The manual gives no serial timing beyond 115200 baud (2.3), at which a whole
     /// frame of 261 bytes takes 23 ms.
@@ -76,6 +80,18 @@ public:
     /// Send end-of-move messages and due status updates to every connection.
     void flush();
 
+    // ---- Control API (docs/control-api/apt.md); apt_control.cpp ----
+    ControlSurface* control() override { return this; }
+    void describe(nlohmann::json& out) const override;
+    Refused patch_channel(std::size_t index, const nlohmann::json& body) override;
+    Refused add_fault(const DeviceFault& f, bool* kept) override;
+    void remove_fault(std::uint64_t id) override;
+    void power_cycle(const PowerCycle& how) override;
+    WireLog& wire_log() override { return wire_log_; }
+    /// Record one frame crossing the wire of connection `peer` (notes: the client's mistakes).
+    void record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes = {},
+                bool unprompted = false);
+
     /// The parameter SETs MOT_SET_EEPROMPARAMS saves (p. 60): the motor chapter's settings that
     /// rigsim's controllers act on. Not SET_POSCOUNTER or SET_ENCCOUNTER: the 'live' counts
     /// (p. 28), unknown at power-up.
@@ -88,6 +104,8 @@ public:
                                   msg::SetPmdStageAxisParams>;
 
 private:
+    /// handle() without the wire log: the frame to its module.
+    void route(const Frame& frame, std::string_view peer, std::string& reply);
     /// The module address a bay answers from: 0x50 for a single unit, 0x21 + bay in a rack.
     std::uint8_t address_of(std::size_t bay) const;
     /// The module of this controller's motor kind for bay `bay`.
@@ -117,7 +135,17 @@ private:
     static std::string saved_data(SavedSet set);
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
     void restore_from_eeprom();
-    void broadcast(const std::string& frame);
+    void broadcast(const std::string& frame, std::vector<std::string> notes = {});
+    /// Note on the frame being handled (the wire log's entry for it).
+    void note(std::string text) { notes_.push_back(std::move(text)); }
+    /// The channel object of bay `bay` (docs/control-api/apt.md "Channels").
+    nlohmann::json channel_json(std::size_t bay) const;
+    /// What the bay's faults and PATCHes add up to, handed to its channel.
+    void apply_faults(std::size_t bay);
+    /// Events "move_started", "move_ended" and "status" for the control API's listeners.
+    void publish_events(std::size_t bay, const std::vector<MotorEvent>& events);
+    /// The notes a status update or end-of-move message earns (the unacknowledged count).
+    std::vector<std::string> update_notes() const;
     /// HW_RESPONSE or HW_RICHRESPONSE for a fault of bay `bay` (p. 19).
     std::string fault_report(std::size_t bay) const;
 
@@ -141,6 +169,22 @@ private:
     StateStore* store_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
     std::map<std::pair<std::size_t, std::uint16_t>, SavedSet> last_set_;   ///< (bay, SET id) -> the last accepted
+
+    /// A fault of the control API acting on a bay.
+    struct ActiveFault {
+        std::string kind;
+        std::size_t bay = 0;
+        int side = 0;            ///< limit_switch: +1 forward, -1 reverse
+        double counts = 0;       ///< slip
+        double fraction = 0;     ///< slip
+    };
+    WireLog wire_log_;
+    std::vector<std::string> notes_;                 ///< on the frame being handled
+    std::map<std::uint64_t, ActiveFault> faults_;
+    std::vector<int> patched_switch_;                ///< per bay: PATCH limit_switch (+1, -1, 0)
+    std::vector<std::uint32_t> published_status_;    ///< per bay: the status bits last published
+    std::vector<bool> was_moving_;                   ///< per bay: moving after the last flush
+    std::vector<bool> stalled_;                      ///< per bay: a Fault event waits for its Stopped
 };
 
 } // namespace rigsim::apt

@@ -35,18 +35,99 @@ MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& 
     : controller_(controller), stage_(stage),
       axis_(world.emplace<models::Axis>(key, world.clock(), axis_config(controller, stage)))
 {
-    const double cpm = stage.counts_per_mm;
-    velocity.max = static_cast<std::int32_t>(std::lround(stage.max_velocity_mm_s * cpm * velocity_factor()));
-    velocity.acceleration = static_cast<std::int32_t>(std::lround(stage.acceleration_mm_s2 * cpm * acceleration_factor()));
-    design_velocity_ = velocity;
-    jog.step_size = static_cast<std::int32_t>(std::lround(0.1 * cpm));
-    jog.velocity = velocity;
-    home_params.velocity = static_cast<std::int32_t>(std::lround(stage.home_velocity_mm_s * cpm * velocity_factor()));
-    home_params.offset = static_cast<std::int32_t>(std::lround(stage.home_offset_mm * cpm));
+    set_power_up_params();
     counter_offset_ = axis_.motor_position_counts();
     encoder_offset_ = counter_offset_;
     axis_.set_listener([this](models::AxisEvent e) { on_axis_event(e); });
     sync_axis(motion_);
+}
+
+void MotorChannel::set_power_up_params()
+{
+    const double cpm = stage_.counts_per_mm;
+    velocity = VelocityParams{};
+    velocity.max = static_cast<std::int32_t>(std::lround(stage_.max_velocity_mm_s * cpm * velocity_factor()));
+    velocity.acceleration = static_cast<std::int32_t>(std::lround(stage_.acceleration_mm_s2 * cpm * acceleration_factor()));
+    design_velocity_ = velocity;
+    jog = JogParams{};
+    jog.step_size = static_cast<std::int32_t>(std::lround(0.1 * cpm));
+    jog.velocity = velocity;
+    home_params = HomeParams{};
+    home_params.velocity = static_cast<std::int32_t>(std::lround(stage_.home_velocity_mm_s * cpm * velocity_factor()));
+    home_params.offset = static_cast<std::int32_t>(std::lround(stage_.home_offset_mm * cpm));
+    limit_switch = LimitSwitchParams{};
+    backlash = 0;
+    profile_mode = 0;
+    jerk = 0;
+    relative_distance = 0;
+    absolute_position = 0;
+}
+
+void MotorChannel::power_up()
+{
+    axis_.stop_immediately();
+    motion_ = Motion::Idle;
+    pending_backlash_target_.reset();
+    events_.clear();
+    set_power_up_params();
+    axis_.set_limits(axis_.travel_min_counts(), axis_.travel_max_counts());
+    enabled_ = true;
+    homed_ = false;
+    fault_bits_ = 0;
+    counter_offset_ = axis_.motor_position_counts();
+    encoder_offset_ = counter_offset_;
+    frozen_position_ = frozen_encoder_ = 0;
+    synced_.reset();
+    sync_axis(motion_);
+}
+
+double MotorChannel::start_position_counts() const
+{
+    return axis_config(controller_, stage_).start_position_counts;
+}
+
+void MotorChannel::place(double counts)
+{
+    axis_.place(counts);
+    frozen_position_ = position();
+    frozen_encoder_ = encoder();
+}
+
+void MotorChannel::set_switch_pressed(int side)
+{
+    axis_.set_switch_pressed(side);
+}
+
+int MotorChannel::switch_pressed() const
+{
+    return axis_.switch_pressed();
+}
+
+void MotorChannel::sync_jam()
+{
+    // A failed encoder leaves a servo without its position loop: it cannot move.
+    axis_.set_jammed(stalled_ || (encoder_failed_ && controller_.motor != MotorKind::Stepper));
+}
+
+void MotorChannel::set_stalled(bool stalled)
+{
+    stalled_ = stalled;
+    sync_jam();
+}
+
+void MotorChannel::set_slip(double counts, double fraction)
+{
+    axis_.set_slip(counts, fraction);
+}
+
+void MotorChannel::set_encoder_failed(bool failed)
+{
+    if (failed && !encoder_failed_) {
+        frozen_position_ = position();
+        frozen_encoder_ = encoder();
+    }
+    encoder_failed_ = failed;
+    sync_jam();
 }
 
 MotorChannel::~MotorChannel()
@@ -101,6 +182,9 @@ double MotorChannel::counter_origin() const
 
 std::int32_t MotorChannel::position() const
 {
+    // A servo's position counter is its encoder's (a stepper's counts its microsteps).
+    if (encoder_failed_ && controller_.motor != MotorKind::Stepper)
+        return frozen_position_;
     return static_cast<std::int32_t>(std::lround(axis_.motor_position_counts() - counter_offset_));
 }
 
@@ -112,6 +196,8 @@ void MotorChannel::set_position(std::int32_t counts)
 
 std::int32_t MotorChannel::encoder() const
 {
+    if (encoder_failed_)
+        return frozen_encoder_;
     return static_cast<std::int32_t>(std::lround(axis_.motor_position_counts() - encoder_offset_));
 }
 
@@ -130,10 +216,13 @@ std::int16_t MotorChannel::velocity_word() const
 std::uint32_t MotorChannel::status_bits() const
 {
     std::uint32_t bits = status::kMotorConnected | fault_bits_;
+    if (encoder_failed_ && controller_.motor != MotorKind::Stepper)
+        bits |= status::kMotionError;   // the position loop cannot hold without its encoder
     const double x = axis_.position_counts();
-    if (!stage_.rotary && x <= axis_.travel_min_counts() + 0.5 && (limit_switch.ccw_hard & 0x7f) != 1)
+    const int pressed = axis_.switch_pressed();
+    if (!stage_.rotary && (x <= axis_.travel_min_counts() + 0.5 || pressed < 0) && (limit_switch.ccw_hard & 0x7f) != 1)
         bits |= status::kReverseHardLimit;
-    if (!stage_.rotary && x >= axis_.travel_max_counts() - 0.5 && (limit_switch.cw_hard & 0x7f) != 1)
+    if (!stage_.rotary && (x >= axis_.travel_max_counts() - 0.5 || pressed > 0) && (limit_switch.cw_hard & 0x7f) != 1)
         bits |= status::kForwardHardLimit;
     if (soft_limits_active()) {
         if (position() >= limit_switch.cw_soft)
@@ -334,7 +423,8 @@ void MotorChannel::on_axis_event(models::AxisEvent event)
         // limit (brushless, PMDPOSITIONLOOPPARAMS) trips, and the controller stops the axis.
         motion_ = Motion::Idle;
         pending_backlash_target_.reset();
-        fault_bits_ = controller_.motor == MotorKind::Brushless ? status::kMotionError : status::kCurrentLimit;
+        fault_bits_ = controller_.motor == MotorKind::Brushless || encoder_failed_ ? status::kMotionError
+                                                                                   : status::kCurrentLimit;
         events_.push_back(MotorEvent::Fault);
         events_.push_back(MotorEvent::Stopped);
         return;

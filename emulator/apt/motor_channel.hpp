@@ -129,6 +129,31 @@ public:
     /// The physics of this channel (World key "<device>/<bay>").
     const models::Axis& axis() const { return axis_; }
 
+    // ---- Control API (docs/control-api/apt.md): set-up and faults ----
+    bool homed() const { return homed_; }
+    /// The homed status bit, as if homing had (or had not) been done.
+    void set_homed(bool homed) { homed_ = homed; }
+    /// The carriage to `counts` of the stage (from its reverse end), at rest; the counters follow.
+    void place(double counts);
+    /// A limit switch reads pressed (+1 forward, -1 reverse, 0 none): its status bit is set, a
+    /// move toward it stops at once as the switch would stop it.
+    void set_switch_pressed(int side);
+    int switch_pressed() const;
+    /// The motor stalls (DC servo, brushless: a move ends with the current limit or motion
+    /// error fault; stepper: the microsteps are lost, the counters run on).
+    void set_stalled(bool stalled);
+    bool stalled() const { return stalled_; }
+    /// A stepper loses microsteps in every move (models::Axis::set_slip).
+    void set_slip(double counts, double fraction);
+    /// The encoder fails: its counter stops; a servo's position loop cannot hold (motion error,
+    /// no move), a stepper (open loop) still moves.
+    void set_encoder_failed(bool failed);
+    bool encoder_failed() const { return encoder_failed_; }
+    /// Power-up state: parameters, counters (0 where the carriage stands), not homed, enabled.
+    void power_up();
+    /// The carriage's configured power-up position (stage counts).
+    double start_position_counts() const;
+
 private:
     enum class Motion { Idle, Moving, Jogging, HomingToLimit, HomingBackOff, Stopping };
 
@@ -151,6 +176,9 @@ private:
     bool soft_limits_active() const;
     double within_soft_limits(double target_physical) const;
     void move_to(double target_physical);
+    /// The power-up parameters of the stage (velocity, jog, home, limit switches).
+    void set_power_up_params();
+    void sync_jam();
 
     const ControllerModel& controller_;
     const StageModel& stage_;
@@ -164,6 +192,10 @@ private:
     bool homing_forward_ = false;
     VelocityParams design_velocity_;
     std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
+    bool stalled_ = false;           ///< control API stall fault
+    bool encoder_failed_ = false;    ///< control API sensor_failure fault
+    std::int32_t frozen_position_ = 0;   ///< counters read while the encoder has failed
+    std::int32_t frozen_encoder_ = 0;
     std::vector<MotorEvent> events_;
     /// What sync_axis() last handed the axis (it depends on nothing else): take_events() after
     /// every batch of messages then costs a comparison.

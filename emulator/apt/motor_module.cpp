@@ -48,6 +48,8 @@ MotorModule::MotorModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t
 void MotorModule::ignore(const std::string& text)
 {
     request_->ignored = true;
+    const auto prefix = std::string(request_->peer) + ": ";
+    request_->why = text.compare(0, prefix.size(), prefix) == 0 ? text.substr(prefix.size()) : text;
     log_.warn("{}", text);
 }
 

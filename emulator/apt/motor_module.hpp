@@ -32,6 +32,7 @@ struct Request {
     std::string& reply;
     std::uint8_t host;       ///< where answers go (the requester's source)
     bool ignored = false;    ///< the module ignored it (a SET: MOT_SET_EEPROMPARAMS must not save it)
+    std::string why{};       ///< why it was ignored (the warning without the peer)
 };
 
 /// What every module knows of the unit it sits in.

@@ -162,6 +162,19 @@ void StateStore::set(const std::string& device, const std::string& key, nlohmann
     changed_.notify_all();
 }
 
+void StateStore::erase(const std::string& device)
+{
+    if (state_.erase(device) == 0 || file_.empty())
+        return;
+    auto text = state_.dump(2) + "\n";
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pending_ = std::move(text);
+        ++saves_;
+    }
+    changed_.notify_all();
+}
+
 void StateStore::reject(const std::string& device, const std::string& key, const std::string& why)
 {
     log_->warn("state file {}: device \"{}\", key \"{}\": skipped: {}", file_.empty() ? "(in memory)" : path_,

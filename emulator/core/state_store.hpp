@@ -43,6 +43,8 @@ public:
     const nlohmann::json* get(const std::string& device, const std::string& key) const;
     /// Save; with a file, hand the new state to the writer and return (no I/O here).
     void set(const std::string& device, const std::string& key, nlohmann::json value);
+    /// Forget everything device `device` saved (its non-volatile memory erased).
+    void erase(const std::string& device);
     /// Everything device `device` saved (an empty object if nothing).
     const nlohmann::json& device_state(const std::string& device) const;
 

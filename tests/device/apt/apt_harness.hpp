@@ -56,8 +56,8 @@ inline DeviceConfig tdc001()
 /// Hex "05 00 00 00 50 01" -> bytes.
 class AptHarness {
 public:
-    explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr)
-        : world_(clock_), device_(config, world_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store),
+    explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr, EventBus* events = nullptr)
+        : world_(clock_), device_(config, world_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store, events),
           session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
     }

@@ -1,0 +1,362 @@
+// AptDevice's side of the control API (docs/control-api/apt.md): the state of its bays read
+// from the world and the protocol machine, their set-up, the faults that act inside the unit,
+// the power cycle, the wire log and the events.
+
+#include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/wire_decode.hpp"
+#include "emulator/core/event_bus.hpp"
+#include "emulator/core/state_store.hpp"
+#include "models/axis.hpp"
+
+#include <nlohmann/json.hpp>
+#include <spdlog/logger.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace rigsim::apt {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// SI units (m or rad) per stage count: the catalogue's counts per mm (per degree for a
+/// rotation stage).
+double si_per_count(const StageModel& stage)
+{
+    return stage.rotary ? kPi / 180.0 / stage.counts_per_mm : 1e-3 / stage.counts_per_mm;
+}
+
+std::string hex32(std::uint32_t v)
+{
+    char buf[12];
+    std::snprintf(buf, sizeof buf, "0x%08x", v);
+    return buf;
+}
+
+nlohmann::json status_json(std::uint32_t bits)
+{
+    return {{"bits", bits}, {"hex", hex32(bits)}, {"set", status_bit_names(bits)}};
+}
+
+Refusal bad(std::string message)
+{
+    return Refusal{400, std::move(message)};
+}
+
+/// The params of a fault: keys other than `allowed` (and the POST's own) are refused.
+Refused only_keys(const nlohmann::json* params, const std::string& kind, std::initializer_list<const char*> allowed)
+{
+    if (!params || params->is_null())
+        return std::nullopt;
+    if (!params->is_object())
+        return bad("fault params must be an object");
+    for (const auto& [key, value] : params->items()) {
+        (void)value;
+        if (key == "device" || key == "channel" || key == "kind")
+            continue;
+        bool ok = false;
+        for (const char* a : allowed)
+            ok = ok || key == a;
+        if (!ok) {
+            std::string names;
+            for (const char* a : allowed)
+                names += std::string(names.empty() ? "" : ", ") + "\"" + a + "\"";
+            return bad("unknown field \"" + key + "\" for fault \"" + kind + "\""
+                       + (names.empty() ? " (it takes no params)" : " (it takes " + names + ")"));
+        }
+    }
+    return std::nullopt;
+}
+
+} // namespace
+
+void AptDevice::record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes,
+                       bool unprompted)
+{
+    wire_log_.add(clock_.now(), inbound, peer, frame, std::move(notes), unprompted);
+}
+
+std::vector<std::string> AptDevice::update_notes() const
+{
+    // USB "server alive" (p. 80): the unit counts the status update type messages it sends
+    // without MOT_ACK_DCSTATUSUPDATE and stops at 50.
+    if (!updates_)
+        return {};
+    if (updates_since_ack_ == kUpdatesWarnAt)
+        return {std::to_string(kUpdatesWarnAt) + " of " + std::to_string(kUpdatesWithoutAck)
+                + " status update messages without MGMSG_MOT_ACK_DCSTATUSUPDATE: the unit stops sending them at "
+                + std::to_string(kUpdatesWithoutAck) + " (p. 80)"};
+    if (updates_since_ack_ == kUpdatesWithoutAck)
+        return {"cut-off: " + std::to_string(kUpdatesWithoutAck)
+                + " status update messages without MGMSG_MOT_ACK_DCSTATUSUPDATE; the unit sends no more until "
+                  "the host acknowledges (p. 80)"};
+    return {};
+}
+
+nlohmann::json AptDevice::channel_json(std::size_t bay) const
+{
+    const MotorChannel& ch = *channels_[bay];
+    const StageModel& stage = ch.stage();
+    const models::Axis& axis = ch.axis();
+    const double k = si_per_count(stage);
+    const std::uint32_t bits = ch.status_bits();
+    const double x = axis.position_counts();
+    const auto& l = ch.limit_switch;
+    const bool soft = ((l.mode & 0x7f) == 2 || (l.mode & 0x7f) == 3) && l.cw_soft > l.ccw_soft;
+    const bool at_forward = !stage.rotary && (x >= axis.travel_max_counts() - 0.5 || ch.switch_pressed() > 0);
+    const bool at_reverse = !stage.rotary && (x <= axis.travel_min_counts() + 0.5 || ch.switch_pressed() < 0);
+    nlohmann::json limits{
+        {"switch_params",
+         {{"cw_hard_limit", l.cw_hard}, {"ccw_hard_limit", l.ccw_hard}, {"cw_soft_limit", l.cw_soft},
+          {"ccw_soft_limit", l.ccw_soft}, {"soft_limit_mode", l.mode}}},
+        {"soft_limits", {{"active", soft}, {"forward", l.cw_soft}, {"reverse", l.ccw_soft}}},
+        {"travel",
+         {{"min", ch.min_position()}, {"max", ch.max_position()}, {"min_si", axis.travel_min_counts() * k},
+          {"max_si", axis.travel_max_counts() * k}}},
+        {"switch_pressed", {{"forward", at_forward}, {"reverse", at_reverse}}}};
+    char address[8];
+    std::snprintf(address, sizeof address, "0x%02x", address_of(bay));
+    return {{"index", bay},
+            {"kind", stage.rotary ? "rotary" : "linear"},
+            {"stage", std::string(stage.name)},
+            {"address", address},
+            {"position_si", x * k},
+            {"si_unit", stage.rotary ? "rad" : "m"},
+            {"position_protocol", ch.position()},
+            {"protocol_unit", "counts"},
+            {"encoder", ch.encoder()},
+            {"encoder_failed", ch.encoder_failed()},
+            {"velocity_si", axis.velocity_counts_per_s() * k},
+            {"moving", ch.moving()},
+            {"referenced", ch.homed()},
+            {"enabled", ch.enabled()},
+            {"status", status_json(bits)},
+            {"limits", std::move(limits)}};
+}
+
+void AptDevice::describe(nlohmann::json& out) const
+{
+    auto channels = nlohmann::json::array();
+    for (std::size_t bay = 0; bay < channels_.size(); ++bay)
+        channels.push_back(channel_json(bay));
+    out["channels"] = std::move(channels);
+    out["serial_number"] = serial_;
+    out["status_updates"] = {{"on", updates_},
+                             {"unacknowledged", updates_since_ack_},
+                             {"cut_off", updates_ && updates_since_ack_ >= kUpdatesWithoutAck}};
+    out["end_of_move_messages"] = end_of_move_messages_;
+}
+
+Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
+{
+    if (index >= channels_.size())
+        return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
+                                + (channels_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(channels_.size() - 1))};
+    if (!body.is_object())
+        return bad("the body must be an object");
+    MotorChannel& ch = *channels_[index];
+    const models::Axis& axis = ch.axis();
+    const double k = si_per_count(ch.stage());
+    for (const auto& [key, value] : body.items()) {
+        if (key == "position_si") {
+            if (!value.is_number())
+                return bad("position_si must be a number (" + std::string(ch.stage().rotary ? "rad" : "m") + ")");
+            const double x = value.get<double>() / k;
+            if (!ch.stage().rotary && (x < axis.travel_min_counts() - 0.5 || x > axis.travel_max_counts() + 0.5))
+                return bad("position_si " + value.dump() + " m is outside the travel of the " + std::string(ch.stage().name)
+                           + " (0 to " + std::to_string(axis.travel_max_counts() * k) + " m)");
+        } else if (key == "referenced" || key == "enabled") {
+            if (!value.is_boolean())
+                return bad(key + " must be true or false");
+        } else if (key == "limit_switch") {
+            if (!value.is_string() || (value != "forward" && value != "reverse" && value != "none"))
+                return bad("limit_switch must be \"forward\", \"reverse\" or \"none\"");
+        } else if (key == "sensor") {
+            return bad("sensor: an APT stage's encoder has no power modes of its own (it is powered with the "
+                       "motor); the sensor_failure fault makes it fail");
+        } else {
+            return bad("unknown key \"" + key + "\" (APT channels take position_si, referenced, limit_switch, enabled)");
+        }
+    }
+    if (ch.moving())
+        return Refusal{409, "channel " + std::to_string(index) + " is moving"};
+    if (const auto it = body.find("position_si"); it != body.end())
+        ch.place(it->get<double>() / k);
+    if (const auto it = body.find("referenced"); it != body.end())
+        ch.set_homed(it->get<bool>());
+    if (const auto it = body.find("limit_switch"); it != body.end()) {
+        const auto side = it->get<std::string>();
+        patched_switch_[index] = side == "forward" ? 1 : side == "reverse" ? -1 : 0;
+        apply_faults(index);
+    }
+    if (const auto it = body.find("enabled"); it != body.end())
+        ch.set_enabled(it->get<bool>());
+    flush();   // events of the change (status)
+    return std::nullopt;
+}
+
+void AptDevice::apply_faults(std::size_t bay)
+{
+    bool stalled = false;
+    bool sensor = false;
+    double counts = 0;
+    double fraction = 0;
+    int side = patched_switch_[bay];
+    for (const auto& [id, f] : faults_) {
+        if (f.bay != bay)
+            continue;
+        stalled = stalled || f.kind == "stall";
+        sensor = sensor || f.kind == "sensor_failure";
+        if (f.kind == "slip") {
+            counts += f.counts;
+            fraction += f.fraction;
+        }
+        if (f.kind == "limit_switch")
+            side = f.side;   // the latest fault's switch
+    }
+    MotorChannel& ch = *channels_[bay];
+    ch.set_stalled(stalled);
+    ch.set_encoder_failed(sensor);
+    ch.set_slip(counts, fraction);
+    ch.set_switch_pressed(side);
+}
+
+Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
+{
+    const std::size_t bay = f.channel.value_or(0);
+    if (bay >= channels_.size())
+        return Refusal{404, "no channel " + std::to_string(bay) + " on " + config_.name};
+    const nlohmann::json* p = f.params;
+    ActiveFault fault{f.kind, bay};
+    if (f.kind == "stall" || f.kind == "sensor_failure" || f.kind == "reference_lost") {
+        if (auto r = only_keys(p, f.kind, {}))
+            return r;
+    } else if (f.kind == "slip") {
+        if (model_.motor != MotorKind::Stepper)
+            return bad("slip: the " + config_.model + " closes its position loop on the encoder, so it loses no "
+                       "steps (a stepper controller does; try stall or sensor_failure)");
+        if (auto r = only_keys(p, f.kind, {"counts", "fraction"}))
+            return r;
+        const auto counts = p ? p->find("counts") : nlohmann::json::const_iterator{};
+        const auto fraction = p ? p->find("fraction") : nlohmann::json::const_iterator{};
+        const bool has_counts = p && p->is_object() && counts != p->end();
+        const bool has_fraction = p && p->is_object() && fraction != p->end();
+        if (!has_counts && !has_fraction)
+            return bad("slip needs \"counts\" (microsteps lost per move) or \"fraction\" (of each move, 0..1)");
+        if (has_counts && (!counts->is_number() || counts->get<double>() < 0))
+            return bad("counts must be a number >= 0 (microsteps lost per move)");
+        if (has_fraction && (!fraction->is_number() || fraction->get<double>() < 0 || fraction->get<double>() > 1))
+            return bad("fraction must be a number from 0 to 1");
+        fault.counts = has_counts ? counts->get<double>() : 0;
+        fault.fraction = has_fraction ? fraction->get<double>() : 0;
+    } else if (f.kind == "limit_switch") {
+        if (auto r = only_keys(p, f.kind, {"side"}))
+            return r;
+        const auto side = p && p->is_object() ? p->find("side") : nlohmann::json::const_iterator{};
+        if (!p || !p->is_object() || side == p->end() || !side->is_string() || (*side != "forward" && *side != "reverse"))
+            return bad("side must be \"forward\" or \"reverse\"");
+        fault.side = *side == "forward" ? 1 : -1;
+    } else {
+        return bad("kind \"" + f.kind + "\" is not a fault an APT unit has (stall, slip, sensor_failure, "
+                   "reference_lost, limit_switch)");
+    }
+    if (f.kind == "reference_lost") {
+        channels_[bay]->set_homed(false);   // one-off: homing finds it again
+        *kept = false;
+    } else {
+        faults_[f.id] = std::move(fault);
+        apply_faults(bay);
+        *kept = true;
+    }
+    log_->info("control: fault {} ({}) on channel {}", f.id, f.kind, bay);
+    flush();
+    return std::nullopt;
+}
+
+void AptDevice::remove_fault(std::uint64_t id)
+{
+    const auto it = faults_.find(id);
+    if (it == faults_.end())
+        return;
+    const std::size_t bay = it->second.bay;
+    faults_.erase(it);
+    apply_faults(bay);
+    flush();
+}
+
+void AptDevice::power_cycle(const PowerCycle& how)
+{
+    for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
+        channels_[bay]->power_up();
+        if (how.restore_positions) {
+            patched_switch_[bay] = 0;
+            channels_[bay]->place(channels_[bay]->start_position_counts());
+            channels_[bay]->power_up();   // the counters read 0 where the stage stands
+        }
+        modules_[bay] = make_module(bay);
+        apply_faults(bay);
+        was_moving_[bay] = false;
+        stalled_[bay] = false;
+    }
+    if (model_.rack) {
+        motherboard_ = std::make_unique<RackMotherboard>(unit_, channels_.size(), *log_);
+        for (std::size_t i = 0; i < empty_bays_.size(); ++i)
+            empty_bays_[i] = std::make_unique<EmptyBay>(unit_, channels_.size() + i, model_.motor != MotorKind::Stepper, *log_);
+    }
+    updates_ = false;
+    next_update_ = kNever;
+    updates_since_ack_ = 0;
+    end_of_move_messages_ = true;
+    host_ = kHost;
+    last_set_.clear();
+    if (how.keep_saved)
+        restore_from_eeprom();
+    else if (store_)
+        store_->erase(config_.name);
+    log_->info("control: power cycle ({} saved settings{})", how.keep_saved ? "kept" : "erased",
+               how.restore_positions ? ", stages back at their start positions" : "");
+    flush();
+}
+
+void AptDevice::publish_events(std::size_t bay, const std::vector<MotorEvent>& events)
+{
+    const bool moving = channels_[bay]->moving();
+    if (!events_ || !events_->active()) {
+        was_moving_[bay] = moving;
+        return;
+    }
+    const double ms = clock_.seconds(clock_.now()) * 1000.0;
+    auto publish = [&](const char* type, nlohmann::json data) {
+        data["channel"] = bay;
+        events_->publish(config_.name, type, ms, data);
+    };
+    bool in_move = was_moving_[bay];
+    for (const auto e : events) {
+        if (e == MotorEvent::Fault) {
+            stalled_[bay] = true;   // the Stopped that follows ends the move
+            continue;
+        }
+        if (!in_move && e == MotorEvent::Stopped && !stalled_[bay])
+            continue;   // MOVE_STOP at rest: no move ended
+        if (!in_move)
+            publish("move_started", nlohmann::json::object());
+        const char* outcome = e == MotorEvent::MoveCompleted ? "completed"
+                              : e == MotorEvent::Homed       ? "homed"
+                              : stalled_[bay]                ? "fault"
+                                                             : "stopped";
+        stalled_[bay] = false;
+        publish("move_ended", {{"outcome", outcome}});
+        in_move = false;
+    }
+    if (moving && !in_move)
+        publish("move_started", nlohmann::json::object());
+    was_moving_[bay] = moving;
+    const std::uint32_t bits = channels_[bay]->status_bits();
+    if (bits != published_status_[bay]) {
+        published_status_[bay] = bits;
+        publish("status", {{"status", status_json(bits)}});
+    }
+}
+
+} // namespace rigsim::apt
