@@ -43,7 +43,8 @@ def find_rigsimd(explicit=None):
     path = explicit or os.environ.get("RIGSIMD") or shutil.which("rigsimd")
     if not path:
         raise RigsimError("rigsimd not found: pass rigsimd=PATH, set RIGSIMD, or put it on PATH")
-    return path
+    # A relative path is taken from where we are now: tests may change directory later.
+    return os.path.abspath(path) if os.sep in path else path
 
 
 class Rigsim:
