@@ -124,3 +124,29 @@ def test_events_on_an_unserved_route_raise(fake):
     with pytest.raises(ControlError) as e:
         client.events()
     assert e.value.status == 404
+
+
+def test_events_over_chunked_transfer_encoding_split_anywhere():
+    """An HTTP/1.1 server may send the stream chunked, with chunk borders inside lines."""
+    import socket
+    stream = (b"event: move_started\nid: 7\ndata: {\"seq\":7,\"type\":\"move_started\",\"device\":\"a\"}\n\n"
+              b": keep-alive\n\nevent: move_ended\nid: 8\ndata: {\"device\":\"a\",\n"
+              b"data: \"outcome\":\"reached\"}\n\n")
+    listener = socket.create_server(("127.0.0.1", 0))
+
+    def serve():
+        conn, _ = listener.accept()
+        with conn:
+            conn.recv(4096)
+            conn.sendall(b"HTTP/1.1 200 OK\r\nContent-Type: text/event-stream\r\n"
+                         b"Transfer-Encoding: chunked\r\n\r\n")
+            for i in range(0, len(stream), 13):
+                piece = stream[i:i + 13]
+                conn.sendall(b"%x\r\n%s\r\n" % (len(piece), piece))
+            conn.sendall(b"0\r\n\r\n")
+    threading.Thread(target=serve, daemon=True).start()
+    client = ControlClient(f"http://127.0.0.1:{listener.getsockname()[1]}")
+    events = list(client.events(timeout=5))
+    listener.close()
+    assert events == [{"seq": 7, "type": "move_started", "device": "a"},
+                      {"device": "a", "outcome": "reached", "type": "move_ended", "seq": 8}]

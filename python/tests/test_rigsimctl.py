@@ -216,6 +216,22 @@ def test_the_launcher_reports_errors_on_stderr(fake):
     assert result.stderr == 'rigsimctl: 404: no device "nope"\n'
 
 
+def test_the_launcher_finds_the_package_in_the_install_layout(fake, tmp_path):
+    """As `cmake --install` lays it out: bin/rigsimctl, lib/rigsim/python/rigsim/."""
+    import shutil
+    source = os.path.join(HERE, "..", "..", "scripts", "rigsimctl")
+    (tmp_path / "bin").mkdir()
+    shutil.copy2(source, tmp_path / "bin" / "rigsimctl")
+    shutil.copytree(os.path.join(HERE, "..", "rigsim"), tmp_path / "lib" / "rigsim" / "python" / "rigsim",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
+    result = subprocess.run([str(tmp_path / "bin" / "rigsimctl"), "--control", fake.url, "clock"],
+                            capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout)["tick_hz"] == 1000
+
+
 @pytest.mark.parametrize("argv", [[], ["rig"], ["state"], ["set"], ["clock"], ["clock", "step"],
                                   ["clock", "run-until-idle"], ["fault"], ["fault", "add"],
                                   ["fault", "rm"], ["events"], ["reset"], ["log"]])
