@@ -72,8 +72,12 @@ class _SessionDaemons:
         self.rigsimd = rigsimd
         self.daemons = {}
 
+    @staticmethod
+    def key(rig, args):
+        return (json.dumps(rig, sort_keys=True, default=str), tuple(args))
+
     def get(self, rig, args):
-        key = (json.dumps(rig, sort_keys=True, default=str), tuple(args))
+        key = self.key(rig, args)
         entry = self.daemons.get(key)
         if entry is not None and entry[0].process is not None and entry[0].process.poll() is None:
             daemon, clock = entry
@@ -122,11 +126,15 @@ def rigsim_session(request, _rigsim_session_daemons):
     """Factory: rigsim_session(rig=None, args=()) returns the session's daemon on `rig` (started
     on first use, stopped at the end of the session), reset() and its clock restored first."""
     used = _used_by(request.node)
+    handed = {}   # asked for again in the same test: the same daemon, not reset again
 
     def get(rig=None, args=()):
-        daemon = _rigsim_session_daemons.get(rig, args)
-        used.append((daemon, len(daemon.daemon_log())))
-        return daemon
+        key = _SessionDaemons.key(rig, args)
+        if key not in handed:
+            daemon = _rigsim_session_daemons.get(rig, args)
+            used.append((daemon, len(daemon.daemon_log())))
+            handed[key] = daemon
+        return handed[key]
 
     return get
 

@@ -160,6 +160,7 @@ def test_a_session_daemon_is_shared_and_reset_between_tests(pytester, request):
             PIDS.append(rig.process.pid)
             rig.pause()
             rig.scale(3)
+            assert rigsim_session() is rig and rig.clock()["paused"] is True   # not reset twice
         def test_second(rigsim_session):
             rig = rigsim_session()
             PIDS.append(rig.process.pid)
