@@ -138,6 +138,23 @@ def test_events_stream_json_lines(fake):
     assert fake.requests[-1][1] == "/api/events?device=mcs0"
 
 
+def test_events_streams_until_ctrl_c(fake):
+    import signal
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
+    process = subprocess.Popen([sys.executable, LAUNCHER, "--control", fake.url, "events"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 10
+    while not any(r[1] == "/api/events" for r in fake.requests):   # poll: the stream is open
+        assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()
+        time.sleep(0.01)
+    fake.publish("clock", None, paused=True)
+    assert json.loads(process.stdout.readline())["type"] == "clock"
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=10)
+    assert process.returncode == 0 and err == ""
+
+
 def test_events_timeout_ends_the_stream(fake):
     assert ctl(fake.url, "events", "--timeout", "0.2") == (0, "")
 
