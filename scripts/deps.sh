@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Install the Debian packages rigsim builds and tests with (python3-serial: the pyserial e2e
-# test; python3-pytest: the tests of python/rigsim and its pytest plugin), if any is missing (apt-get, as root or with sudo). Sourced by scripts/run.sh and
-# scripts/test.sh; safe to run again.
+# test; python3-pytest: the tests of python/rigsim and its pytest plugin; python3-venv: the
+# offline `pip install ./python` test), if any is missing (apt-get, as root or with sudo).
+# Sourced by scripts/run.sh and scripts/test.sh; safe to run again.
 set -euo pipefail
 
 packages=(g++ make cmake libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
-  python3 python3-serial python3-pytest)
+  python3 python3-serial python3-pytest python3-venv)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,7 +1,11 @@
-"""A client of rigsimd's HTTP control API (docs/control-api.md), urllib only."""
+"""A client of rigsimd's HTTP control API (docs/control-api.md), standard library only."""
 
 import json
+import queue
+import socket
+import threading
 import urllib.error
+import urllib.parse
 import urllib.request
 
 
@@ -12,6 +16,18 @@ class ControlError(Exception):
         super().__init__(f"{status}: {message}")
         self.status = status
         self.message = message
+
+
+def _quote(name):
+    return urllib.parse.quote(str(name), safe="")
+
+
+def _error_message(text):
+    try:
+        message = json.loads(text).get("error", text)
+    except (ValueError, AttributeError):
+        message = text
+    return message
 
 
 class ControlClient:
@@ -32,11 +48,9 @@ class ControlClient:
                 return json.loads(answer.read() or b"null")
         except urllib.error.HTTPError as e:
             text = e.read().decode(errors="replace")
-            try:
-                message = json.loads(text).get("error", text)
-            except (ValueError, AttributeError):
-                message = text
-            raise ControlError(e.code, message) from None
+            raise ControlError(e.code, _error_message(text)) from None
+
+    # ---- rig and clock ----
 
     def rig(self):
         """GET /api/rig: the devices and the clock."""
@@ -47,9 +61,11 @@ class ControlClient:
         return self.request("GET", "/api/clock")
 
     def pause(self):
+        """Stop the clock at the current tick."""
         return self.request("POST", "/api/clock", {"pause": True})
 
     def resume(self):
+        """Run the clock again from the current tick."""
         return self.request("POST", "/api/clock", {"resume": True})
 
     def step(self, ms):
@@ -63,3 +79,152 @@ class ControlClient:
     def run_until_idle(self, max_ms):
         """Advance as fast as the CPU allows until nothing moves, at most `max_ms` of clock time."""
         return self.request("POST", "/api/clock", {"run_until_idle": True, "max_ms": max_ms})
+
+    # ---- devices ----
+
+    def state(self, name):
+        """GET /api/devices/{name}: the device's state, channel by channel."""
+        return self.request("GET", f"/api/devices/{_quote(name)}")
+
+    def set(self, name, channel, **fields):
+        """PATCH /api/devices/{name}/channels/{channel} with `fields` (position_si=, referenced=,
+        limit_switch=, sensor=); returns the channel object after the change."""
+        return self.request("PATCH", f"/api/devices/{_quote(name)}/channels/{int(channel)}", fields)
+
+    def log(self, name, last=None):
+        """GET /api/devices/{name}/log[?last=N]: the device's wire log."""
+        query = "" if last is None else f"?last={int(last)}"
+        return self.request("GET", f"/api/devices/{_quote(name)}/log{query}")
+
+    def clear_log(self, name):
+        """DELETE /api/devices/{name}/log."""
+        return self.request("DELETE", f"/api/devices/{_quote(name)}/log")
+
+    # ---- faults ----
+
+    def inject(self, device, kind, channel=None, **params):
+        """POST /api/faults; returns the fault's id."""
+        return self.add_fault(device, kind, channel, **params)["id"]
+
+    def add_fault(self, device, kind, channel=None, **params):
+        """POST /api/faults; returns the whole fault object (id, active, since_ms, ...)."""
+        body = {"device": device, "kind": kind}
+        if channel is not None:
+            body["channel"] = int(channel)
+        body.update(params)
+        return self.request("POST", "/api/faults", body)
+
+    def faults(self):
+        """GET /api/faults: the list of fault objects."""
+        return self.request("GET", "/api/faults")["faults"]
+
+    def clear_fault(self, fault_id):
+        """DELETE /api/faults/{id}."""
+        return self.request("DELETE", f"/api/faults/{int(fault_id)}")
+
+    def clear_faults(self):
+        """DELETE /api/faults: every fault; returns {"removed": [ids]}."""
+        return self.request("DELETE", "/api/faults")
+
+    # ---- reset and events ----
+
+    def reset(self, keep_saved=True):
+        """POST /api/reset: every device back to power-up, faults removed, wire logs cleared."""
+        return self.request("POST", "/api/reset", {} if keep_saved else {"keep_saved": False})
+
+    def events(self, device=None, timeout=None):
+        """GET /api/events: an iterator of the events as dicts (the `data` object, with "type"
+        and "seq" filled from the `event:` and `id:` lines when the data lacks them).
+
+        `device` is a name or a list of names (the server filters). The iterator ends when no
+        event arrives for `timeout` seconds (None: it waits for ever); close() it (or leave the
+        for loop) to drop the connection. Opening raises ControlError on an error answer."""
+        path = "/api/events"
+        if device is not None:
+            names = [device] if isinstance(device, str) else list(device)
+            path += "?device=" + ",".join(_quote(n) for n in names)
+        req = urllib.request.Request(self.url + path, headers={"Accept": "text/event-stream"})
+        try:
+            answer = urllib.request.urlopen(req, timeout=self.timeout_s)
+        except urllib.error.HTTPError as e:
+            raise ControlError(e.code, _error_message(e.read().decode(errors="replace"))) from None
+        return _event_iterator(answer, timeout)
+
+
+_END = object()
+
+
+def _read_events(answer, events):
+    """The reader thread: parses the SSE stream into `events` until it ends or is closed."""
+    fields = {}
+    data = []
+    try:
+        # The stream is read without a timeout: an idle stream is normal; close() ends it.
+        sock = getattr(getattr(getattr(answer, "fp", None), "raw", None), "_sock", None)
+        if sock is not None:
+            sock.settimeout(None)
+        for raw in answer:
+            line = raw.decode("utf-8", errors="replace").rstrip("\r\n")
+            if line == "":
+                if data:
+                    events.put(_event(fields, "\n".join(data)))
+                fields, data = {}, []
+            elif line.startswith(":"):
+                continue   # an SSE comment (keep-alive)
+            else:
+                key, _, value = line.partition(":")
+                value = value[1:] if value.startswith(" ") else value
+                if key == "data":
+                    data.append(value)
+                else:
+                    fields[key] = value
+    except (OSError, ValueError, AttributeError):
+        pass   # closed under us, or the server went away
+    finally:
+        events.put(_END)
+
+
+def _event(fields, text):
+    try:
+        event = json.loads(text)
+    except ValueError:
+        event = {"data": text}
+    if not isinstance(event, dict):
+        event = {"data": event}
+    if "event" in fields:
+        event.setdefault("type", fields["event"])
+    if "id" in fields:
+        seq = fields["id"]
+        event.setdefault("seq", int(seq) if seq.isdigit() else seq)
+    return event
+
+
+def _event_iterator(answer, timeout):
+    events = queue.Queue()
+    reader = threading.Thread(target=_read_events, args=(answer, events), daemon=True)
+    reader.start()
+    try:
+        while True:
+            try:
+                event = events.get(timeout=timeout)
+            except queue.Empty:
+                return
+            if event is _END:
+                return
+            yield event
+    finally:
+        _close_stream(answer)
+
+
+def _close_stream(answer):
+    """Unblock the reader thread: shut the socket down, then close the answer."""
+    sock = getattr(getattr(getattr(answer, "fp", None), "raw", None), "_sock", None)
+    if sock is not None:
+        try:
+            sock.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
+    try:
+        answer.close()
+    except Exception:   # closing a response another thread reads may raise anything
+        pass

@@ -43,7 +43,8 @@ def find_rigsimd(explicit=None):
     path = explicit or os.environ.get("RIGSIMD") or shutil.which("rigsimd")
     if not path:
         raise RigsimError("rigsimd not found: pass rigsimd=PATH, set RIGSIMD, or put it on PATH")
-    return path
+    # A relative path is taken from where we are now: tests may change directory later.
+    return os.path.abspath(path) if os.sep in path else path
 
 
 class Rigsim:
@@ -59,6 +60,7 @@ class Rigsim:
         self.control = None
         self.endpoints = {}
         self.dir = None
+        self.used = []   # devices a test touched (endpoint/state/set/inject/log), in order
 
     # ---- lifecycle ----
 
@@ -95,7 +97,7 @@ class Rigsim:
             status = self.process.returncode
             self.process = None
         if self.dir is not None:
-            self._log_copy = self.log()
+            self._log_copy = self.daemon_log()
             shutil.rmtree(self.dir, ignore_errors=True)
             self.dir = None
         return status
@@ -106,8 +108,16 @@ class Rigsim:
     def __exit__(self, *exc):
         self.stop()
 
-    def log(self):
-        """The daemon's log (standard error) so far."""
+    def log(self, name=None, last=None):
+        """With a device `name`: its wire log (GET /api/devices/{name}/log[?last=N]).
+        Without: the daemon's log (standard error) so far, as daemon_log()."""
+        if name is None:
+            return self.daemon_log()
+        self._use(name)
+        return self.control.log(name, last)
+
+    def daemon_log(self):
+        """The daemon's log (standard error) so far; kept after stop()."""
         if self.dir is None:
             return getattr(self, "_log_copy", "")
         try:
@@ -121,9 +131,11 @@ class Rigsim:
     def endpoint(self, name):
         """The device `name`'s endpoints (pty path, TCP address, pyserial URL)."""
         try:
-            return self.endpoints[name]
+            endpoint = self.endpoints[name]
         except KeyError:
             raise KeyError(f"no device {name!r}; the rig has {sorted(self.endpoints)}") from None
+        self._use(name)
+        return endpoint
 
     def pause(self):
         return self.control.pause()
@@ -143,9 +155,58 @@ class Rigsim:
     def clock(self):
         return self.control.clock()
 
-    def state(self):
-        """GET /api/rig."""
+    def rig_state(self):
+        """GET /api/rig: the devices, their endpoints and the clock."""
         return self.control.rig()
+
+    def state(self, name=None):
+        """GET /api/devices/{name}: the device's state; without a name, GET /api/rig."""
+        if name is None:
+            return self.control.rig()
+        self._use(name)
+        return self.control.state(name)
+
+    def set(self, name, channel, **fields):
+        """PATCH /api/devices/{name}/channels/{channel}: position_si=, referenced=,
+        limit_switch=, sensor=; returns the channel object after the change."""
+        self._use(name)
+        return self.control.set(name, channel, **fields)
+
+    def inject(self, device, kind, channel=None, **params):
+        """POST /api/faults: a fault `kind` on `device` (channel 0 unless given); returns its id."""
+        self._use(device)
+        return self.control.inject(device, kind, channel, **params)
+
+    def clear_fault(self, fault_id):
+        """DELETE /api/faults/{id}."""
+        return self.control.clear_fault(fault_id)
+
+    def clear_faults(self):
+        """DELETE /api/faults: every fault."""
+        return self.control.clear_faults()
+
+    def faults(self):
+        """GET /api/faults: the list of fault objects."""
+        return self.control.faults()
+
+    def reset(self, keep_saved=True):
+        """POST /api/reset: every device back to power-up (saved settings kept unless
+        keep_saved=False), faults removed, wire logs cleared."""
+        return self.control.reset(keep_saved)
+
+    def clear_log(self, name):
+        """DELETE /api/devices/{name}/log."""
+        return self.control.clear_log(name)
+
+    def events(self, device=None, timeout=None):
+        """GET /api/events: an iterator of event dicts; ends after `timeout` s without one."""
+        return self.control.events(device, timeout)
+
+    # ---- internals ----
+
+    def _use(self, name):
+        if name not in self.used:
+            self.used.append(name)
 
     # ---- internals ----
 

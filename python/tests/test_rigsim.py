@@ -102,3 +102,107 @@ def test_daemons_are_stopped_and_their_ptys_removed_after_the_test(pytester, req
     )
     result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
     result.assert_outcomes(passed=2)
+
+
+def test_a_failed_test_gets_the_wire_log_of_the_devices_it_used(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        from fake_control import FakeControl
+        from rigsim import ControlClient
+
+        def test_fails(rigsim):
+            rig = rigsim()
+            rig.endpoint("tdc001")
+            fake = FakeControl().__enter__()   # left running: the report reads it after the test
+            rig.control = ControlClient(fake.url)
+            rig.state("mcs0")
+            assert False, "failing on purpose"
+        """
+    )
+    result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*rigsimd log (1)*", "*wire log tdc001 (1, last 200)*",
+                                 "*(no wire log: 404*", "*wire log mcs0 (1, last 200)*",
+                                 "*5.000 ms in  :GP0  ?3a4750300a?",
+                                 "*note: sent while not referenced"])
+
+
+def test_the_wire_log_of_the_real_daemon_is_attached(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        import socket
+        def test_fails(rigsim):
+            rig = rigsim()
+            with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s:
+                s.sendall(b":GP0\\n")
+                assert s.recv(100).startswith(b":P0,")
+            assert False, "failing on purpose"
+        """
+    )
+    result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(failed=1)
+    text = result.stdout.str()
+    assert "wire log mcs0 (1, last 200)" in text
+    if "(no wire log: 404: no route" in text or "has no control surface" in text:
+        pytest.skip("rigsimd does not serve /api/devices/{name}/log yet (404)")
+    assert ":GP0" in text
+
+
+def test_a_session_daemon_is_shared_and_reset_between_tests(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        PIDS = []
+        def test_first(rigsim_session):
+            rig = rigsim_session()
+            PIDS.append(rig.process.pid)
+            rig.pause()
+            rig.scale(3)
+            assert rigsim_session() is rig and rig.clock()["paused"] is True   # not reset twice
+        def test_second(rigsim_session):
+            rig = rigsim_session()
+            PIDS.append(rig.process.pid)
+            clock = rig.clock()
+            assert clock["paused"] is False and clock["time_scale"] == 1.0
+        def test_third(rigsim_session):
+            rig = rigsim_session({"devices": [{"name": "m", "protocol": "mcs", "model": "MCS-2D",
+                "mcs": {"system_id": 1, "channels": [{"sensor_type": "S", "travel_nm": [-5000000, 5000000]},
+                                                     {"sensor_type": "S", "travel_nm": [-5000000, 5000000]}]}}]})
+            assert list(rig.endpoints) == ["m"] and rig.process.pid not in PIDS
+            print("PIDS", PIDS)
+        """
+    )
+    result = pytester.runpytest("-s", "-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(passed=3)
+    line = [l for l in result.stdout.lines if l.startswith("PIDS") or "PIDS [" in l][0]
+    pids = eval(line[line.index("["):])
+    from rigsim import Rigsim
+    with Rigsim(rigsimd=rigsimd) as probe:
+        try:
+            probe.reset()
+            served = True
+        except ControlError as e:
+            served = e.status != 404
+    if served:
+        assert pids[0] == pids[1], "a session daemon was restarted although /api/reset is served"
+    else:
+        assert pids[0] != pids[1]   # no /api/reset yet: a fresh daemon per test
+
+
+def test_a_failed_session_test_gets_only_its_part_of_the_daemon_log(pytester, request):
+    rigsimd = request.config.getoption("--rigsimd")
+    pytester.makepyfile(
+        """
+        def test_first(rigsim_session):
+            rigsim_session()
+        def test_fails(rigsim_session):
+            rig = rigsim_session()
+            rig.endpoint("mcs0")
+            assert False, "failing on purpose"
+        """
+    )
+    result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(["*rigsimd log (1)*", "*wire log mcs0 (1, last 200)*"])

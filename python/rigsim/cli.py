@@ -1,0 +1,339 @@
+"""rigsimctl: every route of rigsimd's control API as a sub-command (docs/cli.md#rigsimctl)."""
+
+import argparse
+import json
+import os
+import sys
+import urllib.error
+
+from rigsim.control import ControlClient, ControlError
+
+EPILOG = """The control API is found by --control URL, else --endpoints FILE (its "control" key,
+as rigsimd --endpoints-json writes it), else $RIGSIM_CONTROL. Answers print as indented JSON
+(--format table: a short table). Errors go to standard error, exit status 1."""
+
+
+class UsageError(Exception):
+    """A command line the API cannot be asked with (bad key=value, no control URL)."""
+
+
+def parse_value(text):
+    """key=value values: JSON when they parse (1.5, true, null, "x"), else the text itself."""
+    try:
+        return json.loads(text)
+    except ValueError:
+        return text
+
+
+def parse_fields(pairs):
+    fields = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key:
+            raise UsageError(f"expected key=value, got {pair!r}")
+        fields[key] = parse_value(value)
+    return fields
+
+
+def control_url(args):
+    if getattr(args, "control", None):
+        return args.control
+    if getattr(args, "endpoints", None):
+        try:
+            with open(args.endpoints, encoding="utf-8") as f:
+                doc = json.load(f)
+        except (OSError, ValueError) as e:
+            raise UsageError(f"cannot read the endpoints file {args.endpoints}: {e}") from None
+        if not isinstance(doc, dict) or "control" not in doc:
+            raise UsageError(f"{args.endpoints} names no control API (was rigsimd started with --control?)")
+        return doc["control"]
+    if os.environ.get("RIGSIM_CONTROL"):
+        return os.environ["RIGSIM_CONTROL"]
+    raise UsageError("no control API: pass --control URL or --endpoints FILE, or set RIGSIM_CONTROL")
+
+
+# ---- output ----
+
+def table(rows, columns):
+    """A short left-aligned text table of `rows` (dicts) with `columns` (key, heading)."""
+    cells = [[heading for _, heading in columns]]
+    for row in rows:
+        cells.append([_cell(row.get(key)) for key, _ in columns])
+    widths = [max(len(r[i]) for r in cells) for i in range(len(columns))]
+    return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in cells)
+
+
+def _cell(value):
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, dict):
+        if "name" in value:
+            return str(value["name"])
+        if "hex" in value:
+            return str(value["hex"])
+        return json.dumps(value, separators=(",", ":"))
+    if isinstance(value, list):
+        return ",".join(str(v) for v in value)
+    return str(value)
+
+
+def _clock_table(clock):
+    return table([clock], [("now_ms", "now_ms"), ("paused", "paused"), ("time_scale", "scale"),
+                           ("tick_hz", "tick_hz"), ("reached_ms", "reached_ms")])
+
+
+def _log_rows(answer):
+    rows = []
+    for e in answer.get("entries", []):
+        decoded = e.get("decoded") or {}
+        what = decoded.get("text") or decoded.get("name") or decoded.get("id") or e.get("hex")
+        rows.append({"seq": e.get("seq"), "time_ms": e.get("time_ms"), "dir": e.get("direction"),
+                     "what": what, "notes": "; ".join(e.get("notes", []))})
+    return rows
+
+
+def render_table(kind, answer):
+    """A short table for the answers that have one, else None (JSON is printed)."""
+    if kind == "rig":
+        out = table(answer.get("devices", []), [("name", "name"), ("protocol", "protocol"),
+                                                ("model", "model"), ("tcp", "tcp"), ("pty", "pty")])
+        return out + "\n\n" + _clock_table(answer.get("clock", {}))
+    if kind == "clock":
+        return _clock_table(answer)
+    if kind == "state":
+        return table(answer.get("channels", []), [
+            ("index", "ch"), ("kind", "kind"), ("position_si", "position_si"),
+            ("position_protocol", "protocol"), ("moving", "moving"),
+            ("referenced", "referenced"), ("status", "status")])
+    if kind == "faults":
+        return table(answer, [("id", "id"), ("device", "device"), ("channel", "ch"),
+                              ("kind", "kind"), ("active", "active"), ("since_ms", "since_ms"),
+                              ("params", "params")])
+    if kind == "log":
+        return table(_log_rows(answer), [("seq", "seq"), ("time_ms", "time_ms"), ("dir", "dir"),
+                                         ("what", "what"), ("notes", "notes")])
+    return None
+
+
+def emit(args, kind, answer, out):
+    text = render_table(kind, answer) if args.format == "table" else None
+    if text is None:
+        text = json.dumps(answer, indent=2, sort_keys=False)
+    out.write(text + "\n")
+
+
+# ---- sub-commands ----
+
+def cmd_rig(client, args, out):
+    emit(args, "rig", client.rig(), out)
+
+
+def cmd_state(client, args, out):
+    emit(args, "state", client.state(args.name), out)
+
+
+def cmd_set(client, args, out):
+    fields = parse_fields(args.fields)
+    if not fields:
+        raise UsageError("set: give at least one key=value (position_si, referenced, limit_switch, sensor)")
+    emit(args, "channel", client.set(args.name, args.channel, **fields), out)
+
+
+def cmd_clock(client, args, out):
+    action = args.action or "show"
+    if action == "show":
+        answer = client.clock()
+    elif action == "pause":
+        answer = client.pause()
+    elif action == "resume":
+        answer = client.resume()
+    elif action == "step":
+        answer = client.step(args.ms)
+    elif action == "scale":
+        answer = client.scale(args.factor)
+    else:
+        answer = client.run_until_idle(args.max_ms)
+    emit(args, "clock", answer, out)
+
+
+def cmd_fault(client, args, out):
+    action = args.action
+    if action == "add":
+        params = parse_fields(args.params)
+        emit(args, "fault", client.add_fault(args.device, args.kind, args.channel, **params), out)
+    elif action == "list":
+        emit(args, "faults", client.faults(), out)
+    elif action == "rm":
+        emit(args, "removed", client.clear_fault(args.id), out)
+    else:
+        emit(args, "removed", client.clear_faults(), out)
+
+
+def cmd_events(client, args, out):
+    devices = None
+    if args.device:
+        devices = [n for d in args.device for n in d.split(",") if n]
+    count = 0
+    stream = client.events(devices, timeout=args.timeout)
+    try:
+        for event in stream:
+            out.write(json.dumps(event, separators=(",", ":")) + "\n")
+            out.flush()
+            count += 1
+            if args.count is not None and count >= args.count:
+                break
+    except KeyboardInterrupt:
+        pass
+    finally:
+        stream.close()
+
+
+def cmd_reset(client, args, out):
+    emit(args, "reset", client.reset(keep_saved=not args.erase_saved), out)
+
+
+def cmd_log(client, args, out):
+    if args.clear:
+        emit(args, "cleared", client.clear_log(args.name), out)
+    else:
+        emit(args, "log", client.log(args.name, args.last), out)
+
+
+# ---- the parser ----
+
+def _common(suppress):
+    """The options every sub-command takes too (before or after the sub-command's name)."""
+    p = argparse.ArgumentParser(add_help=False)
+    default = argparse.SUPPRESS if suppress else None
+    p.add_argument("--control", metavar="URL", default=default,
+                   help="the control API's URL (http://127.0.0.1:PORT)")
+    p.add_argument("--endpoints", metavar="FILE", default=default,
+                   help='the endpoints JSON rigsimd wrote (--endpoints-json); its "control" key')
+    p.add_argument("--format", choices=("json", "table"),
+                   default=argparse.SUPPRESS if suppress else "json",
+                   help="indented JSON (default) or a short table")
+    return p
+
+
+def _sub(subs, name, func, help_text, common):
+    p = subs.add_parser(name, help=help_text, description=help_text, parents=[common])
+    p.set_defaults(func=func)
+    return p
+
+
+def build_parser():
+    common = _common(suppress=True)
+    parser = argparse.ArgumentParser(
+        prog="rigsimctl", parents=[_common(suppress=False)],
+        description="Drive a running rigsimd through its control API: the rig, the clock, "
+                    "device state, faults, events, reset and wire logs.",
+        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    subs = parser.add_subparsers(dest="command", metavar="COMMAND")
+    subs.required = True
+
+    _sub(subs, "rig", cmd_rig, "GET /api/rig: the devices, their endpoints and the clock", common)
+
+    p = _sub(subs, "state", cmd_state, "GET /api/devices/NAME: a device's state, channel by channel", common)
+    p.add_argument("name", metavar="NAME")
+
+    p = _sub(subs, "set", cmd_set, "PATCH /api/devices/NAME/channels/CH: set a channel's state "
+             "(position_si=M, referenced=true|false, limit_switch=forward|reverse|none, "
+             "sensor=enabled|disabled|power_save)", common)
+    p.add_argument("name", metavar="NAME")
+    p.add_argument("channel", metavar="CH", type=int)
+    p.add_argument("fields", metavar="key=value", nargs="*",
+                   help="values are read as JSON when they parse (1e-3, true), else as text")
+
+    p = _sub(subs, "clock", cmd_clock, "GET or POST /api/clock: show, pause, resume, step, "
+             "scale or run the clock until idle", common)
+    actions = p.add_subparsers(dest="action", metavar="ACTION")
+    for name, text in (("show", "GET /api/clock (the default)"),
+                       ("pause", "stop the clock at the current tick"),
+                       ("resume", "run the clock again from the current tick")):
+        actions.add_parser(name, help=text, description=text, parents=[common])
+    a = actions.add_parser("step", help="advance the clock MS ms now", description="advance the clock MS ms now",
+                           parents=[common])
+    a.add_argument("ms", metavar="MS", type=int)
+    a = actions.add_parser("scale", help="clock seconds per wall second from now on",
+                           description="clock seconds per wall second from now on", parents=[common])
+    a.add_argument("factor", metavar="X", type=float)
+    a = actions.add_parser("run-until-idle", parents=[common],
+                           help="advance as fast as possible until nothing moves",
+                           description="advance as fast as possible until nothing moves, at most "
+                                       "--max-ms of clock time")
+    a.add_argument("--max-ms", type=int, default=600_000, help="clock time limit (default 600000)")
+
+    p = _sub(subs, "fault", cmd_fault, "/api/faults: add, list, remove or clear faults", common)
+    actions = p.add_subparsers(dest="action", metavar="ACTION")
+    actions.required = True
+    a = actions.add_parser("add", parents=[common], help="POST /api/faults: inject a fault",
+                           description="POST /api/faults: inject a fault KIND (stall, slip, "
+                           "sensor_failure, reference_lost, limit_switch, unplugged, drop_bytes, "
+                           "corrupt_bytes, latency, power_cycle) on DEVICE")
+    a.add_argument("device", metavar="DEVICE")
+    a.add_argument("kind", metavar="KIND")
+    a.add_argument("--channel", type=int, default=None, help="the channel (default 0)")
+    a.add_argument("params", metavar="key=value", nargs="*",
+                   help="the kind's parameters (probability=0.5 direction=in seed=1 latency_ms=20 ...)")
+    actions.add_parser("list", parents=[common], help="GET /api/faults", description="GET /api/faults")
+    a = actions.add_parser("rm", parents=[common], help="DELETE /api/faults/ID", description="DELETE /api/faults/ID")
+    a.add_argument("id", metavar="ID", type=int)
+    actions.add_parser("clear", parents=[common], help="DELETE /api/faults: remove every fault",
+                       description="DELETE /api/faults: remove every fault")
+
+    p = _sub(subs, "events", cmd_events, "GET /api/events: print each event as a JSON line "
+             "until Ctrl-C", common)
+    p.add_argument("--device", action="append", metavar="NAME",
+                   help="only this device's events (repeat, or a,b)")
+    p.add_argument("--count", type=int, default=None, help="stop after N events")
+    p.add_argument("--timeout", type=float, default=None,
+                   help="stop when no event came for S seconds")
+
+    p = _sub(subs, "reset", cmd_reset, "POST /api/reset: every device back to power-up, faults "
+             "removed, wire logs cleared", common)
+    p.add_argument("--erase-saved", action="store_true",
+                   help="forget the saved settings too ({\"keep_saved\": false})")
+
+    p = _sub(subs, "log", cmd_log, "GET /api/devices/NAME/log: the device's wire log", common)
+    p.add_argument("name", metavar="NAME")
+    p.add_argument("--last", type=int, default=None, metavar="N", help="only the last N entries")
+    p.add_argument("--clear", action="store_true", help="DELETE the log instead")
+    return parser
+
+
+def main(argv=None, out=None):
+    out = out or sys.stdout
+    parser = build_parser()
+    args, extra = parser.parse_known_args(argv)
+    # argparse stops filling a nargs="*" positional at the first option: key=value pairs after
+    # one (fault add D K --channel 1 a=b) come back unknown; they belong to that positional.
+    pairs_attr = {"set": "fields", "fault": "params"}.get(args.command)
+    if pairs_attr and hasattr(args, pairs_attr) and all("=" in x and not x.startswith("-") for x in extra):
+        getattr(args, pairs_attr).extend(extra)
+    elif extra:
+        parser.error("unrecognized arguments: " + " ".join(extra))
+    url = None
+    try:
+        url = control_url(args)
+        args.func(ControlClient(url), args, out)
+    except ControlError as e:
+        print(f"rigsimctl: {e.status}: {e.message}", file=sys.stderr)
+        return 1
+    except UsageError as e:
+        print(f"rigsimctl: {e}", file=sys.stderr)
+        return 1
+    except urllib.error.URLError as e:
+        print(f"rigsimctl: cannot reach the control API at {url}: {e.reason}", file=sys.stderr)
+        return 1
+    except (OSError, ValueError) as e:
+        print(f"rigsimctl: {e}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,318 @@
+"""rigsimctl: every sub-command against the fake control API (fake_control.py), and against
+the real daemon for the routes it serves (a route the daemon answers 404 "no route", or a
+device "has no control surface", skips, saying so). $RIGSIMCTL names the launcher to run (default: the source tree's scripts/rigsimctl)."""
+
+import io
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from fake_control import FakeControl
+from rigsim.cli import main
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+LAUNCHER = os.environ.get("RIGSIMCTL") or os.path.join(HERE, "..", "..", "scripts", "rigsimctl")
+
+
+@pytest.fixture
+def fake():
+    with FakeControl() as f:
+        yield f
+
+
+def ctl(url, *argv):
+    """rigsimctl in-process: (exit status, standard output)."""
+    out = io.StringIO()
+    status = main(["--control", url, *argv], out=out)
+    return status, out.getvalue()
+
+
+def ctl_json(url, *argv):
+    status, text = ctl(url, *argv)
+    assert status == 0, text
+    return json.loads(text)
+
+
+def run_launcher(*argv, env=None, timeout=30):
+    """The launcher as a user runs it: a separate process."""
+    full_env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
+    full_env.pop("PYTHONPATH", None)   # the launcher must find the package itself
+    full_env.update(env or {})
+    return subprocess.run([sys.executable, LAUNCHER, *argv], capture_output=True, text=True,
+                          env=full_env, timeout=timeout)
+
+
+# ---- each sub-command against the fake ----
+
+def test_rig(fake):
+    assert [d["name"] for d in ctl_json(fake.url, "rig")["devices"]] == ["mcs0", "apt0"]
+
+
+def test_rig_table(fake):
+    status, text = ctl(fake.url, "--format", "table", "rig")
+    assert status == 0
+    lines = text.splitlines()
+    assert lines[0].split() == ["name", "protocol", "model", "tcp", "pty"]
+    assert lines[1].split()[:3] == ["mcs0", "mcs", "MCS-3D"]
+    assert "now_ms" in text
+
+
+def test_state(fake):
+    assert ctl_json(fake.url, "state", "apt0")["model"] == "TDC001"
+    status, text = ctl(fake.url, "state", "mcs0", "--format", "table")
+    assert status == 0 and text.splitlines()[0].split()[:3] == ["ch", "kind", "position_si"]
+    assert len(text.splitlines()) == 4
+
+
+def test_set_parses_values_as_json(fake):
+    channel = ctl_json(fake.url, "set", "mcs0", "2", "position_si=1e-3", "referenced=true",
+                       "limit_switch=forward")
+    assert channel["index"] == 2
+    assert fake.requests[-1] == ("PATCH", "/api/devices/mcs0/channels/2",
+                                 {"position_si": 0.001, "referenced": True, "limit_switch": "forward"})
+
+
+def test_set_without_fields_is_an_error(fake, capsys):
+    status, _ = ctl(fake.url, "set", "mcs0", "0")
+    assert status == 1
+    assert "key=value" in capsys.readouterr().err
+    assert fake.requests == []
+
+
+def test_set_bad_pair_is_an_error(fake, capsys):
+    assert ctl(fake.url, "set", "mcs0", "0", "position_si")[0] == 1
+    assert "expected key=value" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, body", [
+    (["clock", "pause"], {"pause": True}),
+    (["clock", "resume"], {"resume": True}),
+    (["clock", "step", "100"], {"step_ms": 100}),
+    (["clock", "scale", "2.5"], {"scale": 2.5}),
+    (["clock", "run-until-idle", "--max-ms", "5000"], {"run_until_idle": True, "max_ms": 5000}),
+    (["clock", "run-until-idle"], {"run_until_idle": True, "max_ms": 600000}),
+])
+def test_clock_actions(fake, argv, body):
+    ctl_json(fake.url, *argv)
+    assert fake.requests[-1] == ("POST", "/api/clock", body)
+
+
+def test_clock_show_is_the_default(fake):
+    assert ctl_json(fake.url, "clock")["tick_hz"] == 1000
+    assert ctl_json(fake.url, "clock", "show")["tick_hz"] == 1000
+    assert [r[0] for r in fake.requests] == ["GET", "GET"]
+
+
+def test_fault_add_list_rm_clear(fake):
+    fault = ctl_json(fake.url, "fault", "add", "mcs0", "drop_bytes", "--channel", "1",
+                     "direction=in", "probability=0.5", "seed=7")
+    assert fake.requests[-1] == ("POST", "/api/faults", {"device": "mcs0", "kind": "drop_bytes",
+                                 "channel": 1, "direction": "in", "probability": 0.5, "seed": 7})
+    assert [f["id"] for f in ctl_json(fake.url, "fault", "list")] == [fault["id"]]
+    status, text = ctl(fake.url, "fault", "list", "--format", "table")
+    assert text.splitlines()[1].split()[:4] == [str(fault["id"]), "mcs0", "1", "drop_bytes"]
+    assert ctl_json(fake.url, "fault", "rm", str(fault["id"])) == {"id": fault["id"], "removed": True}
+    ctl_json(fake.url, "fault", "add", "apt0", "stall")
+    assert ctl_json(fake.url, "fault", "clear")["removed"] == [2]
+
+
+def test_fault_rm_unknown_shows_the_server_error(fake, capsys):
+    assert ctl(fake.url, "fault", "rm", "42")[0] == 1
+    assert capsys.readouterr().err.strip() == "rigsimctl: 404: no fault 42"
+
+
+def test_events_stream_json_lines(fake):
+    def later():
+        time.sleep(0.1)
+        fake.publish("move_started", "apt0", channel=0)
+        fake.publish("status", "mcs0", channel=0, status={"code": 4})
+    threading.Thread(target=later, daemon=True).start()
+    status, text = ctl(fake.url, "events", "--device", "mcs0", "--count", "1")
+    assert status == 0
+    assert [json.loads(line)["type"] for line in text.splitlines()] == ["status"]
+    assert fake.requests[-1][1] == "/api/events?device=mcs0"
+
+
+def test_events_streams_until_ctrl_c(fake):
+    import signal
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
+    process = subprocess.Popen([sys.executable, LAUNCHER, "--control", fake.url, "events"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 10
+    while not any(r[1] == "/api/events" for r in fake.requests):   # poll: the stream is open
+        assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()
+        time.sleep(0.01)
+    fake.publish("clock", None, paused=True)
+    assert json.loads(process.stdout.readline())["type"] == "clock"
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=10)
+    assert process.returncode == 0 and err == ""
+
+
+def test_events_timeout_ends_the_stream(fake):
+    assert ctl(fake.url, "events", "--timeout", "0.2") == (0, "")
+
+
+def test_reset(fake):
+    assert ctl_json(fake.url, "reset")["reset"] == ["mcs0", "apt0"]
+    assert fake.requests[-1][2] == {}
+    ctl_json(fake.url, "reset", "--erase-saved")
+    assert fake.requests[-1][2] == {"keep_saved": False}
+
+
+def test_log(fake):
+    assert len(ctl_json(fake.url, "log", "mcs0")["entries"]) == 2
+    ctl_json(fake.url, "log", "mcs0", "--last", "1")
+    assert fake.requests[-1][1] == "/api/devices/mcs0/log?last=1"
+    status, text = ctl(fake.url, "--format", "table", "log", "mcs0")
+    assert status == 0 and ":GP0" in text and "sent while not referenced" in text
+    ctl_json(fake.url, "log", "mcs0", "--clear")
+    assert fake.requests[-1][:2] == ("DELETE", "/api/devices/mcs0/log")
+
+
+def test_unknown_device_shows_the_server_error(fake, capsys):
+    assert ctl(fake.url, "state", "nope")[0] == 1
+    assert capsys.readouterr().err.strip() == 'rigsimctl: 404: no device "nope"'
+
+
+# ---- finding the API, the launcher, --help ----
+
+def test_control_from_the_endpoints_file(fake, tmp_path):
+    path = tmp_path / "endpoints.json"
+    path.write_text(json.dumps({"control": fake.url, "devices": []}))
+    out = io.StringIO()
+    assert main(["--endpoints", str(path), "clock"], out=out) == 0
+    assert json.loads(out.getvalue())["tick_hz"] == 1000
+
+
+def test_control_from_the_environment(fake, monkeypatch):
+    monkeypatch.setenv("RIGSIM_CONTROL", fake.url)
+    out = io.StringIO()
+    assert main(["clock"], out=out) == 0
+
+
+def test_no_control_is_an_error(monkeypatch, capsys):
+    monkeypatch.delenv("RIGSIM_CONTROL", raising=False)
+    assert main(["rig"], out=io.StringIO()) == 1
+    assert "--control URL" in capsys.readouterr().err
+
+
+def test_an_endpoints_file_without_control_is_an_error(tmp_path, capsys):
+    path = tmp_path / "endpoints.json"
+    path.write_text(json.dumps({"devices": []}))
+    assert main(["--endpoints", str(path), "rig"], out=io.StringIO()) == 1
+    assert "names no control API" in capsys.readouterr().err
+
+
+def test_an_unreachable_api_is_an_error(capsys):
+    assert main(["--control", "http://127.0.0.1:1", "rig"], out=io.StringIO()) == 1
+    assert "cannot reach the control API at http://127.0.0.1:1" in capsys.readouterr().err
+
+
+def test_options_after_the_sub_command(fake):
+    out = io.StringIO()
+    assert main(["clock", "step", "5", "--control", fake.url], out=out) == 0
+    assert fake.requests[-1] == ("POST", "/api/clock", {"step_ms": 5})
+
+
+def test_the_launcher_runs_and_prints_json(fake):
+    result = run_launcher("--control", fake.url, "fault", "list")
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout) == []
+
+
+def test_the_launcher_reports_errors_on_stderr(fake):
+    result = run_launcher("--control", fake.url, "state", "nope")
+    assert result.returncode == 1 and result.stdout == ""
+    assert result.stderr == 'rigsimctl: 404: no device "nope"\n'
+
+
+def test_the_launcher_finds_the_package_in_the_install_layout(fake, tmp_path):
+    """As `cmake --install` lays it out: bin/rigsimctl, lib/rigsim/python/rigsim/."""
+    import shutil
+    source = os.path.join(HERE, "..", "..", "scripts", "rigsimctl")
+    (tmp_path / "bin").mkdir()
+    shutil.copy2(source, tmp_path / "bin" / "rigsimctl")
+    shutil.copytree(os.path.join(HERE, "..", "rigsim"), tmp_path / "lib" / "rigsim" / "python" / "rigsim",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
+    result = subprocess.run([str(tmp_path / "bin" / "rigsimctl"), "--control", fake.url, "clock"],
+                            capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout)["tick_hz"] == 1000
+
+
+@pytest.mark.parametrize("argv", [[], ["rig"], ["state"], ["set"], ["clock"], ["clock", "step"],
+                                  ["clock", "run-until-idle"], ["fault"], ["fault", "add"],
+                                  ["fault", "rm"], ["events"], ["reset"], ["log"]])
+def test_help_per_sub_command(argv):
+    result = run_launcher(*argv, "--help")
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("usage: rigsimctl " + " ".join(argv))
+
+
+# ---- against the real daemon ----
+
+def real(rig, *argv):
+    """rigsimctl against the daemon; skips when the daemon does not serve the route yet."""
+    result = run_launcher("--control", rig.control.url, *argv)
+    if result.returncode == 1 and result.stderr.startswith("rigsimctl: 404: ") and (
+            "no route" in result.stderr or "has no control surface" in result.stderr):
+        pytest.skip(f"rigsimd does not serve this route yet: {result.stderr.strip()}")
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout) if result.stdout.strip() else None
+
+
+def test_real_rig_and_clock(rigsim):
+    rig = rigsim()
+    assert [d["name"] for d in real(rig, "rig")["devices"]] == list(rig.endpoints)
+    assert real(rig, "clock", "pause")["paused"] is True
+    before = real(rig, "clock")["now_ms"]
+    assert real(rig, "clock", "step", "250")["now_ms"] == before + 250
+    assert real(rig, "clock", "scale", "4")["time_scale"] == 4.0
+    assert "reached_ms" in real(rig, "clock", "run-until-idle", "--max-ms", "1000")
+    assert real(rig, "clock", "resume")["paused"] is False
+
+
+def test_real_bad_clock_step_shows_the_daemon_error(rigsim):
+    rig = rigsim()
+    result = run_launcher("--control", rig.control.url, "clock", "step", "-1")
+    assert result.returncode == 1
+    assert result.stderr.startswith("rigsimctl: 400: \"step_ms\"")
+
+
+def test_real_endpoints_file(rigsim):
+    rig = rigsim()
+    result = run_launcher("--endpoints", os.path.join(rig.dir, "endpoints.json"), "clock")
+    assert result.returncode == 0 and json.loads(result.stdout)["tick_hz"] == 1000
+
+
+def test_real_state_set_log(rigsim):
+    rig = rigsim()
+    assert real(rig, "state", "mcs0")["name"] == "mcs0"
+    channel = real(rig, "set", "mcs0", "0", "position_si=0.001")
+    assert abs(channel["position_si"] - 0.001) < 1e-9
+    assert real(rig, "log", "mcs0", "--last", "5")["device"] == "mcs0"
+    real(rig, "log", "mcs0", "--clear")
+
+
+def test_real_faults(rigsim):
+    rig = rigsim()
+    fault = real(rig, "fault", "add", "mcs0", "stall", "--channel", "0")
+    assert [f["id"] for f in real(rig, "fault", "list")] == [fault["id"]]
+    assert real(rig, "fault", "rm", str(fault["id"]))["removed"] is True
+    real(rig, "fault", "add", "mcs0", "stall")
+    assert len(real(rig, "fault", "clear")["removed"]) == 1
+
+
+def test_real_reset_and_events(rigsim):
+    rig = rigsim()
+    assert "mcs0" in real(rig, "reset")["reset"]
+    real(rig, "events", "--timeout", "0.3")
