@@ -33,19 +33,15 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     count_ = std::min(count_ + 1, ring_.size());
     if (!e.notes.empty())
         ++noted_;
+    // Debug level only: a client's mistakes are already warned about where the protocol's
+    // log does (rate-limited); a flood of bad commands must not flood the log twice.
     const bool debug = log_ && log_->should_log(spdlog::level::debug);
-    const bool noted = log_ && !e.notes.empty() && log_->should_log(spdlog::level::info);
     const bool listened = bus_ && bus_->active();
-    if (!debug && !noted && !listened)
+    if (!debug && !listened)
         return;
     const auto j = entry_json(e);
-    if (debug || noted) {
-        const auto text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-        if (noted)
-            log_->info("wire: {}", text);
-        else
-            log_->debug("wire: {}", text);
-    }
+    if (debug)
+        log_->debug("wire: {}", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     if (listened)
         bus_->publish(device_, "wire", static_cast<double>(tick) * 1000.0 / tick_hz_, j);
 }
@@ -58,7 +54,7 @@ void WireLog::annotate_last(std::string note)
     if (e.notes.empty())
         ++noted_;
     if (log_)
-        log_->info("wire: seq {}: {}", e.seq, note);
+        log_->debug("wire: seq {}: {}", e.seq, note);
     e.notes.push_back(std::move(note));
 }
 
