@@ -31,6 +31,7 @@ class AptClient:
         self.port = serial.serial_for_url(port, baudrate=115200, timeout=timeout_s)
         self.channel = channel
         self.faults = []   # (code, notes) of fault reports received
+        self.pending = []  # messages received while waiting for another one, in order
 
     def close(self):
         self.port.close()
@@ -63,6 +64,12 @@ class AptClient:
         return message_id, data
 
     def wait_for(self, *ids, timeout_s=60.0):
+        """The next message with one of `ids`. Others met meanwhile are kept for a later
+        wait_for: a move can end (MOVE_STOPPED) before the status answer asked after it."""
+        for i, (message_id, data) in enumerate(self.pending):
+            if message_id in ids:
+                del self.pending[i]
+                return message_id, data
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:
             try:
@@ -71,6 +78,8 @@ class AptClient:
                 continue
             if message_id in ids:
                 return message_id, data
+            if message_id in (MOVE_HOMED, MOVE_COMPLETED, MOVE_STOPPED):
+                self.pending.append((message_id, data))
         raise TimeoutError(f"none of {[hex(i) for i in ids]} within {timeout_s} s")
 
     def status(self):

@@ -206,3 +206,32 @@ def test_a_failed_session_test_gets_only_its_part_of_the_daemon_log(pytester, re
     result = pytester.runpytest("-p", "rigsim.pytest_plugin", "--rigsimd", rigsimd)
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(["*rigsimd log (1)*", "*wire log mcs0 (1, last 200)*"])
+
+
+def test_events_from_the_real_daemon(rigsim):
+    """Rigsim.events() on the daemon's SSE stream: clock and fault events, filtered by device."""
+    rig = rigsim()
+    try:
+        stream = rig.events(device="mcs0", timeout=5)
+    except ControlError as e:
+        if e.status == 404 and "no route" in e.message:
+            pytest.skip(f"rigsimd does not serve /api/events yet: {e.message}")
+        raise
+    try:
+        # The stream is open once the daemon answered; the events below come after it.
+        rig.pause()
+        rig.inject("tdc001", "latency", latency_ms=1)   # another device's: filtered out
+        fault = rig.inject("mcs0", "latency", latency_ms=1)
+        seen = []
+        for event in stream:
+            seen.append(event)
+            if event["type"] == "fault_added":
+                break
+        types = [e["type"] for e in seen]
+        assert types[0] == "clock" and seen[0]["paused"] is True
+        assert types[-1] == "fault_added"
+        assert seen[-1]["device"] == "mcs0" and seen[-1]["id"] == fault
+        assert all(e.get("device") in (None, "", "mcs0") for e in seen)
+        assert [e["seq"] for e in seen] == sorted(e["seq"] for e in seen)
+    finally:
+        stream.close()
