@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
 """Control API latency while clients poll devices (issue 11's closing figure).
 
-Starts rigsimd on the default rig with the control API, then runs CLIENTS processes (default
-10), each on its own keep-alive HTTP connection, polling in a loop for SECONDS each:
+Starts rigsimd on the default rig with the control API. One measuring client sends
+GET /api/devices/<name> (round robin over the rig's devices) on a keep-alive connection for
+SECONDS, twice per round, side by side in the same daemon:
 
-  1. baseline: GET /api/clock (the smallest route: the daemon's HTTP path and nothing else);
-  2. measured: GET /api/devices/<name>, the clients spread over every device of the rig.
+  1. baseline: nothing else runs;
+  2. loaded: CLIENTS processes (default 10) poll the devices through their own protocols
+     over TCP as fast as they can (MCS ":GS0", APT MGMSG_MOT_REQ_DCSTATUSUPDATE), one
+     request in flight each, as drivers polling status do.
 
-and prints median and p99 latency of each, and their ratio. Both phases run in the same
-daemon, one after the other, so that the machine's noise hits both alike. Standard library
-only. Usage: bench/control_latency.py [--rigsimd PATH] [--clients N] [--seconds S]
+It prints median and p99 of the control requests' latency in both, their ratio, and the
+device polls served per second. Standard library only.
+Usage: bench/control_latency.py [--rigsimd PATH] [--clients N] [--seconds S] [--rounds R]
 """
 import argparse
 import http.client
@@ -43,10 +46,33 @@ def poll(args):
     return out
 
 
-def phase(pool, host, port, clients, path_sets, seconds):
-    work = [(host, port, path_sets[i % len(path_sets)], seconds) for i in range(clients)]
-    lat = [x for part in pool.map(poll, work) for x in part]
-    lat.sort()
+def device_poll(args):
+    """One device client: requests as fast as answers come, for `seconds`; the count."""
+    import socket
+    host, port, protocol, seconds = args
+    s = socket.create_connection((host, port))
+    s.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+    if protocol == "mcs":
+        req, size = b":GS0\n", len(b":S0,0\n")
+    else:
+        req, size = bytes([0x90, 0x04, 0x01, 0x00, 0x50, 0x01]), 20
+    n = 0
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        s.sendall(req)
+        got = b""
+        while len(got) < size:
+            chunk = s.recv(size - len(got))
+            if not chunk:
+                raise RuntimeError("device closed the connection")
+            got += chunk
+        n += 1
+    s.close()
+    return n
+
+
+def summary(lat, seconds):
+    lat = sorted(lat)
     return {
         "requests": len(lat),
         "per_s": len(lat) / seconds,
@@ -76,14 +102,23 @@ def main():
             doc = json.load(open(ep))
             host, port = doc["control"][len("http://"):].rsplit(":", 1)
             names = [dev["name"] for dev in doc["devices"]]
+            paths = [f"/api/devices/{n}" for n in names]
+            targets = []
+            for i in range(a.clients):
+                dev = doc["devices"][i % len(doc["devices"])]
+                h, p = dev["tcp"].rsplit(":", 1)
+                targets.append((h, int(p), dev["protocol"], a.seconds))
             with multiprocessing.Pool(a.clients) as pool:
                 for r in range(a.rounds):
-                    base = phase(pool, host, int(port), a.clients, [["/api/clock"]], a.seconds)
-                    dev = phase(pool, host, int(port), a.clients, [[f"/api/devices/{n}" for n in names]], a.seconds)
-                    print(json.dumps({"round": r + 1, "clients": a.clients, "devices": len(names),
-                                      "baseline_get_clock": base, "get_device": dev,
-                                      "median_ratio": dev["median_us"] / base["median_us"],
-                                      "p99_ratio": dev["p99_us"] / base["p99_us"]}))
+                    base = summary(poll((host, int(port), paths, a.seconds)), a.seconds)
+                    load = pool.map_async(device_poll, targets)
+                    loaded = summary(poll((host, int(port), paths, a.seconds)), a.seconds)
+                    polls = sum(load.get())
+                    print(json.dumps({"round": r + 1, "device_clients": a.clients, "devices": len(names),
+                                      "baseline": base, "loaded": loaded,
+                                      "device_polls_per_s": polls / a.seconds,
+                                      "median_ratio": loaded["median_us"] / base["median_us"],
+                                      "p99_ratio": loaded["p99_us"] / base["p99_us"]}))
         finally:
             d.terminate()
             d.wait(10)

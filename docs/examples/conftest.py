@@ -7,7 +7,6 @@ real time and the clients wait as they would on hardware: the same tests, for co
 times (pytest --durations=0).
 """
 
-import contextlib
 import os
 import sys
 
@@ -17,7 +16,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # the example c
 
 from apt_client import AptClient   # noqa: E402
 from mcs_client import McsClient   # noqa: E402
-from rigsim import ControlError   # noqa: E402
+
 
 REAL_TIME = os.environ.get("RIGSIM_REAL_TIME") == "1"
 
@@ -53,21 +52,3 @@ def apt(rig):
     client = AptClient(rig.endpoint("kdc101").url)
     yield client
     client.close()
-
-
-# The answers of a rigsimd that does not serve a route yet: 404 for the route itself, or for
-# the device's side of it (a device family without its control surface: 404 for its state and
-# wire log, 400 "takes no device faults" for a device fault). Any other error fails.
-NOT_SERVED = {404: ("no route", "has no control surface"), 400: ("takes no device faults",)}
-
-
-@contextlib.contextmanager
-def needs_route():
-    """Skip the test when rigsimd answers 404 for a route it does not serve yet (NOT_SERVED);
-    any other error fails it."""
-    try:
-        yield
-    except ControlError as e:
-        if any(text in e.message for text in NOT_SERVED.get(e.status, ())):
-            pytest.skip(f"rigsimd does not serve this route yet: {e.message}")
-        raise

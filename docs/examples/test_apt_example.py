@@ -4,7 +4,6 @@ rig)."""
 import pytest
 
 from apt_client import CURRENT_LIMIT, HOMED, HOMING, MOTION_ERROR, AptError
-from conftest import needs_route
 
 COUNTS_PER_MM = 34304   # Z8 series actuators (Thorlabs' APT scaling for the Z825B)
 
@@ -29,8 +28,7 @@ def test_a_move_after_homing_reaches_its_target(apt, finish):
 
 
 def test_a_stall_stops_the_move_with_an_error(rig, apt, finish):
-    with needs_route():
-        rig.inject("kdc101", "stall", channel=0)
+    rig.inject("kdc101", "stall", channel=0)
     start, _ = apt.status()
     apt.move_absolute(start + 5 * COUNTS_PER_MM)
     finish()

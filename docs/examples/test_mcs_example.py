@@ -2,7 +2,6 @@
 
 import pytest
 
-from conftest import needs_route
 from mcs_client import END_STOP_REACHED, McsError
 
 
@@ -16,8 +15,7 @@ def test_move_and_read_the_position(mcs, finish):
 
 
 def test_a_stall_is_reported_as_end_stop_reached(rig, mcs, finish):
-    with needs_route():
-        rig.inject("mcs0", "stall", channel=0)
+    rig.inject("mcs0", "stall", channel=0)
     mcs.set_asynchronous()
     start = mcs.position_nm(0)
     mcs.move_absolute(0, start + 3_000_000)

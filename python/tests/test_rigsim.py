@@ -145,8 +145,6 @@ def test_the_wire_log_of_the_real_daemon_is_attached(pytester, request):
     result.assert_outcomes(failed=1)
     text = result.stdout.str()
     assert "wire log mcs0 (1, last 200)" in text
-    if "(no wire log: 404: no route" in text or "has no control surface" in text:
-        pytest.skip("rigsimd does not serve /api/devices/{name}/log yet (404)")
     assert ":GP0" in text
 
 
@@ -211,12 +209,7 @@ def test_a_failed_session_test_gets_only_its_part_of_the_daemon_log(pytester, re
 def test_events_from_the_real_daemon(rigsim):
     """Rigsim.events() on the daemon's SSE stream: clock and fault events, filtered by device."""
     rig = rigsim()
-    try:
-        stream = rig.events(device="mcs0", timeout=5)
-    except ControlError as e:
-        if e.status == 404 and "no route" in e.message:
-            pytest.skip(f"rigsimd does not serve /api/events yet: {e.message}")
-        raise
+    stream = rig.events(device="mcs0", timeout=5)
     try:
         # The stream is open once the daemon answered; the events below come after it.
         rig.pause()

@@ -1,6 +1,5 @@
 """rigsimctl: every sub-command against the fake control API (fake_control.py), and against
-the real daemon for the routes it serves (a route the daemon answers 404 "no route", or a
-device "has no control surface", skips, saying so). $RIGSIMCTL names the launcher to run (default: the source tree's scripts/rigsimctl)."""
+the real daemon. $RIGSIMCTL names the launcher to run (default: the source tree's scripts/rigsimctl)."""
 
 import io
 import json
@@ -261,13 +260,8 @@ def test_help_per_sub_command(argv):
 # ---- against the real daemon ----
 
 def real(rig, *argv):
-    """rigsimctl against the daemon; skips when the daemon does not serve the route yet."""
+    """rigsimctl against the daemon."""
     result = run_launcher("--control", rig.control.url, *argv)
-    if result.returncode == 1 and (
-            (result.stderr.startswith("rigsimctl: 404: ")
-             and ("no route" in result.stderr or "has no control surface" in result.stderr))
-            or (result.stderr.startswith("rigsimctl: 400: ") and "takes no device faults" in result.stderr)):
-        pytest.skip(f"rigsimd does not serve this route yet: {result.stderr.strip()}")
     assert result.returncode == 0, result.stderr
     return json.loads(result.stdout) if result.stdout.strip() else None
 
