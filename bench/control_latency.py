@@ -7,7 +7,7 @@ SECONDS, twice per round, side by side in the same daemon:
 
   1. baseline: nothing else runs;
   2. loaded: CLIENTS processes (default 10) poll the devices through their own protocols
-     over TCP as fast as they can (MCS ":GS0", APT MGMSG_MOT_REQ_DCSTATUSUPDATE), one
+     over TCP as fast as they can (MCS ":GS0", APT MGMSG_MOT_REQ_POSCOUNTER), one
      request in flight each, as drivers polling status do.
 
 It prints median and p99 of the control requests' latency in both, their ratio, and the
@@ -49,13 +49,15 @@ def poll(args):
 def device_poll(args):
     """One device client: requests as fast as answers come, for `seconds`; the count."""
     import socket
-    host, port, protocol, seconds = args
-    s = socket.create_connection((host, port))
+    host, port, protocol, model, seconds = args
+    s = socket.create_connection((host, port), timeout=5)
     s.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     if protocol == "mcs":
         req, size = b":GS0\n", len(b":S0,0\n")
     else:
-        req, size = bytes([0x90, 0x04, 0x01, 0x00, 0x50, 0x01]), 20
+        # A benchtop rack (BSC203, BBD203) answers from its bays (0x21...), a cube from 0x50.
+        dest = 0x21 if model.startswith("B") else 0x50
+        req, size = bytes([0x11, 0x04, 0x01, 0x00, dest, 0x01]), 12
     n = 0
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
@@ -107,7 +109,7 @@ def main():
             for i in range(a.clients):
                 dev = doc["devices"][i % len(doc["devices"])]
                 h, p = dev["tcp"].rsplit(":", 1)
-                targets.append((h, int(p), dev["protocol"], a.seconds))
+                targets.append((h, int(p), dev["protocol"], dev["model"], a.seconds))
             with multiprocessing.Pool(a.clients) as pool:
                 for r in range(a.rounds):
                     base = summary(poll((host, int(port), paths, a.seconds)), a.seconds)
