@@ -1,6 +1,7 @@
 // The control API's device routes on the real rigsimd: state read while a client moves a
 // stage, PATCH for set-up (409 while moving), a stall the client sees, the wire log with a
 // note, the event stream of a move, and POST /api/reset.
+#include "apt_support.hpp"
 #include "control_support.hpp"
 #include "e2e_support.hpp"
 
@@ -79,6 +80,7 @@ TEST_CASE("control: a stall stops an MCS client's move where it stands, the log 
     const auto stall = http(api, "POST", "/api/faults", R"({"device":"mcs0","channel":0,"kind":"stall"})");
     REQUIRE(stall.status == 201);
     CHECK(has(http(api, "GET", "/api/faults").body, "\"kind\":\"stall\""));
+    CHECK(has(http(api, "GET", "/api/faults/1").body, "\"device\":\"mcs0\""));   // the daemon's first fault
 
     REQUIRE(mcs.request(":MPA0,1000000,0\n") == ":E0,0\n");
     CHECK(mcs.request(":GS0\n") == ":S0,0\n");   // blocked: ended at once, at rest
@@ -91,6 +93,9 @@ TEST_CASE("control: a stall stops an MCS client's move where it stands, the log 
     CHECK(has(log.body, "absolute move while the physical position is unknown"));
     CHECK(has(log.body, "answered with an error"));
     CHECK(has(http(api, "GET", "/api/devices/mcs0/log?last=1").body, "\"direction\":\"out\""));
+    REQUIRE(http(api, "DELETE", "/api/devices/mcs0/log").status == 200);
+    CHECK(has(http(api, "GET", "/api/devices/mcs0/log").body, "\"entries\":[]"));
+    REQUIRE(mcs.request(":GS0\n") == ":S0,0\n");   // logged again: the reset below empties it
 
     // The reset ends the fault, powers the controller up again and empties the log.
     const auto reset = http(api, "POST", "/api/reset", "{}");
@@ -128,4 +133,30 @@ TEST_CASE("control: the event stream shows a client's move start and end on the 
         seen += *line;
     CHECK(has(seen, "\"device\":\"mcs0\""));
     CHECK_FALSE(has(seen, "\"device\":\"tdc001\""));
+}
+
+TEST_CASE("control: paused, a 100 ms step brings exactly one APT status update, run_until_idle ends a homing",
+          "[e2e][control][apt]")
+{
+    Daemon daemon(Daemon::Options{{}, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    TcpClient apt(daemon.endpoint("tdc001"));
+    apt.send(header(0x0011, 0, 0));   // MGMSG_HW_START_UPDATEMSGS
+    CHECK_FALSE(read_frame(apt.fd(), 300ms));   // paused: no clock time, no update
+    REQUIRE(http(api, "POST", "/api/clock", R"({"step_ms": 100})").status == 200);
+    const auto update = read_frame(apt.fd());
+    REQUIRE(update);
+    CHECK(update->id == 0x0491);   // MGMSG_MOT_GET_DCSTATUSUPDATE
+    CHECK_FALSE(read_frame(apt.fd(), 300ms));
+    apt.send(header(0x0012, 0, 0));   // MGMSG_HW_STOP_UPDATEMSGS
+
+    apt.send(header(0x0443, 1, 0));   // MGMSG_MOT_MOVE_HOME
+    // The move has started once the daemon answered a later request on the same connection.
+    apt.send(header(0x0411, 1, 0));   // MGMSG_MOT_REQ_POSCOUNTER
+    REQUIRE(wait_for(apt.fd(), 0x0412, 5000ms));
+    const auto idle = http(api, "POST", "/api/clock", R"({"run_until_idle": true, "max_ms": 120000})");
+    REQUIRE(idle.status == 200);
+    const auto homed = wait_for(apt.fd(), 0x0444, 5000ms);   // MGMSG_MOT_MOVE_HOMED
+    CHECK(homed);
+    CHECK(has(http(api, "GET", "/api/devices/tdc001/channels/0").body, "\"referenced\":true"));
 }
