@@ -141,13 +141,7 @@ private:
                 self->queue(bytes);
         });
         // The client sends nothing more; a read ends when it closes the connection.
-        stream_.socket().async_read_some(boost::asio::buffer(sink_),
-                                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                                             if (ec)
-                                                 self->close();
-                                             else
-                                                 self->drain_client();
-                                         });
+        drain_client();
     }
 
     /// Bytes a stream's client sent anyway are read and ignored.
