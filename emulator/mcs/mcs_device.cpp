@@ -59,6 +59,7 @@ public:
                 break;
             case LineFramer::Status::Interrupted:
                 log_.warn("{}: ':' inside a command, dropped \"{}\"", peer_, printable(r.line));
+                device_.log_dropped(peer_, r.line);
                 break;
             }
         }
@@ -99,6 +100,15 @@ McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shar
 McsDevice::~McsDevice()
 {
     clock_.remove(this);
+}
+
+void McsDevice::log_dropped(std::string_view peer, std::string_view partial)
+{
+    line_.assign(1, ':');
+    line_.append(partial);
+    std::vector<std::string> notes;
+    notes.emplace_back("':' inside a command: the unfinished command was dropped unanswered (1.1)");
+    wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
 }
 
 void McsDevice::detach(McsSession* s)
