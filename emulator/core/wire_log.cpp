@@ -34,7 +34,9 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     if (!e.notes.empty())
         ++noted_;
     const bool debug = log_ && log_->should_log(spdlog::level::debug);
-    const bool noted = log_ && !e.notes.empty() && log_->should_log(spdlog::level::info);
+    // A note is the client's doing: a warning, led by the peer like the device's own, so
+    // that a flood of bad input is rate-limited per connection (RateLimitedSink).
+    const bool noted = log_ && !e.notes.empty() && log_->should_log(spdlog::level::warn);
     const bool listened = bus_ && bus_->active();
     if (!debug && !noted && !listened)
         return;
@@ -42,7 +44,7 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     if (debug || noted) {
         const auto text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         if (noted)
-            log_->info("wire: {}", text);
+            log_->warn("{}: wire: {}", e.peer, text);
         else
             log_->debug("wire: {}", text);
     }
@@ -58,7 +60,7 @@ void WireLog::annotate_last(std::string note)
     if (e.notes.empty())
         ++noted_;
     if (log_)
-        log_->info("wire: seq {}: {}", e.seq, note);
+        log_->warn("{}: wire: seq {}: {}", e.peer, e.seq, note);
     e.notes.push_back(std::move(note));
 }
 
