@@ -33,21 +33,18 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     count_ = std::min(count_ + 1, ring_.size());
     if (!e.notes.empty())
         ++noted_;
+    // Notes go to the log at debug level too: at info they would escape the rate limit on
+    // client-made lines (RateLimitedSink), so a flood of bad commands would write one line
+    // each; at warn they would use up the connection's warning allowance and hide the
+    // transport's own warnings. The device's warnings already name the errors; the notes
+    // are read through the log route and the event stream.
     const bool debug = log_ && log_->should_log(spdlog::level::debug);
-    // A note is the client's doing: a warning, led by the peer like the device's own, so
-    // that a flood of bad input is rate-limited per connection (RateLimitedSink).
-    const bool noted = log_ && !e.notes.empty() && log_->should_log(spdlog::level::warn);
     const bool listened = bus_ && bus_->active();
-    if (!debug && !noted && !listened)
+    if (!debug && !listened)
         return;
     const auto j = entry_json(e);
-    if (debug || noted) {
-        const auto text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-        if (noted)
-            log_->warn("{}: wire: {}", e.peer, text);
-        else
-            log_->debug("wire: {}", text);
-    }
+    if (debug)
+        log_->debug("wire: {}", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     if (listened)
         bus_->publish(device_, "wire", static_cast<double>(tick) * 1000.0 / tick_hz_, j);
 }
@@ -60,7 +57,7 @@ void WireLog::annotate_last(std::string note)
     if (e.notes.empty())
         ++noted_;
     if (log_)
-        log_->warn("{}: wire: seq {}: {}", e.peer, e.seq, note);
+        log_->debug("wire: seq {}: {}", e.seq, note);
     e.notes.push_back(std::move(note));
 }
 

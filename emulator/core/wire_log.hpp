@@ -48,7 +48,7 @@ public:
     void set_decoder(Decoder decoder) { decoder_ = std::move(decoder); }
 
     /// Record one frame. Publishes a "wire" event when someone listens, and writes a debug line
-    /// (notes at warn, led by the peer) to the device's log.
+    /// (notes included) to the device's log.
     void add(std::int64_t tick, bool inbound, std::string_view peer, std::string_view bytes,
              std::vector<std::string> notes = {}, bool unprompted = false);
     /// Notes on the most recent entry (a mistake found after the frame was recorded).
