@@ -42,8 +42,9 @@ public:
                 break;
             case LineFramer::Status::Command:
                 device_.execute(r.line, peer_, out_, early);
-                early = device_.controller().communication_mode() == CommunicationMode::Sync ? McsDevice::Early::SameRead
-                                                                                               : McsDevice::Early::No;
+                early = device_.controller().communication_mode() == CommunicationMode::Sync
+                            ? McsDevice::Early::SameRead
+                            : McsDevice::Early::No;
                 break;
             case LineFramer::Status::Oversize:
                 // Not in the manual: a line too long for the controller's buffer is a
@@ -59,6 +60,7 @@ public:
                 break;
             case LineFramer::Status::Interrupted:
                 log_.warn("{}: ':' inside a command, dropped \"{}\"", peer_, printable(r.line));
+                device_.log_dropped(peer_, r.line);
                 break;
             }
         }
@@ -67,8 +69,8 @@ public:
         if (!out_.empty()) {
             send_(out_);
             if (const auto baud = device_.serial_baud(); paced_ && baud > 0) {   // 8N1: 10 bits a byte
-                const auto transmit_ms = static_cast<std::int64_t>(out_.size() * 10 * 1000 / baud);
-                line_free_ = std::max(line_free_, clock_.now()) + clock_.ticks_from_ms(transmit_ms);
+                const auto bits = static_cast<Ticks>(out_.size() * 10) * clock_.tick_hz();
+                line_free_ = std::max(line_free_, clock_.now()) + (bits + baud - 1) / baud;
             }
         }
         device_.flush_outbox();
@@ -99,6 +101,15 @@ McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shar
 McsDevice::~McsDevice()
 {
     clock_.remove(this);
+}
+
+void McsDevice::log_dropped(std::string_view peer, std::string_view partial)
+{
+    line_.assign(1, ':');
+    line_.append(partial);
+    std::vector<std::string> notes;
+    notes.emplace_back("':' inside a command: the unfinished command was dropped unanswered (1.1)");
+    wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
 }
 
 void McsDevice::detach(McsSession* s)

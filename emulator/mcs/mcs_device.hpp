@@ -52,6 +52,8 @@ public:
     void execute(std::string_view line, std::string_view peer, std::string& out, Early early = Early::No);
     /// Record an answer the session made without the handler (oversize line: error 1).
     void log_answer(std::string_view peer, std::string_view bytes, std::string note);
+    /// Record an unfinished command that a ':' cut off (no answer).
+    void log_dropped(std::string_view peer, std::string_view partial);
     /// After a batch of commands or a tick: "status", "move_started", "move_ended" events.
     void publish_changes();
 

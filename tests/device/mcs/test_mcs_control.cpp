@@ -341,6 +341,8 @@ TEST_CASE("MCS wire log notes: errors, out-of-range settings, blind moves, early
     CHECK(h.send(":GS2\n:GP2\n") == ":S2,0\n:P2,0\n");
     CHECK(notes_of(h, "GS2").empty());
     CHECK_THAT(notes_of(h, "GP2"), Catch::Contains("before the answer to the previous command"));
+    CHECK(h.send(":GP1:GS1\n") == ":S1,0\n");
+    CHECK_THAT(notes_of(h, "GP1"), Catch::Contains("':' inside a command"));
     CHECK(h.send(":K100\n") == ":E-1,0\n");
     const auto before = h.device().wire_log().noted();
     h.advance_ms(150);
@@ -402,4 +404,35 @@ TEST_CASE("MCS events: move_started, status, move_ended with the outcome", "[dev
     REQUIRE(events.size() == 8);
     CHECK(events[7]["type"] == "move_ended");
     CHECK(events[7]["outcome"] == "stalled");
+}
+
+TEST_CASE("MCS stall: a reference search meets end stops both ways at once, 144", "[device][mcs][control][faults]")
+{
+    McsHarness h;
+    CHECK(h.send(":SCM1\n:SCLS0,1000000\n:MPR0,2000000,0\n") == "");
+    h.advance_ms(2100);
+    CHECK_FALSE(fault(h, 1, "stall"));
+    CHECK(h.send(":FRM0,0,0,0\n") == ":E0,144\n");
+    CHECK(h.send(":GS0\n:GPPK0\n") == ":S0,0\n:PPK0,0\n");
+    h.device().remove_fault(1);
+    CHECK(h.send(":FRM0,1,0,0\n") == "");   // toward the mark at physical 0: 2 s at 1 mm/s
+    h.advance_ms(500);
+    CHECK_FALSE(fault(h, 2, "stall"));   // stalled on the way
+    CHECK(h.send(":GS0\n:GPPK0\n") == ":E0,144\n:S0,0\n:PPK0,0\n");
+    CHECK(describe(h)["channels"][0]["last_outcome"] == "reference_not_found");
+}
+
+TEST_CASE("MCS describe and PATCH on a rotary channel: radians and micro degrees", "[device][mcs][control]")
+{
+    McsHarness h;
+    CHECK(h.send(":SST0,2\n") == ":E0,0\n");   // SR: rotary, endless, a mark per turn
+    CHECK_FALSE(patch(h, 0, {{"position_si", 3.14159265358979323846 / 2}}));
+    const auto ch = describe(h)["channels"][0];
+    CHECK(ch["kind"] == "rotary");
+    CHECK(ch["si_unit"] == "rad");
+    CHECK(ch["protocol_unit"] == "udeg");
+    CHECK(ch["position_si"].get<double>() == Approx(3.14159265358979323846 / 2));
+    CHECK(ch["position_protocol"] == 90000000);
+    CHECK(ch["limits"]["end_stops_si"] == json::array({nullptr, nullptr}));
+    CHECK(h.send(":GA0\n") == ":A0,90000000,0\n");
 }
