@@ -546,3 +546,16 @@ TEST_CASE("control: wire log notes messages a rack's motherboard or an empty bay
     CHECK(h.send("60 00 00 00 11 01") == "61 00 00 01 01 11");      // RACK_REQ_BAYUSED: bay 0 used, no note
     CHECK(h.device().wire_log().last()->notes.empty());
 }
+
+TEST_CASE("control: a rotation stage is a rotary channel in radians, placed at any angle", "[device][apt][control][stage]")
+{
+    AptHarness h(apt_cube("KDC101", "PRM1-Z8"));
+    json c = channel(h);
+    CHECK(c["kind"] == "rotary");
+    CHECK(c["si_unit"] == "rad");
+    CHECK(c["position_si"].get<double>() == Approx(M_PI));   // half a turn from the home switch
+    CHECK(!patch(h, {{"position_si", 4 * M_PI}}));
+    c = channel(h);
+    CHECK(c["position_si"].get<double>() == Approx(4 * M_PI));
+    CHECK(c["limits"]["switch_pressed"] == json{{"forward", false}, {"reverse", false}});
+}
