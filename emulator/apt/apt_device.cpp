@@ -392,16 +392,17 @@ void AptDevice::route(const Frame& f, std::string_view peer, std::string& reply)
         }
         return handle_bay(0, m, r);
     }
-    if (f.dest == kRack) {
-        if (!handle_system(m, peer))
-            motherboard_->handle(m, r);
-        return;
-    }
     if (f.dest >= kBay0 && f.dest < kBay0 + channels_.size())
         return handle_bay(f.dest - kBay0, m, r);
-    if (f.dest >= kBay0 && f.dest < kBay0 + unit_.built_in_bays) {
-        if (!handle_system(m, peer))
+    if (f.dest == kRack || (f.dest >= kBay0 && f.dest < kBay0 + unit_.built_in_bays)) {
+        if (handle_system(m, peer))
+            return;
+        if (f.dest == kRack)
+            motherboard_->handle(m, r);
+        else
             empty_bays_[f.dest - kBay0 - channels_.size()]->handle(m, r);
+        if (r.ignored)
+            note("ignored by the unit: " + r.why);
         return;
     }
     log_->warn("{}: {} to 0x{:02x}: no module in that bay, ignored", peer, f.info->name, f.dest);

@@ -81,6 +81,7 @@ public:
     void flush();
 
     // ---- Control API (docs/control-api/apt.md); apt_control.cpp ----
+    /// The device is its own control surface (apt_control.cpp).
     ControlSurface* control() override { return this; }
     void describe(nlohmann::json& out) const override;
     Refused patch_channel(std::size_t index, const nlohmann::json& body) override;

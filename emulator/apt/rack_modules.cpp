@@ -19,9 +19,12 @@ void RackMotherboard::handle(const msg::Message& m, Request& r)
             using T = std::decay_t<decltype(typed)>;
             if constexpr (T::family == msg::Family::Rack || std::is_same_v<T, msg::HwReqInfo>)
                 on(typed);
-            else if constexpr (T::family != msg::Family::System)   // another module's message
+            else if constexpr (T::family != msg::Family::System) {   // another module's message
                 log_.warn("{}: {} to the motherboard: it acts on no such message, ignored", request_->peer,
                           request_->frame.info->name);
+                request_->ignored = true;
+                request_->why = "the motherboard (0x11) acts on no such message";
+            }
         },
         m);
 }
@@ -54,6 +57,8 @@ bool RackMotherboard::dig_outputs_ok(std::uint8_t outputs, std::uint8_t bay, boo
         return true;
     log_.warn("{}: {} for outputs 0x{:02x} of bay 0x{:02x} (outputs 0..0x0f; 0 or a present bay): ignored",
               request_->peer, request_->frame.info->name, outputs, bay);
+    request_->ignored = true;
+    request_->why = fmt::format("outputs 0x{:02x} of bay 0x{:02x} (outputs 0..0x0f; 0 or a present bay)", outputs, bay);
     return false;
 }
 
@@ -93,6 +98,8 @@ void EmptyBay::no_stage()
 {
     log_.warn("{}: {} to bay {} (0x{:02x}): no stage is connected to it, ignored", request_->peer,
               request_->frame.info->name, bay_, address());
+    request_->ignored = true;
+    request_->why = fmt::format("bay {} (0x{:02x}) has no stage connected", bay_, address());
 }
 
 bool EmptyBay::channel1() const

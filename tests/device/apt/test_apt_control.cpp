@@ -531,3 +531,31 @@ TEST_CASE("control: events: move_started, status, move_ended with its outcome", 
     CHECK(seen[0]["type"] == "move_ended");
     CHECK(seen[0]["outcome"] == "fault");
 }
+
+TEST_CASE("control: wire log notes messages a rack's motherboard or an empty bay ignores", "[device][apt][control][wire][rack]")
+{
+    AptHarness h(apt_rack("BBD203", {"MLS203-X"}));
+    CHECK(h.send("53 04 06 00 A3 01 01 00 00 00 00 00") == "");   // MOVE_ABSOLUTE to bay 2: no stage
+    auto notes = h.device().wire_log().last()->notes;
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0].find("no stage") != std::string::npos);
+    CHECK(h.send("53 04 06 00 91 01 01 00 00 00 00 00") == "");   // to the motherboard
+    notes = h.device().wire_log().last()->notes;
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0].find("motherboard") != std::string::npos);
+    CHECK(h.send("60 00 00 00 11 01") == "61 00 00 01 01 11");      // RACK_REQ_BAYUSED: bay 0 used, no note
+    CHECK(h.device().wire_log().last()->notes.empty());
+}
+
+TEST_CASE("control: a rotation stage is a rotary channel in radians, placed at any angle", "[device][apt][control][stage]")
+{
+    AptHarness h(apt_cube("KDC101", "PRM1-Z8"));
+    json c = channel(h);
+    CHECK(c["kind"] == "rotary");
+    CHECK(c["si_unit"] == "rad");
+    CHECK(c["position_si"].get<double>() == Approx(M_PI));   // half a turn from the home switch
+    CHECK(!patch(h, {{"position_si", 4 * M_PI}}));
+    c = channel(h);
+    CHECK(c["position_si"].get<double>() == Approx(4 * M_PI));
+    CHECK(c["limits"]["switch_pressed"] == json{{"forward", false}, {"reverse", false}});
+}
