@@ -483,10 +483,11 @@ void AptDevice::on(const msg::AckDcStatusUpdate&, std::string_view)
 
 void AptDevice::broadcast(const std::string& frame, std::vector<std::string> notes)
 {
-    for (auto* s : sessions_) {
+    // One entry for every connection, as the MCS log has it: the pty's session is always open,
+    // so an entry per session doubled each message in the log of a unit one client talks to.
+    for (auto* s : sessions_)
         s->send(frame);
-        record(false, s->peer(), frame, notes, true);
-    }
+    record(false, "all", frame, std::move(notes), true);
 }
 
 std::string AptDevice::fault_report(std::size_t bay) const
