@@ -433,8 +433,19 @@ TEST_CASE("control: the wire log records frames both ways, decoded, updates unpr
     h.take();
     const json update = h.device().wire_log().to_json(1)[0];
     CHECK(update["unprompted"] == true);
+    CHECK(update["peer"] == "all");
     CHECK(update["decoded"]["name"] == "MGMSG_MOT_GET_DCSTATUSUPDATE");
     CHECK(has(update["decoded"]["fields"]["status_set"], "enabled"));
+
+    // A second connection (the pty's session is always open) receives the next update too:
+    // still one entry in the log.
+    std::string second_out;
+    auto second = h.device().open_session([&](std::string_view b) { second_out.append(b); }, "pty /tmp/x");
+    const auto before = h.device().wire_log().last()->seq;
+    h.advance_ms(100);
+    h.take();
+    CHECK_FALSE(second_out.empty());
+    CHECK(h.device().wire_log().last()->seq == before + 1);
 }
 
 TEST_CASE("control: wire log notes: ignored messages, out-of-range SETs, moves while not homed", "[device][apt][control][wire]")
