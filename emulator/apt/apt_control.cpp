@@ -163,6 +163,9 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
             if (!value.is_number())
                 return bad("position_si must be a number (" + std::string(ch.stage().rotary ? "rad" : "m") + ")");
             const double x = value.get<double>() / k;
+            // A rotation stage has no end stops: its bound is what the position counter holds.
+            if (!std::isfinite(x) || std::abs(x) > 2147483647.0)
+                return bad("position_si " + value.dump() + " is beyond what the position counter can hold");
             if (!ch.stage().rotary && (x < axis.travel_min_counts() - 0.5 || x > axis.travel_max_counts() + 0.5))
                 return bad("position_si " + value.dump() + " m is outside the travel of the " + std::string(ch.stage().name)
                            + " (0 to " + std::to_string(axis.travel_max_counts() * k) + " m)");

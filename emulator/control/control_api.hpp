@@ -19,6 +19,9 @@ namespace rigsim::control {
 /// Longest clock time one step_ms or run_until_idle may cover (one day): the daemon answers
 /// nothing else meanwhile, so a mistyped number must not stall it for hours.
 inline constexpr std::int64_t kMaxStepMs = 86'400'000;
+/// The time scales POST /api/clock takes (those of --time-scale and the rig JSON's clock).
+inline constexpr double kMinTimeScale = 0.001;
+inline constexpr double kMaxTimeScale = 1000;
 
 class ControlApi {
 public:

@@ -96,6 +96,11 @@ json FaultBook::add(const json& body)
         channel = static_cast<std::size_t>(require_int(body, "channel", 0, 255));
     }
     auto& dev = devices_[index];
+    const auto on_device = std::count_if(active_.begin(), active_.end(),
+                                         [&](const auto& a) { return a.second.device == index; });
+    if (on_device >= static_cast<std::ptrdiff_t>(kMaxFaultsPerDevice))
+        throw BadRequest{409, "device \"" + dev.endpoints.name + "\" has " + std::to_string(kMaxFaultsPerDevice)
+                                  + " active faults already: delete some first"};
     const std::uint64_t id = next_id_;
     bool kept = true;
     if (device_kind) {
@@ -104,6 +109,8 @@ json FaultBook::add(const json& body)
         if (auto refused = dev.surface->add_fault(DeviceFault{id, kind, channel, &params}, &kept))
             throw BadRequest{refused->status, refused->message};
     } else if (link_kind) {
+        if (!dev.link)
+            throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no wire faults"};
         add_link(id, kind, params, *dev.link);
     } else {
         only_keys(params, kind, {"keep_saved"});
@@ -127,6 +134,13 @@ json FaultBook::add(const json& body)
 
 void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link)
 {
+    // One cable, one delay: a second such fault would hide the first, and ending either would
+    // end both.
+    if (kind == "unplugged" && link.unplugged_id() != 0)
+        throw BadRequest{409, "the device is unplugged already (fault " + std::to_string(link.unplugged_id()) + ")"};
+    if (kind == "latency" && link.latency_id() != 0)
+        throw BadRequest{409, "the device has a latency fault already (fault " + std::to_string(link.latency_id())
+                                  + "): delete it first"};
     if (kind == "unplugged") {
         only_keys(params, kind, {});
         link.set_unplugged(id, true);

@@ -21,6 +21,8 @@ public:
     /// Kinds that act inside the device (its ControlSurface), on the wire (the Link), and at once.
     static const std::vector<std::string>& device_kinds();
     static const std::vector<std::string>& link_kinds();
+    /// Active faults one device may have (each byte fault filters every byte it carries).
+    static constexpr std::size_t kMaxFaultsPerDevice = 64;
 
     FaultBook(const Clock& clock, std::vector<ControlledDevice>& devices);
 

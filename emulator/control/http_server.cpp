@@ -39,6 +39,7 @@ struct HttpServer::State {
     std::shared_ptr<spdlog::logger> log;
     HttpServerLimits limits;
     std::set<Session*> sessions;   ///< open connections, closed by stop()
+    std::size_t streams = 0;       ///< of which event streams (they never idle out)
     bool stopped = false;
 };
 
@@ -121,7 +122,13 @@ private:
                                e.what());
             reply = HttpReply{500, error_body(std::string("internal error: ") + e.what()), {}};
         }
-        if (reply.stream)
+        if (reply.stream && state_->streams >= state_->limits.max_streams)
+            write(HttpReply{503,
+                            error_body(std::to_string(state_->streams)
+                                       + " event streams are open, the most the daemon serves at once: close one"),
+                            {}},
+                  req.version(), false);
+        else if (reply.stream)
             start_stream(std::move(reply.stream));
         else
             write(std::move(reply), req.version(), req.keep_alive());
@@ -132,6 +139,8 @@ private:
 
     void start_stream(StreamStart start)
     {
+        ++state_->streams;
+        streaming_ = true;
         stream_.expires_never();
         queue("HTTP/1.1 200 OK\r\nServer: rigsimd\r\nContent-Type: text/event-stream\r\n"
               "Cache-Control: no-cache\r\nConnection: close\r\n\r\n");
@@ -189,6 +198,10 @@ private:
     void end_stream()
     {
         closed_ = true;
+        if (streaming_) {
+            streaming_ = false;
+            --state_->streams;
+        }
         if (auto stop = std::move(stop_stream_)) {
             stop_stream_ = nullptr;
             stop();
@@ -226,6 +239,7 @@ private:
     std::deque<std::string> out_;
     std::size_t backlog_ = 0;
     bool closed_ = false;
+    bool streaming_ = false;
     std::array<char, 512> sink_{};
 };
 

@@ -41,6 +41,7 @@ struct HttpServerLimits {
     std::size_t max_connections = 64;         ///< more are accepted and closed at once
     std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);   ///< then closed (not streams)
     std::size_t max_stream_backlog_bytes = 4 * 1024 * 1024;   ///< a stream's client this far behind is closed
+    std::size_t max_streams = 16;   ///< event streams open at once; more are answered 503
 };
 
 class HttpServer {

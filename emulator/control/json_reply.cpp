@@ -26,8 +26,15 @@ json parse_object(std::string_view text, bool empty_ok)
     if (empty_ok && text.find_first_not_of(" \t\r\n") == std::string_view::npos)
         return json::object();
     json body;
+    // The parser is iterative, but copying and printing a value recurse: a 64 KiB body of
+    // nested arrays would take them 32,000 levels deep.
+    const json::parser_callback_t shallow = [](int depth, json::parse_event_t, json&) {
+        if (depth > kMaxBodyDepth)
+            throw BadRequest{400, "body: nested deeper than " + std::to_string(kMaxBodyDepth) + " levels"};
+        return true;
+    };
     try {
-        body = json::parse(text.begin(), text.end());
+        body = json::parse(text.begin(), text.end(), shallow);
     } catch (const json::parse_error& e) {
         throw BadRequest{400, "body: expected a JSON object, got invalid JSON (at byte " + std::to_string(e.byte) + ")"};
     } catch (const json::out_of_range&) {
@@ -73,7 +80,7 @@ std::string_view path_of(std::string_view target)
 
 namespace {
 
-std::string percent_decode(std::string_view s)
+std::string decode(std::string_view s, bool form)
 {
     std::string out;
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -90,13 +97,18 @@ std::string percent_decode(std::string_view s)
             out.push_back(static_cast<char>(hex(s[i + 1]) * 16 + hex(s[i + 2])));
             i += 2;
         } else {
-            out.push_back(s[i] == '+' ? ' ' : s[i]);
+            out.push_back(s[i] == '+' && form ? ' ' : s[i]);
         }
     }
     return out;
 }
 
 } // namespace
+
+std::string percent_decode(std::string_view s)
+{
+    return decode(s, false);
+}
 
 std::map<std::string, std::string> query_of(std::string_view target)
 {
@@ -110,7 +122,7 @@ std::map<std::string, std::string> query_of(std::string_view target)
         const auto part = rest.substr(0, amp);
         const auto eq = part.find('=');
         if (!part.empty())
-            out[percent_decode(part.substr(0, eq))] = eq == std::string_view::npos ? "" : percent_decode(part.substr(eq + 1));
+            out[decode(part.substr(0, eq), true)] = eq == std::string_view::npos ? "" : decode(part.substr(eq + 1), true);
         if (amp == std::string_view::npos)
             break;
         rest.remove_prefix(amp + 1);

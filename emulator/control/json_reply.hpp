@@ -24,7 +24,10 @@ std::string dump(const nlohmann::json& value);
 HttpReply ok(const nlohmann::json& body, unsigned status = 200);
 HttpReply error(unsigned status, const std::string& message);
 
-/// The body as a JSON object; an empty body is `{}` when `empty_ok`.
+/// How deep a request body may nest (no route takes more than 2 levels).
+inline constexpr int kMaxBodyDepth = 32;
+
+/// The body as a JSON object (at most kMaxBodyDepth deep); an empty body is `{}` when `empty_ok`.
 nlohmann::json parse_object(std::string_view text, bool empty_ok = false);
 /// `key`'s value as an integer in lo..hi (a float with no fraction is refused too).
 std::int64_t require_int(const nlohmann::json& body, const char* key, std::int64_t lo, std::int64_t hi);
@@ -35,6 +38,8 @@ bool require_bool(const nlohmann::json& body, const char* key);
 
 /// The path of a request target, without its query string.
 std::string_view path_of(std::string_view target);
+/// `s` with its %XX escapes decoded (a path part: '+' stays '+').
+std::string percent_decode(std::string_view s);
 /// The query string's parameters (`?a=1&b=x`, percent-decoded); a repeated key keeps the last.
 std::map<std::string, std::string> query_of(std::string_view target);
 

@@ -46,6 +46,12 @@ public:
         }
     }
     Ticks next_due() const { return held_.empty() ? kNever : held_.front().first; }
+    void drop_held()
+    {
+        held_.clear();
+        held_bytes_ = 0;
+        line_free_ = 0;
+    }
     std::size_t held() const { return held_.size(); }
 
 private:
@@ -139,6 +145,17 @@ bool Link::remove(std::uint64_t id)
         return false;
     byte_faults_.erase(it);
     return true;
+}
+
+void Link::reset()
+{
+    unplugged_ = 0;
+    byte_faults_.clear();
+    latency_ = LatencyFault{};
+    for (auto* s : sessions_)
+        s->drop_held();
+    dropped_ = 0;
+    corrupted_ = 0;
 }
 
 std::size_t Link::held() const

@@ -51,6 +51,9 @@ public:
     /// Unplugged: client bytes are lost and the device's answers too (the pty stays).
     void set_unplugged(std::uint64_t id, bool unplugged);
     bool unplugged() const { return unplugged_ != 0; }
+    /// The active unplugged and latency faults' ids (0: none); one of each at a time.
+    std::uint64_t unplugged_id() const { return unplugged_; }
+    std::uint64_t latency_id() const { return latency_.id; }
     /// Bytes held for one serial connection (paced, not yet sent) beyond which new answers are
     /// dropped: nobody reads the port (the pty keeps as much).
     static constexpr std::size_t kMaxHeldBytes = 1 << 20;
@@ -63,6 +66,9 @@ public:
     std::uint64_t dropped() const { return dropped_; }
     std::uint64_t corrupted() const { return corrupted_; }
     std::size_t held() const;
+    /// Back to a fresh wire (POST /api/reset): every fault ended, held answers dropped, the line
+    /// idle, the counters at 0.
+    void reset();
 
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;

@@ -99,6 +99,8 @@ void WireLog::clear()
     }
     next_ = 0;
     count_ = 0;
+    seq_ = 0;
+    noted_ = 0;
 }
 
 std::string hex_bytes(std::string_view bytes)

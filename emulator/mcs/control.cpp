@@ -147,6 +147,8 @@ Refused McsDevice::patch_channel(std::size_t index, const nlohmann::json& body)
         return bad("the body must be an object");
     auto* ch = controller_.channel(static_cast<std::int32_t>(index));
     // Validate every key before changing anything.
+    // nm or µ°: a million revolutions of a rotary stage, far inside an int64 and a double's integers.
+    constexpr double kMaxPlace = 360e6 * 1e6;
     for (const auto& [key, value] : body.items()) {
         if (key == "limit_switch")
             return bad("limit_switch: an MCS positioner has no limit switches (its end stops are mechanical; "
@@ -161,7 +163,8 @@ Refused McsDevice::patch_channel(std::size_t index, const nlohmann::json& body)
             const auto [lo, hi] = ch->travel();
             const double si = value.get<double>();
             const double physical = ch->rotary() ? si * 180.0 / kPi * 1e6 : si * 1e9;
-            if (!std::isfinite(si) || physical < lo - 1e-6 || physical > hi + 1e-6)
+            // An endless rotary stage has no end stops: its bound is what the scale can count.
+            if (!std::isfinite(physical) || std::abs(physical) > kMaxPlace || physical < lo - 1e-6 || physical > hi + 1e-6)
                 return bad("position_si: outside the travel between the end stops");
         } else if (key == "referenced") {
             if (!value.is_boolean())

@@ -569,4 +569,9 @@ TEST_CASE("control: a rotation stage is a rotary channel in radians, placed at a
     c = channel(h);
     CHECK(c["position_si"].get<double>() == Approx(4 * M_PI));
     CHECK(c["limits"]["switch_pressed"] == json{{"forward", false}, {"reverse", false}});
+    // No end stops, but the position counter is 32 bits: beyond it the PATCH is refused.
+    const auto refused = patch(h, {{"position_si", 1e12}});
+    REQUIRE(refused);
+    CHECK(refused->status == 400);
+    CHECK(channel(h)["position_si"].get<double>() == Approx(4 * M_PI));
 }

@@ -435,4 +435,10 @@ TEST_CASE("MCS describe and PATCH on a rotary channel: radians and micro degrees
     CHECK(ch["position_protocol"] == 90000000);
     CHECK(ch["limits"]["end_stops_si"] == json::array({nullptr, nullptr}));
     CHECK(h.send(":GA0\n") == ":A0,90000000,0\n");
+    // An endless stage has no end stops; a position beyond what the scale counts is refused
+    // (1e305 rad is finite, in micro degrees it is not).
+    const auto refused = patch(h, 0, {{"position_si", 1e305}});
+    REQUIRE(refused);
+    CHECK(refused->status == 400);
+    CHECK(h.send(":GA0\n") == ":A0,90000000,0\n");
 }

@@ -222,6 +222,41 @@ TEST_CASE("link faults act on the device's link, and one-off faults act and are 
     CHECK(f.call("GET", "/api/faults").second["faults"].empty());
 }
 
+TEST_CASE("one cable, one delay: a second unplugged or latency fault is 409, and a device takes 64 faults", "[control]")
+{
+    Fixture f;
+    const auto [s1, first] = f.call("POST", "/api/faults", R"({"device":"dev","kind":"latency","latency_ms":5})");
+    REQUIRE(s1 == 201);
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"latency","latency_ms":9})", 409)
+          == "the device has a latency fault already (fault 1): delete it first");
+    f.call("POST", "/api/faults", R"({"device":"dev","kind":"unplugged"})");
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"unplugged"})", 409)
+          == "the device is unplugged already (fault 2)");
+    CHECK(f.link.latency_id() == 1);
+    for (int i = 2; i < 64; ++i)
+        REQUIRE(f.call("POST", "/api/faults", R"({"device":"dev","kind":"drop_bytes","probability":0})").first == 201);
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"stall"})", 409).find("64 active faults") != std::string::npos);
+    CHECK(f.call("GET", "/api/faults").second["faults"].size() == 64);
+}
+
+TEST_CASE("bodies nested deeper than 32 levels are refused before anything copies or prints them", "[control]")
+{
+    Fixture f;
+    const std::string deep = "{\"device\":\"dev\",\"kind\":\"stall\",\"x\":" + std::string(40, '[') + std::string(40, ']') + "}";
+    CHECK(f.error_of("POST", "/api/faults", deep, 400) == "body: nested deeper than 32 levels");
+    CHECK(f.surface.added.empty());
+    const std::string deep_clock = "{\"scale\":" + std::string(5000, '[') + std::string(5000, ']') + "}";
+    CHECK(f.error_of("POST", "/api/clock", deep_clock, 400) == "body: nested deeper than 32 levels");
+}
+
+TEST_CASE("path parts are percent-decoded, '+' and '&' are themselves", "[control]")
+{
+    Fixture f;
+    CHECK(f.call("GET", "/api/devices/d%65v").first == 200);
+    CHECK(f.error_of("GET", "/api/devices/d+v", "", 404).find("\"d+v\"") != std::string::npos);
+    CHECK(f.error_of("GET", "/api/devices/dev&x=1", "", 404).find("\"dev&x=1\"") != std::string::npos);
+}
+
 TEST_CASE("POST /api/reset: every fault ends, every device power-cycles to its start, logs are cleared", "[control]")
 {
     Fixture f;
@@ -265,6 +300,10 @@ TEST_CASE("GET /api/devices/{name}/log: the last N entries, oldest first, and DE
     CHECK(f.error_of("GET", "/api/devices/dev/log?last=-1", "", 400).find("\"last\"") == 0);
     f.call("DELETE", "/api/devices/dev/log");
     CHECK(f.call("GET", "/api/devices/dev/log").second["entries"].empty());
+    log.add(3000, true, "pty", ":GS0\n");
+    const auto [s3, fresh] = f.call("GET", "/api/devices/dev/log");
+    CHECK(fresh["entries"][0]["seq"] == 1);   // counted again from the clear
+    CHECK(fresh["noted"] == 0);
 }
 
 TEST_CASE("the wire log keeps the last `capacity` entries", "[control]")
@@ -295,6 +334,13 @@ TEST_CASE("GET /api/events: a stream of the bus's events, filtered by device and
     CHECK(got.find("event: wire\nid: 1\ndata: {") != std::string::npos);
     CHECK(got.find("\"device\":\"dev\"") != std::string::npos);
     CHECK(got.find("event: fault_added\n") != std::string::npos);
+    got.clear();
+    auto all = f.api.handle("GET", "/api/events?type=fault_removed", "");
+    auto stop_all = all.stream([&](std::string_view b) { got.append(b); });
+    f.call("DELETE", "/api/faults/1");
+    CHECK(got.find("event: fault_removed\n") != std::string::npos);
+    CHECK(got.find("\"device\":\"dev\"") != std::string::npos);   // which device it ended on
+    stop_all();
     CHECK(got.find("\"other\"") == std::string::npos);
     CHECK(got.find("event: status") == std::string::npos);
     stop();

@@ -196,3 +196,30 @@ TEST_CASE("faithful timing: a serial line's answers arrive when the line has car
     clock.advance(1);
     CHECK(pty_out.size() == 154);
 }
+
+TEST_CASE("a reset link has no fault, holds no answer, its line idle and its counters at 0", "[link]")
+{
+    Fixture f;
+    LatencyFault late;
+    late.id = 4;
+    late.latency = 1000;
+    f.link.add(late);
+    ByteFault drop;
+    drop.id = 5;
+    drop.inbound = false;
+    drop.probability = 0.5;
+    f.link.add(drop);
+    f.session->receive(std::string(100, 'x'));
+    REQUIRE(f.link.held() > 0);
+    REQUIRE(f.link.dropped() > 0);
+    f.link.set_unplugged(6, true);
+    f.link.reset();
+    CHECK(f.link.held() == 0);
+    CHECK(f.link.dropped() == 0);
+    CHECK_FALSE(f.link.unplugged());
+    CHECK(f.link.latency_id() == 0);
+    f.clock.advance(2000);
+    CHECK(f.out.empty());   // the held answer of before the reset never comes
+    f.session->receive("y");
+    CHECK(f.out == "y");
+}
