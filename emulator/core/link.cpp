@@ -18,6 +18,7 @@ public:
     ~LinkSession() override
     {
         inner_.reset();   // before the link forgets us: it may still send while closing
+        link_.held_frames_ -= held_.size();
         auto& s = link_.sessions_;
         s.erase(std::remove(s.begin(), s.end(), this), s.end());
     }
@@ -40,6 +41,7 @@ public:
     {
         while (!held_.empty() && held_.front().first <= now) {
             held_bytes_ -= held_.front().second.size();
+            --link_.held_frames_;
             const auto bytes = std::move(held_.front().second);
             held_.pop_front();
             send_(bytes);
@@ -48,6 +50,7 @@ public:
     Ticks next_due() const { return held_.empty() ? kNever : held_.front().first; }
     void drop_held()
     {
+        link_.held_frames_ -= held_.size();
         held_.clear();
         held_bytes_ = 0;
         line_free_ = 0;
@@ -83,6 +86,7 @@ private:
         if (held_bytes_ + bytes.size() > kMaxHeldBytes)
             return;   // nobody reads the port: as the pty would, drop rather than grow
         held_bytes_ += bytes.size();
+        ++link_.held_frames_;
         // A serial line keeps its order: a later answer never overtakes an earlier one.
         held_.emplace_back(std::max(at, held_.empty() ? at : held_.back().first), std::string(bytes));
     }
@@ -202,6 +206,9 @@ Ticks Link::due(Ticks now)
 
 Ticks Link::next_change(Ticks now) const
 {
+    // Asked at every wake-up of the clock, for every device: nothing held is the usual answer.
+    if (held_frames_ == 0)
+        return kNever;
     Ticks next = kNever;
     for (const auto* s : sessions_)
         next = std::min(next, s->next_due());

@@ -92,6 +92,7 @@ private:
     LatencyFault latency_;
     std::mt19937 latency_rng_;
     std::vector<LinkSession*> sessions_;
+    std::size_t held_frames_ = 0;   ///< answers held by all sessions together
     std::uint64_t dropped_ = 0;
     std::uint64_t corrupted_ = 0;
 };

@@ -26,10 +26,12 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     e.tick = tick;
     e.inbound = inbound;
     e.unprompted = unprompted;
-    e.peer.assign(peer);
+    if (e.peer != peer)   // mostly the same connection as the entry it overwrites: no copy
+        e.peer.assign(peer);
     e.bytes.assign(bytes);
     e.notes = std::move(notes);
-    next_ = (next_ + 1) % ring_.size();
+    if (++next_ == ring_.size())
+        next_ = 0;
     count_ = std::min(count_ + 1, ring_.size());
     if (!e.notes.empty())
         ++noted_;
