@@ -2,6 +2,8 @@
 // APT controllers and stages that a rig may name (manual 2.2 serial prefixes, 7.1 scaling).
 // Every field has a default; the catalogue (catalogue.cpp) sets each model's fields by name.
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -9,9 +11,34 @@ namespace rigsim::apt {
 
 enum class MotorKind { DcServo, Stepper, Brushless };
 
+/// What a unit drives; it picks the module class a unit (or a rack's bay) is made of.
+enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge };
+
+/// The message IDs a model takes beyond the generic ones (identify, enable state, info, update
+/// messages, bays): its column of the manual's "Message Cross Reference by Unit Part Number"
+/// tables. Empty: the module's own handlers decide (the motor controllers).
+struct MessageSet {
+    const std::uint16_t* ids = nullptr;
+    std::size_t count = 0;
+    bool empty() const { return count == 0; }
+    bool contains(std::uint16_t id) const { return std::find(ids, ids + count, id) != ids + count; }
+};
+
 /// An APT controller model.
 struct ControllerModel {
     std::string_view name;          ///< e.g. "TDC001"
+    UnitKind kind = UnitKind::Motor;
+    MessageSet takes;
+    /// The host's "server alive" acknowledgement of status updates: MOT_ACK_DCSTATUSUPDATE
+    /// (p. 80) for motor and solenoid units, PZ_ACK_PZSTATUSUPDATE (0x0662, p. 105) for piezo
+    /// and strain-gauge units; the same cut-off after 50 unacknowledged updates.
+    std::uint16_t ack_id = 0x0492;
+    /// Piezo waveform look-up table: highest PZ_SET_OUTPUTLUT index (p. 106: 512 TPZ001,
+    /// 7999 BPC30x) and the base sample interval the LUT timing counts in (p. 109).
+    std::uint16_t lut_max_index = 0;
+    std::uint32_t lut_base_interval_us = 0;
+    /// Piezo closed loop: the rate the PI loop runs at (Hz).
+    std::uint32_t loop_rate_hz = 0;
     std::uint32_t serial_prefix = 0;    ///< first two digits of the 8-digit serial number (2.2)
     std::uint16_t hw_type = 0;          ///< HW_GET_INFO "type" field
     MotorKind motor = MotorKind::DcServo;
