@@ -1,5 +1,7 @@
 #include "emulator/apt/catalogue.hpp"
 
+#include "emulator/apt/messages.hpp"
+
 #include <array>
 
 namespace rigsim::apt {
@@ -113,7 +115,156 @@ constexpr ControllerModel bbd203()
     return c;
 }
 
-constexpr std::array<ControllerModel, 6> kControllers{tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203()};
+// ---- Solenoid, piezo and strain-gauge units ----
+// Their message sets are the manual's cross-reference tables (TSC001 p. 138, TPZ001 p. 133,
+// BPC30x p. 132, TSG001 p. 134) without the generic messages (the shell handles those), with
+// the choices of docs/protocol/errata.md: TSC001 D-3/D-4, TPZ001 D-5, BPC30x D-6. The K-Cubes
+// take their T-Cube's set (the manual predates them).
+
+// TSC001 (p. 138). MOVE_ABSOLUTE, MOVE_STOP and MOVE_COMPLETED are in its table, but the
+// solenoid chapter (p. 84-92) gives them no meaning: left out, ignored and logged (D-4). The
+// host acknowledges its status updates with MOT_ACK_DCSTATUSUPDATE like a motor's (D-3).
+constexpr std::uint16_t kSolenoidTakes[]{
+    MGMSG_MOT_SET_AVMODES, MGMSG_MOT_REQ_AVMODES, MGMSG_MOT_GET_AVMODES,
+    MGMSG_MOT_SET_BUTTONPARAMS, MGMSG_MOT_REQ_BUTTONPARAMS, MGMSG_MOT_GET_BUTTONPARAMS,
+    MGMSG_MOT_SET_EEPROMPARAMS, MGMSG_MOT_GET_STATUSUPDATE, MGMSG_MOT_ACK_DCSTATUSUPDATE,
+    MGMSG_MOT_SET_SOL_OPERATINGMODE, MGMSG_MOT_REQ_SOL_OPERATINGMODE, MGMSG_MOT_GET_SOL_OPERATINGMODE,
+    MGMSG_MOT_SET_SOL_CYCLEPARAMS, MGMSG_MOT_REQ_SOL_CYCLEPARAMS, MGMSG_MOT_GET_SOL_CYCLEPARAMS,
+    MGMSG_MOT_SET_SOL_INTERLOCKMODE, MGMSG_MOT_REQ_SOL_INTERLOCKMODE, MGMSG_MOT_GET_SOL_INTERLOCKMODE,
+    MGMSG_MOT_SET_SOL_STATE, MGMSG_MOT_REQ_SOL_STATE, MGMSG_MOT_GET_SOL_STATE,
+};
+
+// TPZ001 (p. 133) plus three its table omits (D-5): PZSTATUSBITS (p. 101 has a TPZ001 bit
+// table), ACK_PZSTATUSUPDATE (p. 105: the 10 Hz updates it sends stop without it) and
+// TPZ_SLEWRATES (p. 123, named for the TPZ).
+constexpr std::uint16_t kTpzTakes[]{
+    MGMSG_PZ_SET_POSCONTROLMODE, MGMSG_PZ_REQ_POSCONTROLMODE, MGMSG_PZ_GET_POSCONTROLMODE,
+    MGMSG_PZ_SET_OUTPUTVOLTS, MGMSG_PZ_REQ_OUTPUTVOLTS, MGMSG_PZ_GET_OUTPUTVOLTS,
+    MGMSG_PZ_SET_OUTPUTPOS, MGMSG_PZ_REQ_OUTPUTPOS, MGMSG_PZ_GET_OUTPUTPOS,
+    MGMSG_PZ_SET_INPUTVOLTSSRC, MGMSG_PZ_REQ_INPUTVOLTSSRC, MGMSG_PZ_GET_INPUTVOLTSSRC,
+    MGMSG_PZ_SET_PICONSTS, MGMSG_PZ_REQ_PICONSTS, MGMSG_PZ_GET_PICONSTS,
+    MGMSG_PZ_GET_PZSTATUSUPDATE,
+    MGMSG_PZ_SET_OUTPUTLUT, MGMSG_PZ_REQ_OUTPUTLUT, MGMSG_PZ_GET_OUTPUTLUT,
+    MGMSG_PZ_SET_OUTPUTLUTPARAMS, MGMSG_PZ_REQ_OUTPUTLUTPARAMS, MGMSG_PZ_GET_OUTPUTLUTPARAMS,
+    MGMSG_PZ_START_LUTOUTPUT, MGMSG_PZ_STOP_LUTOUTPUT, MGMSG_PZ_SET_EEPROMPARAMS,
+    MGMSG_PZ_SET_TPZ_DISPSETTINGS, MGMSG_PZ_REQ_TPZ_DISPSETTINGS, MGMSG_PZ_GET_TPZ_DISPSETTINGS,
+    MGMSG_PZ_SET_TPZ_IOSETTINGS, MGMSG_PZ_REQ_TPZ_IOSETTINGS, MGMSG_PZ_GET_TPZ_IOSETTINGS,
+    // D-5
+    MGMSG_PZ_REQ_PZSTATUSBITS, MGMSG_PZ_GET_PZSTATUSBITS, MGMSG_PZ_ACK_PZSTATUSUPDATE,
+    MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES, MGMSG_PZ_GET_TPZ_SLEWRATES,
+};
+
+// A BPC30x bay (p. 132; its table spells the slew rates PZ_SET_SLEWRATES) plus MAXTRAVEL,
+// whose own example (p. 118) addresses bay 0x22 (D-6).
+constexpr std::uint16_t kBpcTakes[]{
+    MGMSG_PZ_SET_POSCONTROLMODE, MGMSG_PZ_REQ_POSCONTROLMODE, MGMSG_PZ_GET_POSCONTROLMODE,
+    MGMSG_PZ_SET_OUTPUTVOLTS, MGMSG_PZ_REQ_OUTPUTVOLTS, MGMSG_PZ_GET_OUTPUTVOLTS,
+    MGMSG_PZ_SET_OUTPUTPOS, MGMSG_PZ_REQ_OUTPUTPOS, MGMSG_PZ_GET_OUTPUTPOS,
+    MGMSG_PZ_SET_INPUTVOLTSSRC, MGMSG_PZ_REQ_INPUTVOLTSSRC, MGMSG_PZ_GET_INPUTVOLTSSRC,
+    MGMSG_PZ_SET_PICONSTS, MGMSG_PZ_REQ_PICONSTS, MGMSG_PZ_GET_PICONSTS,
+    MGMSG_PZ_REQ_PZSTATUSBITS, MGMSG_PZ_GET_PZSTATUSBITS,
+    MGMSG_PZ_GET_PZSTATUSUPDATE, MGMSG_PZ_ACK_PZSTATUSUPDATE,
+    MGMSG_PZ_SET_OUTPUTLUT, MGMSG_PZ_REQ_OUTPUTLUT, MGMSG_PZ_GET_OUTPUTLUT,
+    MGMSG_PZ_SET_OUTPUTLUTPARAMS, MGMSG_PZ_REQ_OUTPUTLUTPARAMS, MGMSG_PZ_GET_OUTPUTLUTPARAMS,
+    MGMSG_PZ_START_LUTOUTPUT, MGMSG_PZ_STOP_LUTOUTPUT, MGMSG_PZ_SET_ZERO,
+    MGMSG_PZ_SET_OUTPUTMAXVOLTS, MGMSG_PZ_REQ_OUTPUTMAXVOLTS, MGMSG_PZ_GET_OUTPUTMAXVOLTS,
+    MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES, MGMSG_PZ_GET_TPZ_SLEWRATES,
+    MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS,
+    // D-6
+    MGMSG_PZ_REQ_MAXTRAVEL, MGMSG_PZ_GET_MAXTRAVEL,
+};
+
+// TSG001 (p. 134), as printed.
+constexpr std::uint16_t kTsgTakes[]{
+    MGMSG_PZ_GET_PZSTATUSUPDATE, MGMSG_PZ_ACK_PZSTATUSUPDATE, MGMSG_PZ_SET_EEPROMPARAMS,
+    MGMSG_PZ_SET_TPZ_DISPSETTINGS, MGMSG_PZ_REQ_TPZ_DISPSETTINGS, MGMSG_PZ_GET_TPZ_DISPSETTINGS,
+    MGMSG_PZ_SET_ZERO, MGMSG_PZ_REQ_MAXTRAVEL, MGMSG_PZ_GET_MAXTRAVEL,
+    MGMSG_PZ_SET_TSG_IOSETTINGS, MGMSG_PZ_REQ_TSG_IOSETTINGS, MGMSG_PZ_GET_TSG_IOSETTINGS,
+    MGMSG_PZ_REQ_TSG_READING, MGMSG_PZ_GET_TSG_READING,
+};
+
+template <std::size_t N>
+constexpr MessageSet message_set(const std::uint16_t (&ids)[N])
+{
+    return MessageSet{ids, N};
+}
+
+/// A cube (HW_GET_INFO type 31) driving something else than a motor.
+constexpr ControllerModel unit_cube(std::string_view name, std::uint32_t serial_prefix, UnitKind kind,
+                                    MessageSet takes, std::string_view notes)
+{
+    auto c = cube(name, serial_prefix, MotorKind::DcServo, notes);
+    c.kind = kind;
+    c.takes = takes;
+    if (kind != UnitKind::Solenoid)
+        c.ack_id = MGMSG_PZ_ACK_PZSTATUSUPDATE;
+    return c;
+}
+
+// Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
+constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
+{
+    return unit_cube(name, serial_prefix, UnitKind::Solenoid, message_set(kSolenoidTakes), notes);
+}
+
+// TPZ001 LUT: indices 0..512 (p. 106), timing in 250 µs samples (p. 109); its loop runs at
+// that 4 kHz rate.
+constexpr ControllerModel piezo_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
+{
+    auto c = unit_cube(name, serial_prefix, UnitKind::Piezo, message_set(kTpzTakes), notes);
+    c.lut_max_index = 512;
+    c.lut_base_interval_us = 250;
+    c.loop_rate_hz = 4'000;
+    return c;
+}
+
+constexpr ControllerModel gauge_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
+{
+    return unit_cube(name, serial_prefix, UnitKind::StrainGauge, message_set(kTsgTakes), notes);
+}
+
+constexpr ControllerModel rich(ControllerModel c)
+{
+    c.rich_fault_reports = true;
+    return c;
+}
+
+// BPC30x piezo racks: a motherboard at 0x11 and a card per channel (HW_GET_INFO 45 both,
+// D-20; cards carry the rack's prefix). LUT: indices 0..7999 (p. 106), 1 ms samples (p. 109);
+// the loop at that 1 kHz rate.
+constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix, int bays)
+{
+    ControllerModel c;
+    c.name = name;
+    c.kind = UnitKind::Piezo;
+    c.takes = message_set(kBpcTakes);
+    c.ack_id = MGMSG_PZ_ACK_PZSTATUSUPDATE;
+    c.lut_max_index = 7'999;
+    c.lut_base_interval_us = 1'000;
+    c.loop_rate_hz = 1'000;
+    c.serial_prefix = serial_prefix;
+    c.hw_type = 45;
+    c.notes = "Piezo Controller";
+    c.rack = true;
+    c.max_bays = bays;
+    c.bay_hw_type = 45;
+    c.bay_serial_prefix = serial_prefix;
+    return c;
+}
+
+constexpr std::array<ControllerModel, 14> kControllers{
+    tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(),
+    solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
+    rich(solenoid_cube("KSC101", 68, "Solenoid Controller")),
+    piezo_cube("TPZ001", 81, "APT Piezo Driver"),
+    rich(piezo_cube("KPZ101", 29, "Piezo Controller")),
+    // BPC303: Thorlabs' prefix 71; BPC301: 41 after the 40/70 single/three-channel pattern of
+    // 2.2 (the least certain of D-1).
+    bpc("BPC301", 41, 1),
+    bpc("BPC303", 71, 3),
+    gauge_cube("TSG001", 84, "APT Strain Gauge Reader"),
+    rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")),
+};
 
 /// A stage: its name, motor and travel.
 constexpr StageModel stage(std::string_view name, MotorKind motor, double travel_mm)
@@ -233,7 +384,8 @@ const StageModel* find_stage(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203";
+    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, "
+           "KSG101";
 }
 
 std::string_view stage_names()

@@ -1,7 +1,14 @@
 // The catalogue's models keep their values: a few controllers and stages pinned field by field.
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/messages.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <set>
+#include <string_view>
+#include <vector>
 
 using namespace rigsim::apt;
 
@@ -107,11 +114,160 @@ TEST_CASE("catalogue: MTS50-Z8, DRV014, PRM1-Z8 and MLS203-Y keep their values",
 
 TEST_CASE("catalogue: every model the messages list is found, and nothing else", "[unit][apt][catalogue]")
 {
-    for (const char* name : {"TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203"})
+    for (const char* name : {"TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "TSC001", "KSC101", "TPZ001",
+                             "KPZ101", "BPC301", "BPC303", "TSG001", "KSG101"})
         CHECK(find_controller(name));
     for (const char* name : {"DRV001", "ZST225B", "DRV014", "MTS50-Z8", "MTS25-Z8", "Z825B", "Z812B", "PRM1-Z8",
                              "MLS203-X", "MLS203-Y", "DDSM100"})
         CHECK(find_stage(name));
     CHECK_FALSE(find_controller("TDC002"));
     CHECK_FALSE(find_stage("MTS99"));
+}
+
+namespace {
+
+using Ids = std::set<std::uint16_t>;
+
+// The manual's "Message Cross Reference by Unit Part Number" tables as printed (p. 132-138),
+// IDs read as the errata say ("0x002H" = 0x0002, "0x005H" = 0x0005, "0x006H" = 0x0006).
+const Ids kXrefTsc001{0x0223, 0x0210, 0x0211, 0x0212, 0x0080, 0x0011, 0x0012, 0x0005, 0x0006, 0x0065, 0x0066,
+                      0x0464, 0x0453, 0x0465, 0x04B3, 0x04B4, 0x04B5, 0x04B6, 0x04B7, 0x04B8, 0x04B9, 0x0481,
+                      0x04C0, 0x04C1, 0x04C2, 0x04C3, 0x04C4, 0x04C5, 0x04C6, 0x04C7, 0x04C8, 0x04CB, 0x04CC, 0x04CD};
+const Ids kXrefTpz001{0x0223, 0x0210, 0x0211, 0x0212, 0x0002, 0x0080, 0x0011, 0x0012, 0x0005, 0x0006,
+                      0x0640, 0x0641, 0x0642, 0x0643, 0x0644, 0x0645, 0x0646, 0x0647, 0x0648, 0x0652, 0x0653, 0x0654,
+                      0x0655, 0x0656, 0x0657, 0x0661, 0x0700, 0x0701, 0x0702, 0x0703, 0x0704, 0x0705, 0x0706, 0x0707,
+                      0x07D0, 0x07D1, 0x07D2, 0x07D3, 0x07D4, 0x07D5, 0x07D6};
+const Ids kXrefBpc30x{0x0223, 0x0210, 0x0211, 0x0212, 0x0002, 0x0080, 0x0011, 0x0012, 0x0005, 0x0006, 0x0060,
+                      0x0061, 0x0226, 0x0227, 0x0228, 0x0229, 0x0230, 0x0640, 0x0641, 0x0642, 0x0643, 0x0644, 0x0645,
+                      0x0646, 0x0647, 0x0648, 0x0652, 0x0653, 0x0654, 0x0655, 0x0656, 0x0657, 0x065B, 0x065C, 0x0661,
+                      0x0662, 0x0700, 0x0701, 0x0702, 0x0703, 0x0704, 0x0705, 0x0706, 0x0707, 0x0658, 0x0680, 0x0681,
+                      0x0682, 0x0683, 0x0684, 0x0685, 0x0686};
+const Ids kXrefTsg001{0x0223, 0x0210, 0x0211, 0x0212, 0x0002, 0x0080, 0x0011, 0x0012, 0x0005, 0x0006, 0x0065,
+                      0x0066, 0x0661, 0x0662, 0x07D0, 0x07D1, 0x07D2, 0x07D3, 0x0658, 0x0650, 0x0651, 0x07DA, 0x07DB,
+                      0x07DC, 0x07DD, 0x07DE};
+
+/// A model's own messages as a set.
+Ids takes_of(const ControllerModel& c)
+{
+    return Ids(c.takes.ids, c.takes.ids + c.takes.count);
+}
+
+/// A cross-reference table without the generic messages (MOD_, HW_, RACK_, HUB_), which the
+/// shell handles for every unit, minus `removed`, plus `added`.
+Ids expected_from(const Ids& xref, const Ids& removed, const Ids& added)
+{
+    Ids out;
+    for (const auto id : xref) {
+        const auto* m = find_message(id);
+        REQUIRE(m);
+        if (m->group != Group::Generic && !removed.count(id))
+            out.insert(id);
+    }
+    out.insert(added.begin(), added.end());
+    return out;
+}
+
+struct UnitRow {
+    std::string_view name;
+    UnitKind kind;
+    std::uint32_t serial_prefix;
+    std::string_view notes;
+    bool rich_fault_reports;
+};
+
+} // namespace
+
+TEST_CASE("catalogue: each new unit's message set is its cross-reference table with the documented choices",
+          "[unit][apt][catalogue]")
+{
+    // TSC001/KSC101 (p. 138): MOVE_COMPLETED, MOVE_ABSOLUTE and MOVE_STOP have no solenoid
+    // meaning (D-4); the host acknowledges the status updates with MOT_ACK_DCSTATUSUPDATE (D-3).
+    const auto solenoid = expected_from(kXrefTsc001,
+                                        {MGMSG_MOT_MOVE_COMPLETED, MGMSG_MOT_MOVE_ABSOLUTE, MGMSG_MOT_MOVE_STOP},
+                                        {MGMSG_MOT_ACK_DCSTATUSUPDATE});
+    // TPZ001/KPZ101 (p. 133) + D-5: PZSTATUSBITS (p. 101), ACK_PZSTATUSUPDATE (p. 105),
+    // TPZ_SLEWRATES (p. 123).
+    const auto tpz = expected_from(kXrefTpz001, {},
+                                   {MGMSG_PZ_REQ_PZSTATUSBITS, MGMSG_PZ_GET_PZSTATUSBITS, MGMSG_PZ_ACK_PZSTATUSUPDATE,
+                                    MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES, MGMSG_PZ_GET_TPZ_SLEWRATES});
+    // BPC30x (p. 132) + D-6: MAXTRAVEL (p. 118's example addresses bay 0x22).
+    const auto bpc = expected_from(kXrefBpc30x, {}, {MGMSG_PZ_REQ_MAXTRAVEL, MGMSG_PZ_GET_MAXTRAVEL});
+    // TSG001/KSG101 (p. 134): as printed.
+    const auto tsg = expected_from(kXrefTsg001, {}, {});
+
+    CHECK(solenoid.size() == 21);
+    CHECK(tpz.size() == 37);
+    CHECK(bpc.size() == 37);
+    CHECK(tsg.size() == 14);
+    for (const char* name : {"TSC001", "KSC101"})
+        CHECK(takes_of(*find_controller(name)) == solenoid);
+    for (const char* name : {"TPZ001", "KPZ101"})
+        CHECK(takes_of(*find_controller(name)) == tpz);
+    for (const char* name : {"BPC301", "BPC303"})
+        CHECK(takes_of(*find_controller(name)) == bpc);
+    for (const char* name : {"TSG001", "KSG101"})
+        CHECK(takes_of(*find_controller(name)) == tsg);
+    // Listed once each; the motor controllers keep the empty set (their modules decide).
+    for (const char* name : {"TSC001", "TPZ001", "BPC303", "TSG001"})
+        CHECK(find_controller(name)->takes.count == takes_of(*find_controller(name)).size());
+    for (const char* name : {"TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203"})
+        CHECK(find_controller(name)->takes.empty());
+    // Outside the sets: LUTVALUETYPE and IOSETTINGS (MPZ601 only, p. 135); SET_ZERO on a TPZ001.
+    CHECK_FALSE(find_controller("BPC303")->takes.contains(MGMSG_PZ_SET_LUTVALUETYPE));
+    CHECK_FALSE(find_controller("TPZ001")->takes.contains(MGMSG_PZ_SET_IOSETTINGS));
+    CHECK_FALSE(find_controller("TPZ001")->takes.contains(MGMSG_PZ_SET_ZERO));
+}
+
+TEST_CASE("catalogue: the solenoid, piezo and strain gauge units' identity, ACK and LUT figures",
+          "[unit][apt][catalogue]")
+{
+    // Prefixes: Thorlabs' own (D-1; the manual lists none for these units).
+    const UnitRow rows[]{
+        {"TSC001", UnitKind::Solenoid, 85, "APT Solenoid Controller", false},
+        {"KSC101", UnitKind::Solenoid, 68, "Solenoid Controller", true},
+        {"TPZ001", UnitKind::Piezo, 81, "APT Piezo Driver", false},
+        {"KPZ101", UnitKind::Piezo, 29, "Piezo Controller", true},
+        {"BPC301", UnitKind::Piezo, 41, "Piezo Controller", false},
+        {"BPC303", UnitKind::Piezo, 71, "Piezo Controller", false},
+        {"TSG001", UnitKind::StrainGauge, 84, "APT Strain Gauge Reader", false},
+        {"KSG101", UnitKind::StrainGauge, 59, "Strain Gauge Reader", true},
+    };
+    for (const auto& row : rows) {
+        INFO(row.name);
+        const auto* c = find_controller(row.name);
+        REQUIRE(c);
+        CHECK(c->kind == row.kind);
+        CHECK(c->serial_prefix == row.serial_prefix);
+        CHECK(c->notes == row.notes);
+        CHECK(c->rich_fault_reports == row.rich_fault_reports);
+        const bool bpc = row.name.substr(0, 3) == "BPC";
+        CHECK(c->rack == bpc);
+        CHECK(c->hw_type == (bpc ? 45 : 31));
+        // Piezo and gauge units are acknowledged with PZ_ACK_PZSTATUSUPDATE (p. 105).
+        CHECK(c->ack_id == (row.kind == UnitKind::Solenoid ? MGMSG_MOT_ACK_DCSTATUSUPDATE : MGMSG_PZ_ACK_PZSTATUSUPDATE));
+        if (row.kind != UnitKind::Piezo) {
+            CHECK(c->lut_max_index == 0);
+            CHECK(c->loop_rate_hz == 0);
+        }
+    }
+    // LUT (p. 106, 109): TPZ 0..512 at 250 µs, BPC 0..7999 at 1 ms; loops at those rates.
+    for (const char* name : {"TPZ001", "KPZ101"}) {
+        const auto* c = find_controller(name);
+        CHECK(c->lut_max_index == 512);
+        CHECK(c->lut_base_interval_us == 250);
+        CHECK(c->loop_rate_hz == 4'000);
+    }
+    const auto* bpc301 = find_controller("BPC301");
+    const auto* bpc303 = find_controller("BPC303");
+    CHECK(bpc301->max_bays == 1);
+    CHECK(bpc303->max_bays == 3);
+    for (const auto* c : {bpc301, bpc303}) {
+        CHECK(c->lut_max_index == 7'999);
+        CHECK(c->lut_base_interval_us == 1'000);
+        CHECK(c->loop_rate_hz == 1'000);
+        CHECK(c->bay_hw_type == 45);
+        CHECK(c->bay_serial_prefix == c->serial_prefix);
+    }
+    CHECK(find_controller("TDC001")->ack_id == MGMSG_MOT_ACK_DCSTATUSUPDATE);
+    CHECK(find_controller("TDC001")->kind == UnitKind::Motor);
 }
