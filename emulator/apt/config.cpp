@@ -5,16 +5,132 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rigsim::apt {
 namespace {
 
 using nlohmann::json;
 
-constexpr std::array<std::string_view, 3> kAptKeys{"stage", "bays", "serial_number"};
+/// Every key an "apt" object may hold; which ones a device has depends on its model's kind.
+constexpr std::array<std::string_view, 7> kAptKeys{"stage",    "bays",  "serial_number",         "solenoid",
+                                                    "actuator", "gauge", "hardware_max_voltage_v"};
+constexpr std::array<std::string_view, 1> kSolenoidKeys{"interlock_fitted"};
+constexpr std::array<std::string_view, 5> kActuatorKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
+                                                        "creep"};
+constexpr std::array<std::string_view, 7> kBayKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
+                                                   "creep",     "strain_gauge",  "zero_time_ms"};
+constexpr std::array<std::string_view, 6> kGaugeKeys{"mounted_on",         "route",       "noise_um", "seed",
+                                                     "stiffness_n_per_um", "zero_time_ms"};
+
+/// The keys of the "apt" object of a device of model `c`.
+std::vector<std::string_view> keys_of(const ControllerModel& c)
+{
+    switch (c.kind) {
+    case UnitKind::Motor:
+        return {"stage", "bays", "serial_number"};
+    case UnitKind::Solenoid:
+        return {"solenoid", "serial_number"};
+    case UnitKind::Piezo:
+        if (c.rack)
+            return {"hardware_max_voltage_v", "bays", "serial_number"};
+        return {"actuator", "serial_number"};
+    case UnitKind::StrainGauge:
+        return {"gauge", "serial_number"};
+    }
+    return {};
+}
+
+/// What a model of `c` is, for messages: "a piezo controller".
+std::string_view kind_noun(const ControllerModel& c)
+{
+    switch (c.kind) {
+    case UnitKind::Motor:
+        return c.rack ? "a motor rack" : "a motor controller";
+    case UnitKind::Solenoid:
+        return "a solenoid controller";
+    case UnitKind::Piezo:
+        return c.rack ? "a piezo rack" : "a piezo controller";
+    case UnitKind::StrainGauge:
+        return "a strain gauge reader";
+    }
+    return "";
+}
+
+/// The optional keys of one object: each reader sets its field only when the key is there.
+class Keys {
+public:
+    Keys(const ConfigReader& r, const json& object, std::string pointer)
+        : r_(r), object_(object), pointer_(std::move(pointer)) {}
+
+    const json* find(std::string_view key) const { return ConfigReader::find(object_, key); }
+    std::string at(std::string_view key) const { return pointer_to(pointer_, key); }
+
+    /// A number (integer or not) in min..max; `range` shows them in the message.
+    void number(std::string_view key, double& field, double min, double max, std::string_view range) const
+    {
+        if (const auto* v = find(key)) {
+            if (!v->is_number() || !(v->get<double>() >= min) || !(v->get<double>() <= max))
+                r_.fail(at(key), "expected a number " + std::string(range) + ", got " + describe(*v));
+            field = v->get<double>();
+        }
+    }
+    void integer(std::string_view key, int& field, int min, int max) const
+    {
+        if (const auto* v = find(key))
+            field = static_cast<int>(r_.get_int(*v, at(key), min, max));
+    }
+    void flag(std::string_view key, bool& field) const
+    {
+        if (const auto* v = find(key)) {
+            if (!v->is_boolean())
+                r_.fail(at(key), "expected true or false, got " + describe(*v));
+            field = v->get<bool>();
+        }
+    }
+    /// A piezo voltage rating: 75, 100 or 150 V (TPZ_IOSETTINGS VoltageLimit, p. 115; the
+    /// BPC30x hardware limits of PZSTATUSBITS, p. 102).
+    void voltage(std::string_view key, int& field) const
+    {
+        if (const auto* v = find(key)) {
+            const bool ok = v->is_number_integer() && (*v == 75 || *v == 100 || *v == 150);
+            if (!ok)
+                r_.fail(at(key), "expected 75, 100 or 150, got " + describe(*v));
+            field = v->get<int>();
+        }
+    }
+
+private:
+    const ConfigReader& r_;
+    const json& object_;
+    std::string pointer_;
+};
+
+/// The actuator keys of a TPZ001/KPZ101's "actuator" or a BPC30x bay object.
+void load_actuator(const Keys& k, PiezoActuatorConfig& a)
+{
+    // GET_MAXTRAVEL reports the travel as a 16-bit word of 100 nm (p. 118).
+    k.number("travel_um", a.travel_um, 0.1, 6553.5, "0.1..6553.5");
+    k.voltage("max_voltage_v", a.max_voltage_v);
+    k.number("response_ms", a.response_ms, 0.1, 1000, "0.1..1000");
+    k.number("hysteresis", a.hysteresis, 0, 0.3, "0..0.3");
+    k.number("creep", a.creep, 0, 0.05, "0..0.05");
+}
+
+/// `value` at `pointer` must be an object holding no key outside `allowed`.
+template <std::size_t N>
+Keys object_keys(const ConfigReader& r, const json& value, const std::string& pointer,
+                 const std::array<std::string_view, N>& allowed)
+{
+    r.check_keys(value, pointer, allowed);
+    return Keys(r, value, pointer);
+}
 
 /// A stage of the catalogue whose motor suits `controller` (a single unit's "stage", or one of
 /// a rack's "bays").
@@ -30,14 +146,10 @@ std::string load_stage(const ConfigReader& r, const json& v, const std::string& 
     return stage;
 }
 
-/// The "apt" object `a` at `apt_pointer` of a device whose model is `controller`.
-AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_pointer,
-                   const ControllerModel& controller, const std::string& model)
+/// A motor controller's "stage", or a motor rack's "bays".
+void load_motor(const ConfigReader& r, const json& a, const std::string& apt_pointer, const ControllerModel& controller,
+                const std::string& model, AptConfig& apt)
 {
-    AptConfig apt;
-    if (!a.is_object())
-        r.fail(apt_pointer, "expected an object, got " + describe(a));
-    r.check_keys(a, apt_pointer, kAptKeys);
     if (const auto* st = r.find(a, "stage"))
         apt.stage = load_stage(r, *st, pointer_to(apt_pointer, "stage"), controller, model);
     if (controller.rack) {
@@ -56,12 +168,120 @@ AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_
         r.fail(pointer_to(apt_pointer, "stage"),
                "required key missing (the default " + apt.stage + " is not a stage for a " + model + ")");
     }
-    if (const auto* sn = r.find(a, "serial_number")) {
+}
+
+/// A BPC30x: "hardware_max_voltage_v" and a bay object per occupied slot (default: every slot,
+/// each with the defaults).
+void load_piezo_rack(const ConfigReader& r, const Keys& k, const ControllerModel& controller, AptConfig& apt)
+{
+    k.voltage("hardware_max_voltage_v", apt.hardware_max_voltage_v);
+    const auto max = static_cast<std::size_t>(controller.max_bays);
+    const auto* bays = k.find("bays");
+    if (!bays) {
+        apt.piezo_bays.resize(max);
+        return;
+    }
+    if (!bays->is_array() || bays->empty() || bays->size() > max)
+        r.fail(k.at("bays"), "expected an array of " + (max == 1 ? std::string("1 bay") : "1.." + std::to_string(max) + " bays") +
+                                 ", got " + describe(*bays));
+    for (std::size_t i = 0; i < bays->size(); ++i) {
+        const auto bay_pointer = pointer_to(k.at("bays"), i);
+        const auto bay_keys = object_keys(r, (*bays)[i], bay_pointer, kBayKeys);
+        PiezoBayConfig bay;
+        load_actuator(bay_keys, bay.actuator);
+        bay_keys.flag("strain_gauge", bay.strain_gauge);
+        bay_keys.integer("zero_time_ms", bay.zero_time_ms, 0, 60'000);
+        if (bay.actuator.max_voltage_v > apt.hardware_max_voltage_v)
+            r.fail(bay_keys.at("max_voltage_v"), "expected at most the rack's hardware_max_voltage_v (" +
+                                                     std::to_string(apt.hardware_max_voltage_v) + "), got " +
+                                                     std::to_string(bay.actuator.max_voltage_v));
+        apt.piezo_bays.push_back(bay);
+    }
+}
+
+/// A strain gauge reader's "gauge" object at `pointer`.
+StrainGaugeConfig load_gauge(const ConfigReader& r, const json& g, const std::string& pointer)
+{
+    const auto k = object_keys(r, g, pointer, kGaugeKeys);
+    StrainGaugeConfig gauge;
+    if (const auto* v = k.find("mounted_on"))
+        gauge.mounted_on = r.get_string(*v, k.at("mounted_on"), "the name of a TPZ001 or KPZ101 device");
+    if (const auto* v = k.find("route")) {
+        static const std::map<std::string, GaugeRoute> routes{
+            {"hub_a", GaugeRoute::HubA}, {"hub_b", GaugeRoute::HubB}, {"sma", GaugeRoute::Sma}};
+        const auto found = v->is_string() ? routes.find(v->get<std::string>()) : routes.end();
+        if (found == routes.end())
+            r.fail(k.at("route"), "expected \"hub_a\", \"hub_b\" or \"sma\", got " + describe(*v));
+        gauge.route = found->second;
+    }
+    k.number("noise_um", gauge.noise_um, 0, 1, "0..1");
+    if (const auto* v = k.find("seed"))
+        gauge.seed = static_cast<std::uint32_t>(r.get_int(*v, k.at("seed"), 0, 4'294'967'295LL));
+    k.number("stiffness_n_per_um", gauge.stiffness_n_per_um, std::nextafter(0.0, 1.0), 1e6, "> 0 and <= 1000000");
+    k.integer("zero_time_ms", gauge.zero_time_ms, 0, 60'000);
+    return gauge;
+}
+
+/// Every key of `a` is one of the model's: a key of another kind of unit names what this
+/// one holds instead.
+void check_apt_keys(const ConfigReader& r, const json& a, const std::string& apt_pointer,
+                    const ControllerModel& controller, const std::string& model)
+{
+    if (!a.is_object())
+        r.fail(apt_pointer, "expected an object, got " + describe(a));
+    const auto keys = keys_of(controller);
+    for (const auto& item : a.items()) {
+        if (std::find(keys.begin(), keys.end(), item.key()) != keys.end())
+            continue;
+        if (std::find(kAptKeys.begin(), kAptKeys.end(), item.key()) == kAptKeys.end())
+            r.check_keys(a, apt_pointer, keys.data(), keys.size());   // an unknown key: throws
+        std::string list;
+        for (const auto key : keys)
+            list += (list.empty() ? "" : ", ") + std::string(key);
+        r.fail(pointer_to(apt_pointer, item.key()),
+               model + " is " + std::string(kind_noun(controller)) + ": its keys are " + list);
+    }
+}
+
+/// The "apt" object `a` at `apt_pointer` of a device whose model is `controller`.
+AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_pointer,
+                   const ControllerModel& controller, const std::string& model)
+{
+    AptConfig apt;
+    check_apt_keys(r, a, apt_pointer, controller, model);
+    const Keys k(r, a, apt_pointer);
+    switch (controller.kind) {
+    case UnitKind::Motor:
+        load_motor(r, a, apt_pointer, controller, model, apt);
+        break;
+    case UnitKind::Solenoid:
+        if (const auto* s = k.find("solenoid"))
+            object_keys(r, *s, k.at("solenoid"), kSolenoidKeys).flag("interlock_fitted", apt.solenoid.interlock_fitted);
+        break;
+    case UnitKind::Piezo:
+        if (controller.rack)
+            load_piezo_rack(r, k, controller, apt);
+        else if (const auto* act = k.find("actuator"))
+            load_actuator(object_keys(r, *act, k.at("actuator"), kActuatorKeys), apt.actuator);
+        break;
+    case UnitKind::StrainGauge:
+        if (const auto* g = k.find("gauge"))
+            apt.gauge = load_gauge(r, *g, k.at("gauge"));
+        break;
+    }
+    if (const auto* sn = k.find("serial_number")) {
         const std::int64_t lo = controller.serial_prefix * 1'000'000LL;
         apt.serial_number = static_cast<std::uint32_t>(
-            r.get_int(*sn, pointer_to(apt_pointer, "serial_number"), lo, lo + 999'999, " (the model's serial prefix)"));
+            r.get_int(*sn, k.at("serial_number"), lo, lo + 999'999, " (the model's serial prefix)"));
     }
     return apt;
+}
+
+/// A single-unit piezo controller: what a strain gauge reader may be mounted on.
+bool carries_gauges(const DeviceConfig& d)
+{
+    const auto* c = d.protocol == "apt" ? find_controller(d.model) : nullptr;
+    return c && c->kind == UnitKind::Piezo && !c->rack;
 }
 
 } // namespace
@@ -77,6 +297,30 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
                                                       (named ? quote(config.model) : std::string("nothing")));
     const auto& a = reader.require(device, pointer, "apt");
     config.section = load_apt(reader, a, pointer_to(pointer, "apt"), *controller, config.model);
+}
+
+void validate_rig(const ConfigReader& reader, const RigConfig& rig)
+{
+    std::map<std::string, std::string> carried;   // piezo device name -> pointer of its gauge's device
+    for (std::size_t i = 0; i < rig.devices.size(); ++i) {
+        const auto& d = rig.devices[i];
+        const auto* c = d.protocol == "apt" ? find_controller(d.model) : nullptr;
+        if (!c || c->kind != UnitKind::StrainGauge || config_of(d).gauge.mounted_on.empty())
+            continue;
+        const auto& name = config_of(d).gauge.mounted_on;
+        const auto device_pointer = pointer_to("/devices", i);
+        const auto pointer = pointer_to(pointer_to(pointer_to(device_pointer, "apt"), "gauge"), "mounted_on");
+        const auto piezo = std::find_if(rig.devices.begin(), rig.devices.end(),
+                                        [&](const DeviceConfig& other) { return other.name == name; });
+        if (piezo == rig.devices.end())
+            reader.fail(pointer, "no device named " + quote(name) + " in the rig");
+        if (!carries_gauges(*piezo))
+            reader.fail(pointer, "device " + quote(name) + " (" + piezo->model +
+                                     ") is not a piezo controller (TPZ001, KPZ101)");
+        const auto [it, first] = carried.emplace(name, device_pointer);
+        if (!first)
+            reader.fail(pointer, "device " + quote(name) + " already has a gauge: " + it->second);
+    }
 }
 
 } // namespace rigsim::apt

@@ -48,6 +48,9 @@ struct Family {
         load;
     /// The device of a loaded config.
     std::function<std::unique_ptr<Device>(const DeviceConfig& config, const DeviceContext& context)> make;
+    /// Checks across devices once every device of `rig` is loaded (one device naming
+    /// another); throws ConfigError through `reader`. Empty: none.
+    std::function<void(const ConfigReader& reader, const RigConfig& rig)> validate_rig = nullptr;
 };
 
 /// The families of a rig, in registration order (the order messages list them in).

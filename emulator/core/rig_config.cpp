@@ -161,7 +161,8 @@ private:
 class RigLoader : private ConfigReader {
 public:
     RigLoader(std::string_view source, const FamilyRegistry& families)
-        : ConfigReader(source), families_(families), device_keys_(kDeviceKeys.begin(), kDeviceKeys.end())
+        : ConfigReader(source), source_name_(source), families_(families),
+          device_keys_(kDeviceKeys.begin(), kDeviceKeys.end())
     {
         for (const auto& f : families.all())
             device_keys_.push_back(f.name);
@@ -180,6 +181,9 @@ public:
             fail("/devices", "expected a non-empty array");
         for (std::size_t i = 0; i < devices.size(); ++i)
             rig.devices.push_back(load_device(devices[i], pointer_to("/devices", i)));
+        for (const auto& f : families_.all())
+            if (f.validate_rig)
+                f.validate_rig(*this, rig);
         if (const auto* c = find(root, "control")) {
             check_keys(*c, "/control", kControlKeys);
             ControlConfig control;
@@ -212,6 +216,8 @@ private:
     DeviceConfig load_device(const json& v, const std::string& pointer)
     {
         DeviceConfig d;
+        d.source = source_name_;
+        d.pointer = pointer;
         check_keys(v, pointer, device_keys_.data(), device_keys_.size());
 
         const auto name_pointer = pointer_to(pointer, "name");
@@ -288,6 +294,7 @@ private:
         fail(pointer, "unknown protocol " + quote(s) + " (expected " + families_.quoted_names() + ")");
     }
 
+    std::string source_name_;   ///< for DeviceConfig::source
     const FamilyRegistry& families_;
     std::vector<std::string_view> device_keys_;  ///< generic keys, then one section per family
     std::map<std::string, std::string> names_;  ///< name -> pointer of the device using it

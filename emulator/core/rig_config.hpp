@@ -27,6 +27,10 @@ struct DeviceConfig {
     bool faithful_timing = false;
     /// The family's own section (mcs::McsConfig, apt::AptConfig); read it with section_of.
     std::any section;
+    /// Where the rig text describes the device ("rig.json", "/devices/2"): errors found after
+    /// loading name it as the loader's do.
+    std::string source;
+    std::string pointer;
 };
 
 /// The family section of `device` as `Section`; an empty section becomes a default one.

@@ -74,3 +74,31 @@ TEST_CASE("rig config: a family name is registered once", "[unit][config]")
     CHECK_THROWS_AS(families.add({"fan", "another fan", nullptr, nullptr}), std::invalid_argument);
     CHECK(families.quoted_names() == "\"lamp\" or \"fan\"");
 }
+
+TEST_CASE("rig config: a family's rig-wide check runs once every device is loaded", "[unit][config]")
+{
+    auto families = lamp_and_fan();
+    rigsim::FamilyRegistry checked;
+    for (auto family : families.all()) {
+        if (family.name == "lamp")
+            family.validate_rig = [](const rigsim::ConfigReader& r, const rigsim::RigConfig& rig) {
+                bool fan = false;
+                for (const auto& d : rig.devices)
+                    fan = fan || d.protocol == "fan";
+                for (std::size_t i = 0; i < rig.devices.size(); ++i)
+                    if (rig.devices[i].protocol == "lamp" && !fan)
+                        r.fail(rigsim::pointer_to(rig.devices[i].pointer, "protocol"), "a lamp needs a fan in the rig");
+            };
+        checked.add(family);
+    }
+    // The fan comes after the lamp: the check sees it.
+    const auto rig = rigsim::parse_rig_config(
+        R"({"devices":[{"name":"l","protocol":"lamp","lamp":{}},{"name":"f","protocol":"fan"}]})", "rig.json", checked);
+    CHECK(rig.devices[1].pointer == "/devices/1");
+    CHECK(rig.devices[1].source == "rig.json");
+    CHECK(error_of(R"({"devices":[{"name":"f","protocol":"lamp","lamp":{}}]})", checked) ==
+          "rig.json: /devices/0/protocol: a lamp needs a fan in the rig");
+    // A device's own errors come first.
+    CHECK(error_of(R"({"devices":[{"name":"f","protocol":"lamp","lamp":{"watts":0}}]})", checked) ==
+          "rig.json: /devices/0/lamp/watts: expected an integer 1..100, got 0");
+}
