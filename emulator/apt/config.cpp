@@ -181,9 +181,10 @@ void load_piezo_rack(const ConfigReader& r, const Keys& k, const ControllerModel
         apt.piezo_bays.resize(max);
         return;
     }
-    if (!bays->is_array() || bays->empty() || bays->size() > max)
-        r.fail(k.at("bays"), "expected an array of " + (max == 1 ? std::string("1 bay") : "1.." + std::to_string(max) + " bays") +
-                                 ", got " + describe(*bays));
+    if (!bays->is_array() || bays->empty() || bays->size() > max) {
+        const auto count = max == 1 ? std::string("1 bay") : "1.." + std::to_string(max) + " bays";
+        r.fail(k.at("bays"), "expected an array of " + count + ", got " + describe(*bays));
+    }
     for (std::size_t i = 0; i < bays->size(); ++i) {
         const auto bay_pointer = pointer_to(k.at("bays"), i);
         const auto bay_keys = object_keys(r, (*bays)[i], bay_pointer, kBayKeys);
