@@ -79,23 +79,31 @@ void AptDevice::record(bool inbound, std::string_view peer, std::string_view fra
 
 std::vector<std::string> AptDevice::update_notes() const
 {
-    // USB "server alive" (p. 80): the unit counts the status update type messages it sends
-    // without MOT_ACK_DCSTATUSUPDATE and stops at 50.
-    if (!updates_)
+    // USB "server alive" (p. 80, p. 105): the unit counts the status update type messages it
+    // sends without the acknowledgement (MOT_ACK_DCSTATUSUPDATE, PZ_ACK_PZSTATUSUPDATE) and
+    // stops at 50.
+    if (!updates_ || (updates_since_ack_ != kUpdatesWarnAt && updates_since_ack_ != kUpdatesWithoutAck))
         return {};
+    const auto* ack = find_message(model_.ack_id);
+    const std::string ack_name = ack ? std::string(ack->name) : "the acknowledgement";
+    const std::string page = model_.ack_id == MGMSG_MOT_ACK_DCSTATUSUPDATE ? "(p. 80)" : "(p. 105)";
     if (updates_since_ack_ == kUpdatesWarnAt)
         return {std::to_string(kUpdatesWarnAt) + " of " + std::to_string(kUpdatesWithoutAck)
-                + " status update messages without MGMSG_MOT_ACK_DCSTATUSUPDATE: the unit stops sending them at "
-                + std::to_string(kUpdatesWithoutAck) + " (p. 80)"};
-    if (updates_since_ack_ == kUpdatesWithoutAck)
-        return {"cut-off: " + std::to_string(kUpdatesWithoutAck)
-                + " status update messages without MGMSG_MOT_ACK_DCSTATUSUPDATE; the unit sends no more until "
-                  "the host acknowledges (p. 80)"};
-    return {};
+                + " status update messages without " + ack_name + ": the unit stops sending them at "
+                + std::to_string(kUpdatesWithoutAck) + " " + page};
+    return {"cut-off: " + std::to_string(kUpdatesWithoutAck) + " status update messages without " + ack_name
+            + "; the unit sends no more until the host acknowledges " + page};
 }
 
 nlohmann::json AptDevice::channel_json(std::size_t bay) const
 {
+    char address[8];
+    std::snprintf(address, sizeof address, "0x%02x", address_of(bay));
+    if (bay >= channels_.size()) {   // a kind without a motor describes itself
+        nlohmann::json out{{"index", bay}, {"address", address}};
+        modules_[bay]->describe(out);
+        return out;
+    }
     const MotorChannel& ch = *channels_[bay];
     const StageModel& stage = ch.stage();
     const models::Axis& axis = ch.axis();
@@ -115,8 +123,6 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
          {{"min", ch.min_position()}, {"max", ch.max_position()}, {"min_si", axis.travel_min_counts() * k},
           {"max_si", axis.travel_max_counts() * k}}},
         {"switch_pressed", {{"forward", at_forward}, {"reverse", at_reverse}}}};
-    char address[8];
-    std::snprintf(address, sizeof address, "0x%02x", address_of(bay));
     return {{"index", bay},
             {"kind", stage.rotary ? "rotary" : "linear"},
             {"stage", std::string(stage.name)},
@@ -138,7 +144,7 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
 void AptDevice::describe(nlohmann::json& out) const
 {
     auto channels = nlohmann::json::array();
-    for (std::size_t bay = 0; bay < channels_.size(); ++bay)
+    for (std::size_t bay = 0; bay < modules_.size(); ++bay)
         channels.push_back(channel_json(bay));
     out["channels"] = std::move(channels);
     out["serial_number"] = serial_;
@@ -150,11 +156,16 @@ void AptDevice::describe(nlohmann::json& out) const
 
 Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
 {
-    if (index >= channels_.size())
+    if (index >= modules_.size())
         return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
-                                + (channels_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(channels_.size() - 1))};
+                                + (modules_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(modules_.size() - 1))};
     if (!body.is_object())
         return bad("the body must be an object");
+    if (index >= channels_.size()) {   // a kind without a motor patches itself
+        auto refused = modules_[index]->patch(body);
+        flush();
+        return refused;
+    }
     MotorChannel& ch = *channels_[index];
     const models::Axis& axis = ch.axis();
     const double k = si_per_count(ch.stage());
@@ -290,22 +301,21 @@ void AptDevice::remove_fault(std::uint64_t id)
 
 void AptDevice::power_cycle(const PowerCycle& how)
 {
-    for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
-        channels_[bay]->power_up();
-        if (how.restore_positions) {
-            patched_switch_[bay] = 0;
-            channels_[bay]->place(channels_[bay]->start_position_counts());
-            channels_[bay]->power_up();   // the counters read 0 where the stage stands
-        }
+    for (std::size_t bay = 0; bay < modules_.size(); ++bay) {
+        modules_[bay]->power_down(how.restore_positions);
         modules_[bay] = make_module(bay);
+    }
+    for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
+        if (how.restore_positions)
+            patched_switch_[bay] = 0;
         apply_faults(bay);
         was_moving_[bay] = false;
         stalled_[bay] = false;
     }
     if (model_.rack) {
-        motherboard_ = std::make_unique<RackMotherboard>(unit_, channels_.size(), *log_);
+        motherboard_ = std::make_unique<RackMotherboard>(unit_, modules_.size(), *log_);
         for (std::size_t i = 0; i < empty_bays_.size(); ++i)
-            empty_bays_[i] = std::make_unique<EmptyBay>(unit_, channels_.size() + i, model_.motor != MotorKind::Stepper, *log_);
+            empty_bays_[i] = std::make_unique<EmptyBay>(unit_, modules_.size() + i, model_.motor != MotorKind::Stepper, *log_);
     }
     updates_ = false;
     next_update_ = kNever;

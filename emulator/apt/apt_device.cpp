@@ -3,6 +3,7 @@
 #include "emulator/core/state_store.hpp"
 
 #include "emulator/apt/brushless_module.hpp"
+#include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/wire.hpp"
 #include "emulator/apt/wire_decode.hpp"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 
 namespace rigsim::apt {
 
@@ -92,30 +94,44 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).
     const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
-    if (model_.rack)
-        for (const auto& stage : config_of(config).bays)
-            channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(stage), world,
-                                                               key(channels_.size())));
-    else
-        channels_.push_back(std::make_unique<MotorChannel>(model_, *find_stage(config_of(config).stage), world, key(0)));
-    for (std::size_t bay = 0; bay < channels_.size(); ++bay)
+    const std::size_t bays = model_.rack ? config_of(config).bays.size() : 1;
+    if (model_.kind == UnitKind::Motor)
+        for (std::size_t bay = 0; bay < bays; ++bay)
+            channels_.push_back(std::make_unique<MotorChannel>(
+                model_, *find_stage(model_.rack ? config_of(config).bays[bay] : config_of(config).stage), world,
+                key(bay)));
+    for (std::size_t bay = 0; bay < bays; ++bay)
         modules_.push_back(make_module(bay));
     patched_switch_.assign(channels_.size(), 0);
     published_status_.assign(channels_.size(), 0);
     was_moving_.assign(channels_.size(), false);
     stalled_.assign(channels_.size(), false);
     if (model_.rack) {
-        motherboard_ = std::make_unique<RackMotherboard>(unit_, channels_.size(), *log_);
-        for (std::size_t bay = channels_.size(); bay < unit_.built_in_bays; ++bay)
+        motherboard_ = std::make_unique<RackMotherboard>(unit_, modules_.size(), *log_);
+        for (std::size_t bay = modules_.size(); bay < unit_.built_in_bays; ++bay)
             empty_bays_.push_back(std::make_unique<EmptyBay>(unit_, bay, model_.motor != MotorKind::Stepper, *log_));
     }
     restore_from_eeprom();
     clock_.add(this);
 }
 
-std::unique_ptr<MotorModule> AptDevice::make_module(std::size_t bay)
+std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
 {
     auto save = [this, bay](std::uint16_t id, std::string_view peer) { save_to_eeprom(bay, id, peer); };
+    // The one place a unit kind picks its module class.
+    switch (model_.kind) {
+    case UnitKind::Motor:
+        return make_motor_module(bay, std::move(save));
+    case UnitKind::Solenoid:
+    case UnitKind::Piezo:
+    case UnitKind::StrainGauge:
+        break;
+    }
+    throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");
+}
+
+std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)
+{
     switch (model_.motor) {
     case MotorKind::DcServo:
         return std::make_unique<DcServoModule>(unit_, bay, address_of(bay), *channels_[bay], *log_, save);
@@ -127,171 +143,50 @@ std::unique_ptr<MotorModule> AptDevice::make_module(std::size_t bay)
     return nullptr;
 }
 
-namespace {
-
-/// The parameter SETs MOT_SET_EEPROMPARAMS saves (p. 60: "the message containing the
-/// parameters to be saved"): the alternatives of AptDevice::SavedSet.
-template <class V> struct SavedIds;
-template <class... T> struct SavedIds<std::variant<T...>> {
-    static constexpr std::uint16_t ids[] = {T::id...};
-};
-
-bool saved_by_eeprom(std::uint16_t id)
-{
-    const auto& ids = SavedIds<AptDevice::SavedSet>::ids;
-    return std::find(std::begin(ids), std::end(ids), id) != std::end(ids);
-}
-
-template <class T, class V> struct IsAlternative;
-template <class T, class... A> struct IsAlternative<T, std::variant<A...>> : std::disjunction<std::is_same<T, A>...> {};
-
-std::string message_name(std::uint16_t id)
-{
-    if (const auto* info = find_message(id))
-        return std::string(info->name);
-    char buf[8];
-    std::snprintf(buf, sizeof buf, "0x%04x", id);
-    return buf;
-}
-
-/// State file key of a saved SET message: "bay0/0x0413".
-std::string eeprom_key(std::size_t bay, std::uint16_t id)
-{
-    static constexpr char kHex[] = "0123456789abcdef";
-    std::string k = "bay" + std::to_string(bay) + "/0x";
-    for (int shift = 12; shift >= 0; shift -= 4)
-        k += kHex[(id >> shift) & 0xf];
-    return k;
-}
-
-/// The bay and message of a key exactly as eeprom_key writes it, or nullopt.
-std::optional<std::pair<std::size_t, std::uint16_t>> parse_eeprom_key(const std::string& key)
-{
-    constexpr std::size_t kMaxBayDigits = 3;
-    if (key.compare(0, 3, "bay") != 0)
-        return std::nullopt;
-    std::size_t i = 3;
-    std::size_t bay = 0;
-    while (i < key.size() && i - 3 < kMaxBayDigits && key[i] >= '0' && key[i] <= '9')
-        bay = bay * 10 + static_cast<std::size_t>(key[i++] - '0');
-    if (i == 3 || key.compare(i, 3, "/0x") != 0 || key.size() != i + 7)
-        return std::nullopt;
-    unsigned id = 0;
-    for (i += 3; i < key.size(); ++i) {
-        const char c = key[i];
-        if (c >= '0' && c <= '9')
-            id = id * 16 + static_cast<unsigned>(c - '0');
-        else if (c >= 'a' && c <= 'f')
-            id = id * 16 + static_cast<unsigned>(c - 'a' + 10);
-        else
-            return std::nullopt;
-    }
-    const auto parsed = std::make_pair(bay, static_cast<std::uint16_t>(id));
-    if (eeprom_key(parsed.first, parsed.second) != key)   // "bay00/...": one spelling per entry
-        return std::nullopt;
-    return parsed;
-}
-
-std::string to_hex(std::string_view data)
-{
-    static constexpr char kHex[] = "0123456789abcdef";
-    std::string out;
-    for (unsigned char c : data) {
-        out += kHex[c >> 4];
-        out += kHex[c & 0xf];
-    }
-    return out;
-}
-
-/// `hex` (an even number of [0-9a-fA-F]) as bytes in `out`, or false and why not in `why`.
-bool from_hex(const std::string& hex, std::string& out, std::string& why)
-{
-    auto digit = [](char c) {
-        if (c >= '0' && c <= '9')
-            return c - '0';
-        if (c >= 'a' && c <= 'f')
-            return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F')
-            return c - 'A' + 10;
-        return -1;
-    };
-    for (std::size_t i = 0; i < hex.size(); ++i) {
-        if (digit(hex[i]) < 0) {
-            why = "data is not hex (character " + std::to_string(i + 1) + " is '" + printable(hex.substr(i, 1)) + "')";
-            return false;
-        }
-    }
-    if (hex.size() % 2 != 0) {
-        why = "data has an odd number of hex digits (" + std::to_string(hex.size()) + ")";
-        return false;
-    }
-    out.clear();
-    for (std::size_t i = 0; i < hex.size(); i += 2)
-        out.push_back(static_cast<char>(digit(hex[i]) * 16 + digit(hex[i + 1])));
-    return true;
-}
-
-} // namespace
-
 void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer)
 {
-    if (!saved_by_eeprom(id)) {
-        log_->warn("{}: MOT_SET_EEPROMPARAMS for 0x{:04x} ({}): not a parameter SET it saves, nothing saved", peer, id,
+    const char* const name = eeprom_message(model_.kind);
+    if (!modules_[bay]->saves(id)) {
+        log_->warn("{}: {} for 0x{:04x} ({}): not a parameter SET it saves, nothing saved", peer, name, id,
                    message_name(id));
         return;
     }
     const auto it = last_set_.find({bay, id});
     if (it == last_set_.end()) {
-        log_->warn("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: no such parameters were set, nothing saved", peer, id);
+        log_->warn("{}: {} for 0x{:04x}: no such parameters were set, nothing saved", peer, name, id);
         return;
     }
     if (!store_) {
-        log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: kept until the daemon exits (no --state-file)", peer, id);
+        log_->info("{}: {} for 0x{:04x}: kept until the daemon exits (no --state-file)", peer, name, id);
         return;
     }
-    // Saved as the parameters of the bay's channel, whatever channel word the SET carried.
-    store_->set(config_.name, eeprom_key(bay, id), to_hex(saved_data(it->second)));
-    log_->info("{}: MOT_SET_EEPROMPARAMS for 0x{:04x}: saved", peer, id);
-}
-
-std::string AptDevice::saved_data(SavedSet set)
-{
-    return std::visit(
-        [](auto& s) {
-            s.params.chan_ident = kChan1;
-            return msg::encode_data(s);
-        },
-        set);
+    store_->set(config_.name, eeprom_key(bay, id), to_hex(it->second));
+    log_->info("{}: {} for 0x{:04x}: saved", peer, name, id);
 }
 
 void AptDevice::remember(std::size_t bay, const msg::Message& m)
 {
-    msg::visit(
-        [&](const auto& typed) {
-            using T = std::decay_t<decltype(typed)>;
-            if constexpr (IsAlternative<T, SavedSet>::value)
-                last_set_.insert_or_assign({bay, T::id}, typed);
-        },
-        m);
+    if (auto data = modules_[bay]->saved_data(m))
+        last_set_.insert_or_assign({bay, msg::message_id(m)}, std::move(*data));
 }
 
 void AptDevice::restore_from_eeprom()
 {
     if (!store_)
         return;
-    // What this device's non-volatile memory can hold: a parameter SET that MOT_SET_EEPROMPARAMS
-    // saves, of one of its bays, as long as the table says, for the bay's channel, and accepted
-    // by the bay as if a client had sent it. Returns why an entry is none of that.
+    // What this device's non-volatile memory can hold: a parameter SET that the bay's
+    // EEPROMPARAMS saves, of one of its bays, as long as the table says, for the bay's channel,
+    // and accepted by the bay as if a client had sent it. Returns why an entry is none of that.
     auto restore = [&](const std::string& key, const nlohmann::json& value) -> std::optional<std::string> {
         const auto parsed = parse_eeprom_key(key);
         if (!parsed)
             return "the key is not bay<N>/0x<4 lower-case hex digits>";
         const auto [bay, id] = *parsed;
-        if (bay >= channels_.size())
+        if (bay >= modules_.size())
             return "no bay " + std::to_string(bay) + " (the " + config_.model
-                   + (channels_.size() == 1 ? " has bay 0 only)" : " has bays 0 to " + std::to_string(channels_.size() - 1) + ")");
-        if (!saved_by_eeprom(id))
-            return message_name(id) + " is not a parameter SET that MOT_SET_EEPROMPARAMS saves";
+                   + (modules_.size() == 1 ? " has bay 0 only)" : " has bays 0 to " + std::to_string(modules_.size() - 1) + ")");
+        if (!modules_[bay]->saves(id))
+            return message_name(id) + " is not a parameter SET that " + eeprom_message(model_.kind) + " saves";
         if (!value.is_string())
             return std::string("expected a string of hex digits, got ") + value.type_name();
         std::string data;
@@ -299,25 +194,22 @@ void AptDevice::restore_from_eeprom()
         if (!from_hex(value.get<std::string>(), data, why))
             return why;
         const auto* info = find_message(id);
-        if (data.size() != static_cast<std::size_t>(info->data_length))
-            return std::to_string(data.size()) + " data bytes, " + std::string(info->name) + " has "
-                   + std::to_string(info->data_length);
-        if (get_u16(data, 0) != kChan1)
-            return "channel " + std::to_string(get_u16(data, 0)) + " in the data; bay " + std::to_string(bay)
-                   + " is channel 1";
-        Frame f;
-        f.id = id;
-        f.dest = address_of(bay);
-        f.source = kHost;
-        f.has_data = true;
-        f.data = data;
-        f.info = info;
+        // A header-only SET is stored as its param1 and param2 (SavedSets).
+        const auto length = info->header_only() ? std::size_t{2} : static_cast<std::size_t>(info->data_length);
+        if (data.size() != length)
+            return std::to_string(data.size()) + " data bytes, " + std::string(info->name) + " has " + std::to_string(length);
+        const Frame f = saved_frame(*info, address_of(bay), data);
+        const auto m = msg::decode(f);
+        // The stored form differs from the data only in a channel other than 1.
+        if (const auto stored = modules_[bay]->saved_data(m); stored && *stored != data)
+            return "channel " + std::to_string(f.has_data ? get_u16(data, 0) : f.param1) + " in the data; bay "
+                   + std::to_string(bay) + " is channel 1";
         last_set_.erase({bay, id});
         std::string ignored;
         Request r{f, "state file", ignored, host_};
-        handle_bay(bay, msg::decode(f), r);
+        handle_bay(bay, m, r);
         const auto accepted = last_set_.find({bay, id});
-        if (accepted == last_set_.end() || saved_data(accepted->second) != data)
+        if (accepted == last_set_.end() || accepted->second != data)
             return "the bay ignores this " + std::string(info->name) + " (its warning says why)";
         log_->info("restored {} of bay {} from the state file", info->name, bay);
         return std::nullopt;
@@ -392,7 +284,7 @@ void AptDevice::route(const Frame& f, std::string_view peer, std::string& reply)
         }
         return handle_bay(0, m, r);
     }
-    if (f.dest >= kBay0 && f.dest < kBay0 + channels_.size())
+    if (f.dest >= kBay0 && f.dest < kBay0 + modules_.size())
         return handle_bay(f.dest - kBay0, m, r);
     if (f.dest == kRack || (f.dest >= kBay0 && f.dest < kBay0 + unit_.built_in_bays)) {
         if (handle_system(m, peer))
@@ -400,7 +292,7 @@ void AptDevice::route(const Frame& f, std::string_view peer, std::string& reply)
         if (f.dest == kRack)
             motherboard_->handle(m, r);
         else
-            empty_bays_[f.dest - kBay0 - channels_.size()]->handle(m, r);
+            empty_bays_[f.dest - kBay0 - modules_.size()]->handle(m, r);
         if (r.ignored)
             note("ignored by the unit: " + r.why);
         return;
@@ -413,7 +305,7 @@ void AptDevice::handle_bay(std::size_t bay, const msg::Message& m, Request& r)
 {
     if (handle_system(m, r.peer))
         return;
-    if (msg::holds<msg::MoveAbsolute>(m) && !channels_[bay]->homed())
+    if (bay < channels_.size() && msg::holds<msg::MoveAbsolute>(m) && !channels_[bay]->homed())
         note("MOVE_ABSOLUTE while not homed: the position counter is not referenced to the stage "
              "(p. 28: home the stage after power-up)");
     modules_[bay]->handle(m, r);
@@ -428,11 +320,17 @@ bool AptDevice::handle_system(const msg::Message& m, std::string_view peer)
 {
     return msg::visit(
         [&](const auto& typed) {
-            if constexpr (std::decay_t<decltype(typed)>::family == msg::Family::System) {
-                on(typed, peer);
-                return true;
-            } else {
+            using T = std::decay_t<decltype(typed)>;
+            if constexpr (T::family == msg::Family::Untyped) {
                 return false;
+            } else {
+                if (T::id == model_.ack_id) {
+                    server_alive();
+                    return true;
+                }
+                if constexpr (T::family == msg::Family::System)
+                    on(typed, peer);
+                return T::family == msg::Family::System;
             }
         },
         m);
@@ -474,9 +372,18 @@ void AptDevice::on(const msg::ResumeEndOfMoveMsgs&, std::string_view)
     end_of_move_messages_ = true;
 }
 
-void AptDevice::on(const msg::AckDcStatusUpdate&, std::string_view)
+void AptDevice::on(const msg::AckDcStatusUpdate&, std::string_view peer)
 {
-    updates_since_ack_ = 0;   // "server alive" (p. 80): no channel, params 0
+    // Only reached on a unit whose updates another message acknowledges (handle_system).
+    log_->warn("{}: MGMSG_MOT_ACK_DCSTATUSUPDATE: the {} acknowledges its status updates with 0x{:04x}, ignored",
+               peer, config_.model, model_.ack_id);
+    note(fmt::format("ignored by the unit: the {} acknowledges its status updates with 0x{:04x}", config_.model,
+                     model_.ack_id));
+}
+
+void AptDevice::server_alive()
+{
+    updates_since_ack_ = 0;   // "server alive" (p. 80, p. 105): no channel, params 0
     if (updates_ && next_update_ <= clock_.now())   // resume the 100 ms rhythm from now
         next_update_ = clock_.now() + clock_.ticks_from_ms(kUpdatePeriod_ms);
 }
@@ -497,7 +404,7 @@ std::string AptDevice::fault_report(std::size_t bay) const
     // or the position error limit (brushless: motion error, bit 0x00004000).
     if (model_.rich_fault_reports) {
         // Later protocol issues: MsgIdent word (what caused it), Code word, Notes char[64].
-        msg::HwRichResponse r{modules_[bay]->last_move(), kFaultCodeStalled, {}};
+        msg::HwRichResponse r{motor_module(bay).last_move(), kFaultCodeStalled, {}};
         // The control API's faults stop the motor mid-travel (docs/control-api/apt.md "Faults").
         const MotorChannel& ch = *channels_[bay];
         const std::string_view notes = ch.encoder_failed() ? "Motion error: encoder signal lost, position loop open"
@@ -526,10 +433,10 @@ void AptDevice::flush()
                 ++updates_since_ack_;
             switch (event) {
             case MotorEvent::MoveCompleted:
-                broadcast(msg::encode(msg::MoveCompleted{modules_[bay]->motor_status()}, host_, me), update_notes());
+                broadcast(msg::encode(msg::MoveCompleted{motor_module(bay).motor_status()}, host_, me), update_notes());
                 break;
             case MotorEvent::Stopped:
-                broadcast(msg::encode(msg::MoveStopped{modules_[bay]->motor_status()}, host_, me), update_notes());
+                broadcast(msg::encode(msg::MoveStopped{motor_module(bay).motor_status()}, host_, me), update_notes());
                 break;
             case MotorEvent::Homed:
                 broadcast(msg::encode(msg::MoveHomed{kChan1}, host_, me), update_notes());
@@ -541,6 +448,9 @@ void AptDevice::flush()
         }
         publish_events(bay, events);
     }
+    for (const auto& module : modules_)
+        for (const auto& frame : module->take_unprompted(host_))
+            broadcast(frame);
 }
 
 Ticks AptDevice::next_change(Ticks now) const
@@ -548,19 +458,24 @@ Ticks AptDevice::next_change(Ticks now) const
     Ticks next = updates_ && updates_since_ack_ < kUpdatesWithoutAck ? std::max(next_update_, now + 1) : kNever;
     for (const auto& ch : channels_)
         next = std::min(next, ch->next_change(now));
+    for (const auto& module : modules_)
+        next = std::min(next, module->next_change(now));
     return next;
 }
 
 void AptDevice::tick(Ticks now)
 {
-    flush();   // end-of-move events the axes raised (the World moves them, not this tick)
+    for (const auto& module : modules_)
+        module->tick(now);
+    flush();   // end-of-move events the axes raised (the World moves them, not this tick), and the modules' own
     if (updates_ && now >= next_update_) {
         next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
         if (updates_since_ack_ < kUpdatesWithoutAck) {
             ++updates_since_ack_;
             for (const auto& module : modules_)
-                broadcast(module->status_update(host_), update_notes());
+                if (auto update = module->status_update(host_); !update.empty())
+                    broadcast(update, update_notes());
         }
     }
 }

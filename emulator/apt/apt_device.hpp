@@ -1,13 +1,15 @@
 #pragma once
-// An APT motor controller as a rig device: a single unit (T-Cube/K-Cube, answering as 0x50)
-// or a card-slot system (motherboard at 0x11, bays at 0x21 + n). A framer per connection, a
-// handler for every message of the manual, one motor channel per bay, and the status updates
-// the unit sends by itself (manual sections 4 and 5 (c)).
+// An APT controller as a rig device: a single unit (T-Cube/K-Cube, answering as 0x50) or a
+// card-slot system (motherboard at 0x11, bays at 0x21 + n). A framer per connection, the
+// System messages, one module per bay of the model's kind (module.hpp; a motor kind's bay
+// also has its motor channel), and the status updates the unit sends by itself (manual
+// sections 4 and 5 (c)).
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/codec.hpp"
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/motor_channel.hpp"
+#include "emulator/apt/module.hpp"
 #include "emulator/apt/motor_module.hpp"
 #include "emulator/apt/rack_modules.hpp"
 #include "emulator/core/control_surface.hpp"
@@ -21,7 +23,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace spdlog {
@@ -41,7 +42,8 @@ class AptDevice : public Device, public Tickable, public ControlSurface {
 public:
     /// Status updates every 100 ms of clock time (section 5 (c)).
     static constexpr std::int64_t kUpdatePeriod_ms = 100;
-    /// USB units stop their update messages after 50 without MOT_ACK_DCSTATUSUPDATE.
+    /// USB units stop their update messages after 50 without the model's acknowledgement
+    /// (ControllerModel::ack_id: MOT_ACK_DCSTATUSUPDATE p. 80, PZ_ACK_PZSTATUSUPDATE p. 105).
     static constexpr int kUpdatesWithoutAck = 50;
     /// The wire log warns when this many went unacknowledged (docs/control-api/apt.md "Notes").
     static constexpr int kUpdatesWarnAt = 40;
@@ -64,9 +66,11 @@ public:
     /// Handle one frame from a connection; answers go to `reply`.
     void handle(const Frame& frame, std::string_view peer, std::string& reply);
 
-    /// The motor channel of a single unit, or of bay `bay` of a rack.
+    /// The motor channel of a single unit, or of bay `bay` of a rack (motor kinds only).
     MotorChannel& channel(std::size_t bay = 0) { return *channels_.at(bay); }
-    std::size_t bay_count() const { return channels_.size(); }
+    /// The module of a single unit, or of bay `bay` of a rack.
+    Module& module(std::size_t bay = 0) { return *modules_.at(bay); }
+    std::size_t bay_count() const { return modules_.size(); }
     const Clock& clock() const { return clock_; }
     std::uint32_t serial_number() const { return serial_; }
     int identify_count() const { return identify_count_; }
@@ -77,7 +81,7 @@ public:
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
 
-    /// Send end-of-move messages and due status updates to every connection.
+    /// Send end-of-move messages and what the modules sent by themselves to every connection.
     void flush();
 
     // ---- Control API (docs/control-api/apt.md); apt_control.cpp ----
@@ -93,30 +97,23 @@ public:
     void record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes = {},
                 bool unprompted = false);
 
-    /// The parameter SETs MOT_SET_EEPROMPARAMS saves (p. 60): the motor chapter's settings that
-    /// rigsim's controllers act on. Not SET_POSCOUNTER or SET_ENCCOUNTER: the 'live' counts
-    /// (p. 28), unknown at power-up.
-    using SavedSet = std::variant<msg::SetVelParams, msg::SetJogParams, msg::SetGenMoveParams, msg::SetMoveRelParams,
-                                  msg::SetMoveAbsParams, msg::SetHomeParams, msg::SetLimSwitchParams,
-                                  msg::SetDcPidParams, msg::SetAvModes, msg::SetPotParams, msg::SetButtonParams,
-                                  msg::SetPmdPositionLoopParams, msg::SetPmdMotorOutputParams,
-                                  msg::SetPmdTrackSettleParams, msg::SetPmdProfileModeParams,
-                                  msg::SetPmdCurrentLoopParams, msg::SetPmdSettledCurrentLoopParams,
-                                  msg::SetPmdStageAxisParams>;
-
 private:
     /// handle() without the wire log: the frame to its module.
     void route(const Frame& frame, std::string_view peer, std::string& reply);
     /// The module address a bay answers from: 0x50 for a single unit, 0x21 + bay in a rack.
     std::uint8_t address_of(std::size_t bay) const;
+    /// The module of this controller's unit kind (ControllerModel::kind) for bay `bay`.
+    std::unique_ptr<Module> make_module(std::size_t bay);
     /// The module of this controller's motor kind for bay `bay`.
-    std::unique_ptr<MotorModule> make_module(std::size_t bay);
+    std::unique_ptr<MotorModule> make_motor_module(std::size_t bay, Module::SaveToEeprom save);
+    /// The motor module of bay `bay` (motor kinds: every bay with a channel has one).
+    MotorModule& motor_module(std::size_t bay) const { return static_cast<MotorModule&>(*modules_[bay]); }
     /// A message for bay `bay` (or a single unit): the shell's System messages, else the
     /// bay's module; a SET it accepts is kept for MOT_SET_EEPROMPARAMS.
     void handle_bay(std::size_t bay, const msg::Message& m, Request& r);
-    /// Module-wide messages (the System family) every module address acts on alike: identify,
-    /// disconnect, update messages, server alive, end-of-move messages, flash programming.
-    /// False if `m` is another.
+    /// Module-wide messages (the System family and the model's server-alive acknowledgement)
+    /// every module address acts on alike: identify, disconnect, update messages, server alive,
+    /// end-of-move messages, flash programming. False if `m` is another.
     bool handle_system(const msg::Message& m, std::string_view peer);
     void on(const msg::ModIdentify& m, std::string_view peer);            ///< MGMSG_MOD_IDENTIFY (p. 16)
     void on(const msg::HwDisconnect& m, std::string_view peer);           ///< MGMSG_HW_DISCONNECT (p. 19)
@@ -127,13 +124,13 @@ private:
     void on(const msg::SuspendEndOfMoveMsgs& m, std::string_view peer);   ///< MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS (p. 82)
     void on(const msg::ResumeEndOfMoveMsgs& m, std::string_view peer);    ///< MGMSG_MOT_RESUME_ENDOFMOVEMSGS (p. 83)
     void on(const msg::AckDcStatusUpdate& m, std::string_view peer);      ///< MGMSG_MOT_ACK_DCSTATUSUPDATE (p. 80)
+    /// The host acknowledged the status updates (ControllerModel::ack_id).
+    void server_alive();
     void start_updates();
-    /// MOT_SET_EEPROMPARAMS: save the last SET of message `id` on bay `bay`.
+    /// MOT_SET_EEPROMPARAMS (PZ_SET_EEPROMPARAMS): save the last SET of message `id` on bay `bay`.
     void save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer);
-    /// Keep `m` if it is a SET that MOT_SET_EEPROMPARAMS saves.
+    /// Keep `m` if it is a SET that the bay's module saves (Module::saved_data).
     void remember(std::size_t bay, const msg::Message& m);
-    /// The data packet a saved SET is stored as: the bay's channel (1) and its parameters.
-    static std::string saved_data(SavedSet set);
     /// Replay what the state file holds for this device (power-up from non-volatile memory).
     void restore_from_eeprom();
     void broadcast(const std::string& frame, std::vector<std::string> notes = {});
@@ -156,8 +153,8 @@ private:
     const ControllerModel& model_;
     std::uint32_t serial_;
     UnitIdentity unit_;
-    std::vector<std::unique_ptr<MotorChannel>> channels_;
-    std::vector<std::unique_ptr<MotorModule>> modules_;    ///< per bay with a stage
+    std::vector<std::unique_ptr<MotorChannel>> channels_;  ///< per bay with a stage (motor kinds)
+    std::vector<std::unique_ptr<Module>> modules_;         ///< per bay (with a stage, for a motor kind)
     std::unique_ptr<RackMotherboard> motherboard_;          ///< racks only
     std::vector<std::unique_ptr<EmptyBay>> empty_bays_;     ///< a rack's built-in bays past the last stage
     std::vector<AptSession*> sessions_;
@@ -169,7 +166,8 @@ private:
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     StateStore* store_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
-    std::map<std::pair<std::size_t, std::uint16_t>, SavedSet> last_set_;   ///< (bay, SET id) -> the last accepted
+    /// (bay, SET id) -> the last accepted, as its module stores it (Module::saved_data).
+    std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;
 
     /// A fault of the control API acting on a bay.
     struct ActiveFault {

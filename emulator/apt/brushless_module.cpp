@@ -27,8 +27,7 @@ BrushlessModule::BrushlessModule(const UnitIdentity& unit, std::size_t bay, std:
 
 void BrushlessModule::handle(const msg::Message& m, Request& r)
 {
-    begin(r, m);
-    msg::visit([this](const auto& typed) { dispatch(*this, typed); }, m);
+    visit_as(*this, m, r);
 }
 
 void BrushlessModule::on(const msg::SetPmdPositionLoopParams& m)

@@ -7,7 +7,7 @@
 namespace rigsim::apt {
 
 RackMotherboard::RackMotherboard(const UnitIdentity& unit, std::size_t present_bays, spdlog::logger& log)
-    : unit_(unit), present_bays_(present_bays), log_(log)
+    : Module(unit, 0, kRack, log, nullptr), present_bays_(present_bays)
 {
 }
 
@@ -75,7 +75,7 @@ void RackMotherboard::on(const msg::RackReqDigOutputs& m)
 }
 
 EmptyBay::EmptyBay(const UnitIdentity& unit, std::size_t bay, bool answers_dc_status, spdlog::logger& log)
-    : unit_(unit), bay_(bay), answers_dc_status_(answers_dc_status), log_(log)
+    : Module(unit, bay, static_cast<std::uint8_t>(kBay0 + bay), log, nullptr), answers_dc_status_(answers_dc_status)
 {
 }
 
@@ -106,11 +106,6 @@ bool EmptyBay::channel1() const
 {
     const auto& f = request_->frame;
     return (f.has_data ? get_u16(f.data, 0) : f.param1) == 1;
-}
-
-void EmptyBay::on(const msg::HwReqInfo&)
-{
-    answer(hw_get_info(unit_, bay_));
 }
 
 void EmptyBay::on(const msg::ReqStatusBits&)

@@ -1,7 +1,8 @@
 #pragma once
-// Device-test harness for APT controllers: framer + handler + motor channels on a stepped
-// clock, bytes as hex. No sockets, no sleeps:
+// Device-test harness for APT controllers: framer + handler + modules on a stepped clock,
+// bytes as hex. No sockets, no sleeps:
 //   AptHarness h;  h.send("43 04 01 00 50 01");  h.advance_ms(2000);  h.take();
+// Several devices share the world and clock: h.add_device(config) == 1; h.send("...", 1).
 
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/apt/messages.hpp"
@@ -53,38 +54,55 @@ inline DeviceConfig tdc001()
     return apt_cube("TDC001", "MTS50-Z8");
 }
 
-/// Hex "05 00 00 00 50 01" -> bytes.
+/// Devices on one world and one stepped clock, each with one session; bytes as hex
+/// ("05 00 00 00 50 01"). Device 0 is the one the harness is built with; add_device() adds
+/// more (a strain gauge reader beside its piezo driver).
 class AptHarness {
 public:
     explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr, EventBus* events = nullptr)
-        : world_(clock_), device_(config, world_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), store, events),
-          session_(device_.open_session([this](std::string_view b) { out_.append(b); }, "test"))
     {
+        add_device(config, store, events);
     }
-    /// Hex in; hex of everything sent since the last call out.
-    std::string send(const std::string& hex_in)
+    /// Another device on the same world and clock; returns its index (1, 2, ...).
+    std::size_t add_device(const DeviceConfig& config, StateStore* store = nullptr, EventBus* events = nullptr)
     {
-        session_->receive(bytes(hex_in));
-        auto r = hex(out_);
-        out_.clear();
-        return r;
+        auto unit = std::make_unique<Unit>();
+        unit->device = std::make_unique<AptDevice>(
+            config, world_, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()),
+            store, events);
+        auto* out = &unit->out;
+        unit->session = unit->device->open_session([out](std::string_view b) { out->append(b); }, "test");
+        units_.push_back(std::move(unit));
+        return units_.size() - 1;
     }
-    std::string take()
+    /// Hex in to device `d`; hex of everything device `d` sent since the last call out.
+    std::string send(const std::string& hex_in, std::size_t d = 0)
     {
-        auto r = hex(out_);
-        out_.clear();
+        units_.at(d)->session->receive(bytes(hex_in));
+        return take(d);
+    }
+    /// Hex of everything device `d` sent since the last call.
+    std::string take(std::size_t d = 0)
+    {
+        auto r = hex(units_.at(d)->out);
+        units_[d]->out.clear();
         return r;
     }
     void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
-    AptDevice& device() { return device_; }
+    AptDevice& device(std::size_t d = 0) { return *units_.at(d)->device; }
+    std::size_t device_count() const { return units_.size(); }
     models::World& world() { return world_; }
 
 private:
+    /// A device, what it sent, and its session (destroyed before the device).
+    struct Unit {
+        std::unique_ptr<AptDevice> device;
+        std::string out;
+        std::unique_ptr<Session> session;
+    };
     Clock clock_;
-    models::World world_;
-    AptDevice device_;
-    std::string out_;
-    std::unique_ptr<Session> session_;
+    models::World world_{clock_};
+    std::vector<std::unique_ptr<Unit>> units_;
 };
 
 inline std::int32_t position_of(const std::string& reply_hex)

@@ -4,17 +4,29 @@
 //   # comment                 ignored, as are blank lines; cite the manual page here
 //   @ TDC001 MTS50-Z8         a freshly powered-up device: the model, then its stage, or for a
 //   @ BBD203 MLS203-X MLS203-Y  card-slot controller the stage of each bay from bay 0 (0x21) on.
-//                             Required before the first step; a later '@' starts a new device.
-//   > 11 04 01 00 50 01       bytes sent (hex, one byte per token)
+//   @ TDC001 {"serial_number":83000002}
+//                             or the model, then the device's "apt" object of the rig JSON inline
+//                             (docs/config.md; checked as the rig loader checks it).
+//                             Required before the first step; a later '@' starts a new world with a
+//                             new device (device 1, named "transcript").
+//   @+ TSG001 {"gauge":{...}}  one more device on the same world and clock (device 2, 3, ...;
+//                             named "transcript2", "transcript3", ...), in either form of '@'.
+//   > 11 04 01 00 50 01       bytes sent to device 1 (hex, one byte per token)
+//   >2 11 04 01 00 50 01      bytes sent to device 2 (the number right after '>', no space)
 //   ~ 100ms                   advance the clock (also "~ 3s")
-//   < 12 04 06 00 81 50 ...   bytes the device sent during the step above, in order. Consecutive
-//                             '<' lines concatenate; together they must equal, exactly, everything
-//                             sent since that step. A step with no '<' line asserts that nothing
-//                             was sent. A first token "49x" repeats the line's bytes 49 times.
-// A mismatch reports the file and line of the step, the expected and the actual hex.
+//   < 12 04 06 00 81 50 ...   bytes device 1 sent during the step above, in order; '<2' those of
+//                             device 2. Consecutive '<' ('<2') lines concatenate; together they must
+//                             equal, exactly, everything that device sent since that step. A step
+//                             with no '<N' line asserts that device N sent nothing. A first token
+//                             "49x" repeats the line's bytes 49 times.
+// A mismatch reports the file and line of the step, the device, the expected and the actual hex.
 #include "apt_harness.hpp"
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/config.hpp"
+#include "emulator/core/config_reader.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -31,19 +43,39 @@ using rigsim::test::AptHarness;
 
 namespace {
 
-/// A device line after '@': the model, then a stage (single unit) or one stage per bay (rack).
-rigsim::DeviceConfig device_from(const std::string& where, const std::string& spec)
+/// The "apt" object inline after the model: read as the rig loader reads a device's.
+void load_inline(const std::string& where, const std::string& text, rigsim::DeviceConfig& c)
+{
+    nlohmann::json device{{"name", c.name}, {"protocol", "apt"}, {"model", c.model}};
+    try {
+        device["apt"] = nlohmann::json::parse(text);
+        rigsim::apt::load_device_section(rigsim::ConfigReader(where), device, "", c);
+    } catch (const std::exception& e) {
+        FAIL(where << ": " << e.what());
+    }
+}
+
+/// A device line after '@' or '@+': the model, then a stage (single unit), one stage per bay
+/// (rack), or the "apt" object inline; `name` is the device's.
+rigsim::DeviceConfig device_from(const std::string& where, const std::string& spec, const std::string& name)
 {
     std::istringstream s(spec);
     rigsim::DeviceConfig c;
-    c.name = "transcript";
+    c.name = name;
     c.protocol = "apt";
     s >> c.model;
     const auto* model = rigsim::apt::find_controller(c.model);
     if (!model)
         FAIL(where << ": unknown APT model '" << c.model << "'");
+    std::string rest;
+    std::getline(s >> std::ws, rest);
+    if (!rest.empty() && rest[0] == '{') {
+        load_inline(where, rest, c);
+        return c;
+    }
+    std::istringstream stages_in(rest);
     std::vector<std::string> stages;
-    for (std::string stage; s >> stage;)
+    for (std::string stage; stages_in >> stage;)
         stages.push_back(stage);
     if (stages.empty())
         FAIL(where << ": '@ " << spec << "' names no stage");
@@ -55,6 +87,18 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
         rigsim::apt::config_of(c).stage = stages.front();
     }
     return c;
+}
+
+/// The device a '>' or '<' line names: "2 ..." after the kind is device 2 (index 1); else device 1.
+std::size_t device_of(const std::string& where, std::string& rest, std::size_t count)
+{
+    if (rest.empty() || !std::isdigit(static_cast<unsigned char>(rest[0])))
+        return 0;
+    const auto n = static_cast<std::size_t>(rest[0] - '0');
+    if (n < 1 || n > count)
+        FAIL(where << ": no device " << n << " (" << count << " on this world)");
+    rest.erase(0, 1);
+    return n - 1;
 }
 
 bool is_hex_byte(const std::string& t)
@@ -120,18 +164,20 @@ void replay(const std::string& name)
     REQUIRE(in);
     std::unique_ptr<AptHarness> harness;
     int steps = 0;
-    std::string line, actual, expected;
+    std::string line;
+    std::vector<std::string> actual, expected;   // per device, of the last step
     int number = 0, step_line = 0;
     bool in_step = false;
-    // Compare what the last step produced with the '<' lines that followed it.
+    // Compare what each device sent in the last step with the '<' lines that followed it.
     auto settle = [&] {
         if (!in_step)
             return;
-        INFO(name << ":" << step_line << ": expected: " << (expected.empty() ? "(nothing)" : expected));
-        INFO(name << ":" << step_line << ": actual:   " << (actual.empty() ? "(nothing)" : actual));
-        CHECK(actual == expected);
-        actual.clear();
-        expected.clear();
+        for (std::size_t d = 0; d < actual.size(); ++d) {
+            INFO(name << ":" << step_line << ": device " << d + 1);
+            INFO(name << ":" << step_line << ": expected: " << (expected[d].empty() ? "(nothing)" : expected[d]));
+            INFO(name << ":" << step_line << ": actual:   " << (actual[d].empty() ? "(nothing)" : actual[d]));
+            CHECK(actual[d] == expected[d]);
+        }
         in_step = false;
     };
     while (std::getline(in, line)) {
@@ -142,34 +188,45 @@ void replay(const std::string& name)
             continue;
         const std::string where = name + ":" + std::to_string(number);
         const char kind = line[0];
-        const std::string rest = line.size() > 1 ? line.substr(1) : "";
+        std::string rest = line.size() > 1 ? line.substr(1) : "";
         if (kind == '<') {
             if (!in_step)
                 FAIL(where << ": '<' with no step before it");
+            const auto d = device_of(where, rest, harness->device_count());
             const auto bytes = canonical_hex(where, rest, true);
-            if (!expected.empty() && !bytes.empty())
-                expected += ' ';
-            expected += bytes;
+            if (!expected[d].empty() && !bytes.empty())
+                expected[d] += ' ';
+            expected[d] += bytes;
             continue;
         }
         settle();
         if (kind == '@') {
-            harness = std::make_unique<AptHarness>(device_from(where, rest));
+            const bool more = !rest.empty() && rest[0] == '+';
+            if (more && !harness)
+                FAIL(where << ": '@+' with no '@' device before it");
+            if (more)
+                harness->add_device(device_from(where, rest.substr(1), "transcript" + std::to_string(harness->device_count() + 1)));
+            else
+                harness = std::make_unique<AptHarness>(device_from(where, rest, "transcript"));
             continue;
         }
         if (!harness)
             FAIL(where << ": no '@' device line before the first step");
+        actual.assign(harness->device_count(), "");
+        expected.assign(harness->device_count(), "");
         if (kind == '>') {
+            const auto d = device_of(where, rest, harness->device_count());
             const auto bytes = canonical_hex(where, rest, false);
             if (bytes.empty())
                 FAIL(where << ": '>' with no bytes");
-            actual = harness->send(bytes);
+            actual[d] = harness->send(bytes, d);
         } else if (kind == '~') {
             harness->advance_ms(advance_ms(where, rest));
-            actual = harness->take();
         } else {
             FAIL(where << ": unknown line kind '" << kind << "'");
         }
+        for (std::size_t d = 0; d < actual.size(); ++d)
+            actual[d] += harness->take(d);
         in_step = true;
         step_line = number;
         ++steps;
@@ -182,7 +239,7 @@ void replay(const std::string& name)
 const std::vector<std::string> kTranscripts = {
     "apt_system.txt", "apt_parameters.txt", "apt_moves.txt", "apt_homing.txt", "apt_limits.txt",
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
-    "apt_faults.txt", "apt_stages_scurve.txt",
+    "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
 };
 
 } // namespace
@@ -254,4 +311,9 @@ TEST_CASE("apt transcript: faults at an ignored end of travel", "[device][apt][t
 TEST_CASE("apt transcript: PRM1-Z8, DRV014, DDSM100 and S-curve moves", "[device][apt][transcript]")
 {
     replay("apt_stages_scurve.txt");
+}
+
+TEST_CASE("apt transcript: two TDC001 devices on one world, set up inline, the second addressed as device 2", "[device][apt][transcript]")
+{
+    replay("apt_two_devices.txt");
 }

@@ -1,0 +1,143 @@
+#include "emulator/apt/module.hpp"
+
+#include "emulator/apt/set_ranges.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace rigsim::apt {
+
+namespace {
+
+/// The only channel of a module: P_MOD_CHAN1.
+constexpr std::uint16_t kChan1 = 0x01;
+
+template <std::size_t N> std::array<char, N> padded(std::string_view s)
+{
+    std::array<char, N> a{};
+    s.substr(0, N).copy(a.data(), N);
+    return a;
+}
+
+/// Channel addressing: header-only messages carry it in param1, others as the first word.
+std::uint16_t sent_channel(const Frame& f)
+{
+    return f.has_data ? get_u16(f.data, 0) : f.param1;
+}
+
+} // namespace
+
+msg::HwGetInfo hw_get_info(const UnitIdentity& unit, std::optional<std::size_t> bay)
+{
+    // p. 21. In a rack, the motherboard (type 45) reports its bays; each bay's card (type 44
+    // for a brushless card) reports one channel and a serial with the card prefix.
+    const auto& model = unit.model;
+    const bool card = model.rack && bay;
+    msg::HwGetInfo info;
+    info.serial_number =
+        card ? model.bay_serial_prefix * 1'000'000 + (unit.serial % 1'000'000) * 10 % 1'000'000
+                   + static_cast<std::uint32_t>(*bay)
+             : unit.serial;
+    info.model_number = padded<8>(unit.model_name);
+    info.type = card ? model.bay_hw_type : model.hw_type;
+    info.firmware_version = {'\x03', '\x00', '\x01', '\x00'};   // firmware 1.0.3
+    info.notes = padded<64>(model.notes);
+    info.nchs = static_cast<std::uint16_t>(model.rack && !bay ? unit.built_in_bays : 1);
+    return info;
+}
+
+Module::Module(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, spdlog::logger& log,
+               SaveToEeprom save)
+    : unit_(unit), bay_(bay), address_(address), log_(log), save_to_eeprom_(std::move(save))
+{
+}
+
+Refused Module::patch(const nlohmann::json&)
+{
+    return Refusal{400, "the channels of a " + unit_.model_name + " take no PATCH keys"};
+}
+
+void Module::ignore(const std::string& text)
+{
+    request_->ignored = true;
+    const auto prefix = std::string(request_->peer) + ": ";
+    request_->why = text.compare(0, prefix.size(), prefix) == 0 ? text.substr(prefix.size()) : text;
+    log_.warn("{}", text);
+}
+
+void Module::not_mine()
+{
+    ignore(fmt::format("{}: {} is not a message a {} acts on: ignored", request_->peer, request_->frame.info->name,
+                       unit_.model_name));
+}
+
+bool Module::taken()
+{
+    const auto& takes = unit_.model.takes;
+    if (takes.empty() || takes.contains(request_->frame.id))
+        return true;
+    not_mine();
+    return false;
+}
+
+std::uint16_t Module::channel() const
+{
+    const auto sent = sent_channel(request_->frame);
+    // The manual says the channel must be 1, but T-Cube and K-Cube firmware takes channel 0
+    // as its one channel too (public drivers send 0 and work); rack bays keep the manual's rule.
+    return !unit_.model.rack && sent == 0 ? kChan1 : sent;
+}
+
+void Module::wrong_channel()
+{
+    ignore(fmt::format("{}: {} for channel {}: a module has only channel 1, ignored", request_->peer,
+                       request_->frame.info->name, sent_channel(request_->frame)));
+}
+
+bool Module::channel_ok()
+{
+    if (channel() == kChan1)
+        return true;
+    wrong_channel();
+    return false;
+}
+
+bool Module::in_range()
+{
+    const auto bad = out_of_range(*message_);
+    if (bad)
+        ignore(fmt::format("{}: {} with {}: ignored", request_->peer, request_->frame.info->name, *bad));
+    return !bad;
+}
+
+// ---- Bay family ----
+
+void Module::on(const msg::ModSetChanEnableState& m)
+{
+    if (channel() == kChan1 && (m.enable_state == 1 || m.enable_state == 2))
+        return set_enabled(m.enable_state == 1);
+    wrong_channel();
+}
+
+void Module::on(const msg::ModReqChanEnableState&)
+{
+    if (!channel_ok())
+        return;
+    answer(msg::ModGetChanEnableState{kChan1, static_cast<std::uint8_t>(enabled() ? 1 : 2)});
+}
+
+void Module::on(const msg::HwReqInfo&)
+{
+    answer(hw_get_info(unit_, unit_.model.rack ? std::optional<std::size_t>(bay_) : std::nullopt));
+}
+
+void Module::on(const msg::HubReqBayUsed&)
+{
+    if (unit_.model.rack) {   // a hub question for a rack bay
+        if (channel_ok())
+            not_mine();
+        return;
+    }
+    answer(msg::HubGetBayUsed{0xFF});   // p. 24: -0x01 (0xFF) means a standalone T-/K-Cube, off any hub
+}
+
+} // namespace rigsim::apt

@@ -1,0 +1,221 @@
+#pragma once
+// The module of one channel of an APT unit: a T-/K-Cube's only channel or a rack bay's card,
+// of any kind (motor, solenoid, piezo, strain gauge: ControllerModel::kind). What every kind
+// shares is here: its address and identity, the addressing and range checks of a message, the
+// Bay family's handlers, and the typed dispatch. A kind derives from Module, gives one on()
+// per message of the families it acts on (`static constexpr bool handles(msg::Family)`) and
+// visits each message through dispatch(): a message of a family it acts on without its on()
+// does not compile. A message of another family, or one outside the model's MessageSet
+// (`takes`, the manual's cross-reference column), is ignored and logged as a real unit without
+// such a module does.
+//
+// The unit shell (AptDevice) handles the System family before a module sees a message, sends
+// each module's status update every 100 ms, runs its tick(), and keeps what the EEPROMPARAMS
+// messages save: every SET a module does not mark ignored and says it saves (saved_data()).
+
+#include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/codec.hpp"
+#include "emulator/core/control_surface.hpp"
+#include "models/clock.hpp"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace spdlog {
+class logger;
+}
+
+namespace rigsim::apt {
+
+/// One message being handled: where it came from and where the answer goes.
+struct Request {
+    const Frame& frame;
+    std::string_view peer;
+    std::string& reply;
+    std::uint8_t host;       ///< where answers go (the requester's source)
+    bool ignored = false;    ///< the module ignored it (a SET: EEPROMPARAMS must not save it)
+    std::string why{};       ///< why it was ignored (the warning without the peer)
+};
+
+/// What every module knows of the unit it sits in.
+struct UnitIdentity {
+    std::string model_name;        ///< as configured ("TDC001"), for HW_GET_INFO and logs
+    const ControllerModel& model;
+    std::uint32_t serial;
+    std::size_t built_in_bays;     ///< a rack's bays with a card (its motherboard's channel count)
+};
+
+/// HW_GET_INFO (p. 21) of a unit or motherboard (no bay) or of a rack bay's card.
+msg::HwGetInfo hw_get_info(const UnitIdentity& unit, std::optional<std::size_t> bay);
+
+/// The SET messages a module kind's EEPROMPARAMS message saves, as the shell stores them: the
+/// data packet for the module's channel 1 (a header-only SET: its param1 and param2 bytes).
+template <class... Sets> struct SavedSets {
+    /// Whether `id` is one of Sets.
+    static bool saves(std::uint16_t id) { return ((id == Sets::id) || ...); }
+    /// The stored form of `m` if it is one of Sets, else nullopt.
+    static std::optional<std::string> data(const msg::Message& m);
+};
+
+/// What every module kind shares: addressing checks, the Bay family's handlers, the typed
+/// dispatch, and the hooks the unit shell calls.
+class Module {
+public:
+    /// EEPROMPARAMS (MOT_ p. 60, PZ_ p. 113): ask the unit shell to save the last SET of message `id`.
+    using SaveToEeprom = std::function<void(std::uint16_t id, std::string_view peer)>;
+
+    Module(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, spdlog::logger& log, SaveToEeprom save);
+    virtual ~Module() = default;
+    Module(const Module&) = delete;
+    Module& operator=(const Module&) = delete;
+
+    // ---- What a kind gives the unit shell ----
+    /// Act on a message addressed to this module (not a System one: the shell took those).
+    virtual void handle(const msg::Message& m, Request& r) = 0;
+    /// The status update sent every 100 ms after HW_START_UPDATEMSGS; empty: this kind sends none.
+    virtual std::string status_update(std::uint8_t /*host*/) const { return {}; }
+    /// The earliest tick (> now) at which tick() has work, or kNever (a motor's channel is the
+    /// shell's own Tickable: a motor module has none).
+    virtual Ticks next_change(Ticks /*now*/) const { return kNever; }
+    /// Bring the module's own timed state (a solenoid's cycles, a piezo's slew and LUT) up to `now`.
+    virtual void tick(Ticks /*now*/) {}
+    /// Frames the module sent by itself since the last call, to every connection (from `host`'s view:
+    /// addressed to it).
+    virtual std::vector<std::string> take_unprompted(std::uint8_t /*host*/) { return {}; }
+    /// Power cycle: the hardware behind the module (a motor channel, an amplifier's output) back
+    /// to its power-up state, and with `restore_positions` the mechanics to where they started.
+    /// The shell then replaces the module by a new one (protocol state at power-up).
+    virtual void power_down(bool /*restore_positions*/) {}
+    /// Whether this kind's EEPROMPARAMS saves SET message `id`.
+    virtual bool saves(std::uint16_t id) const = 0;
+    /// The stored form of `m` (SavedSets) if it is a SET this kind saves, else nullopt.
+    virtual std::optional<std::string> saved_data(const msg::Message& m) const = 0;
+    /// The kind's fields of its channel object in the control API (docs/control-api/apt.md
+    /// "Channels"). A motor channel's object is the shell's (its faults and switch PATCHes act
+    /// on the MotorChannel): a motor module adds nothing.
+    virtual void describe(nlohmann::json& /*out*/) const {}
+    /// PATCH of the channel: the kind's keys. Motor channels are patched by the shell.
+    virtual Refused patch(const nlohmann::json& body);
+
+    std::uint8_t address() const { return address_; }
+    std::size_t bay() const { return bay_; }
+    /// MOD_SET/REQ_CHANENABLESTATE's state: a motor's channel, else the module's own flag.
+    virtual bool enabled() const { return enabled_; }
+    virtual void set_enabled(bool on) { enabled_ = on; }
+
+    // ---- Bay family (every kind) ----
+    /// MGMSG_MOD_SET_CHANENABLESTATE (p. 17).
+    void on(const msg::ModSetChanEnableState& m);
+    /// MGMSG_MOD_REQ_CHANENABLESTATE (p. 17): answers MGMSG_MOD_GET_CHANENABLESTATE.
+    void on(const msg::ModReqChanEnableState& m);
+    /// MGMSG_HW_REQ_INFO (p. 21): answers MGMSG_HW_GET_INFO.
+    void on(const msg::HwReqInfo& m);
+    /// MGMSG_HUB_REQ_BAYUSED (p. 24): a cube answers it stands alone; a rack bay ignores it.
+    void on(const msg::HubReqBayUsed& m);
+
+protected:
+    /// handle() of a kind `Self`: `m` through dispatch() as Self.
+    template <class Self> void visit_as(Self& self, const msg::Message& m, Request& r);
+    /// The visit of a module kind `Self`: System messages were the shell's; Bay messages go to
+    /// their handler; the others must be in the model's MessageSet (if it has one), address
+    /// channel 1 and have their SET fields in range, then go to Self's handler if Self acts on
+    /// their family, else are ignored and logged.
+    template <class Self, class T> void dispatch(Self& self, const T& m);
+
+    /// Log warning `text` and mark the message ignored (a SET is then not saved by EEPROMPARAMS).
+    void ignore(const std::string& text);
+    /// "<name> is not a message a <model> acts on: ignored".
+    void not_mine();
+    /// The message is in the model's MessageSet, or the model has none; else logged and ignored.
+    bool taken();
+    /// The channel the message addresses (a cube's channel 0 read as 1).
+    std::uint16_t channel() const;
+    /// Log and ignore a message for another channel than 1.
+    void wrong_channel();
+    /// The channel the message addresses is this module's; else logged and ignored.
+    bool channel_ok();
+    /// Every field of the SET being handled is within the manual's range; else logged and ignored.
+    bool in_range();
+    /// Reply with message `m` from this module.
+    template <class T> void answer(const T& m);
+
+    const UnitIdentity& unit_;
+    std::size_t bay_;
+    std::uint8_t address_;
+    spdlog::logger& log_;
+    SaveToEeprom save_to_eeprom_;
+    Request* request_ = nullptr;           ///< the message being handled
+    const msg::Message* message_ = nullptr;
+
+private:
+    bool enabled_ = true;
+};
+
+// ---- templates ----
+
+namespace module_detail {
+/// Whether SET T's parameter block starts with a channel word (TPZ_DISPSETTINGS has none, p. 114).
+template <class T, class = void> struct HasChannelWord : std::false_type {};
+template <class T>
+struct HasChannelWord<T, std::void_t<decltype(std::declval<T&>().params.chan_ident)>> : std::true_type {};
+} // namespace module_detail
+
+template <class... Sets> std::optional<std::string> SavedSets<Sets...>::data(const msg::Message& m)
+{
+    return msg::visit(
+        [](const auto& typed) -> std::optional<std::string> {
+            using T = std::decay_t<decltype(typed)>;
+            if constexpr (!(std::is_same_v<T, Sets> || ...)) {
+                return std::nullopt;
+            } else if constexpr (T::header_only) {
+                // The channel in param1, the setting in param2 (the SOL_ and PZ_ mode SETs, p. 85-94).
+                const auto frame = msg::encode(typed, 0, 0);
+                return std::string{static_cast<char>(1), frame[3]};
+            } else {
+                // Saved as the parameters of the module's channel, whatever channel word the SET carried.
+                T saved = typed;
+                if constexpr (module_detail::HasChannelWord<T>::value)
+                    saved.params.chan_ident = 1;
+                return msg::encode_data(saved);
+            }
+        },
+        m);
+}
+
+template <class T> void Module::answer(const T& m)
+{
+    request_->reply += msg::encode(m, request_->host, address_);
+}
+
+template <class Self> void Module::visit_as(Self& self, const msg::Message& m, Request& r)
+{
+    request_ = &r;
+    message_ = &m;
+    msg::visit([this, &self](const auto& typed) { dispatch(self, typed); }, m);
+}
+
+template <class Self, class T> void Module::dispatch(Self& self, const T& m)
+{
+    constexpr msg::Family family = T::family;
+    if constexpr (family == msg::Family::System) {
+        return;   // the unit shell acted on it before
+    } else if constexpr (family == msg::Family::Bay) {
+        self.on(m);
+    } else {
+        if (!taken() || !channel_ok() || !in_range())
+            return;
+        if constexpr (Self::handles(family))
+            self.on(m);
+        else
+            not_mine();
+    }
+}
+
+} // namespace rigsim::apt
