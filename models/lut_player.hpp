@@ -20,9 +20,12 @@
 // - Rests are in base sample intervals, not in D-stretched ones ("independently of the
 //   DelayTime parameter", p.110). A cycle lasts Pre + L·D + Post intervals, L = CycleLength.
 // - OUTPUTLUT_FIXED outputs NumCycles cycles; OUTPUTLUT_CONTINUOUS runs until stop() (p.108).
-// - After the last cycle or a stop, the output holds the last value output ("remain at the
-//   last position", p.110): LUT[L-1] at the end of a fixed run, the sample of the stop instant
-//   after a stop.
+// - After the last cycle or a stop, the output holds the last value output: LUT[L-1] at the
+//   end of a fixed run, the sample of the stop instant after a stop. The manual does not say
+//   what follows the last cycle; this is its "remain at the last position" of the post-rest
+//   (p.110) carried on, as a DAC holds its last code (plan §3).
+// - CycleLength may be the whole table (8000 BPC, 513 TPZ: p.106 "a maximum of 8000 samples"):
+//   p.109's "0 to 7999 ... 0 to 512" is the index range of PZ_SET_OUTPUTLUT repeated.
 // Sub-tick intervals are exact: at tick t, floor(elapsed_µs / b) intervals have passed, and the
 // value is the sample the schedule gives at that instant (a 1 kHz tick sees every fourth sample
 // of a 0.25 ms schedule). The parameters and the table are copied at start(): a SET during a
