@@ -36,12 +36,15 @@ public:
 
     /// PropConst and IntConst, each clamped to 0..255 (the protocol layer refuses the rest).
     void set_gains(int prop, int integral);
+    /// PropConst as set (0..255).
     int prop() const { return prop_; }
+    /// IntConst as set (0..255).
     int integral() const { return integral_; }
     /// Proportional gain (output fraction per travel fraction).
     double kp() const { return prop_ / 255.0; }
     /// Integral gain (per second).
     double ki_per_s() const { return 4.0 * integral_; }
+    /// Filter steps per second.
     std::uint32_t loop_rate_hz() const { return loop_rate_hz_; }
 
     /// One filter step of `dt_s`: the new output (0..1 of the maximum voltage).

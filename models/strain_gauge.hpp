@@ -42,6 +42,7 @@ public:
     void link(World& world) override;
     /// The linked actuator, or nullptr before link().
     const PiezoActuator* actuator() const { return actuator_; }
+    /// The configuration (with the noise last set).
     const StrainGaugeConfig& config() const { return config_; }
 
     /// Index of the sample held at tick `now`.
@@ -52,8 +53,11 @@ public:
     double smoothed_um(Ticks now) const;
     /// Zero reference := the smoothed reading at `now` (so zeroing averages the noise out).
     void zero(Ticks now);
+    /// The extension that reads 0 (0 until zero()).
     double zero_offset_um() const { return offset_um_; }
+    /// Sigma of the noise from now on, for every sample read (std::invalid_argument if < 0).
     void set_noise_um(double sigma_um);
+    /// Sigma of the noise of one sample (µm).
     double noise_um() const { return config_.noise_um; }
 
     Ticks next_event(Ticks now) const override;
