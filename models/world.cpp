@@ -49,6 +49,12 @@ std::vector<std::string> World::keys() const
     return k;
 }
 
+void World::link_all()
+{
+    for (auto& [key, body] : bodies_)
+        body->link(*this);
+}
+
 void World::reschedule(Body& body)
 {
     ++body.generation_;

@@ -33,6 +33,10 @@ public:
     virtual Ticks next_event(Ticks now) const = 0;
     /// Handle what is due at `now` (an end of move, a limit met, ...).
     virtual void on_event(Ticks now) = 0;
+    /// Resolve the keys of other bodies this one reads (World::link_all(), once every body
+    /// exists, so a body may be added before the one it reads). std::invalid_argument for a
+    /// missing or unfit body.
+    virtual void link(World& world) { (void)world; }
 
     const std::string& key() const { return key_; }
 
@@ -78,6 +82,8 @@ public:
     /// Every key, sorted.
     std::vector<std::string> keys() const;
     std::size_t size() const { return bodies_.size(); }
+    /// Body::link() of every body, in key order (the rig calls it once all devices exist).
+    void link_all();
 
     /// Re-read `body`'s next_event() (Body::reschedule() calls this).
     void reschedule(Body& body);

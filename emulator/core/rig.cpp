@@ -124,6 +124,9 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
                   e->pty->device_path());
         entries_.push_back(std::move(e));
     }
+    // Bodies that read other bodies (a strain gauge on a piezo) find them once all exist, so
+    // the JSON may list a gauge before its piezo.
+    world_.link_all();
 }
 
 Rig::~Rig()

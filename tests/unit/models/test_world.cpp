@@ -89,3 +89,43 @@ TEST_CASE("world: keys are unique, non-empty and found again", "[unit][models][w
     CHECK(a.key() == "mcs/0");
     CHECK(world.keys() == std::vector<std::string>{"mcs/0"});
 }
+
+namespace {
+
+/// A body that reads another body of the world, found by key in link().
+class Reader : public Alarm {
+public:
+    explicit Reader(std::string source) : Alarm({}), source_(std::move(source)) {}
+    void link(World& world) override
+    {
+        ++links;
+        found = world.find_as<Alarm>(source_);
+        if (!found)
+            throw std::invalid_argument("no alarm \"" + source_ + "\"");
+    }
+    Alarm* found = nullptr;
+    int links = 0;
+
+private:
+    std::string source_;
+};
+
+} // namespace
+
+TEST_CASE("world: link_all lets every body find the bodies it reads, whatever their order",
+          "[unit][models][world]")
+{
+    Clock clock;
+    World world(clock);
+    auto& reader = world.emplace<Reader>("a/reader", "z/source");   // before its source
+    auto& plain = world.emplace<Alarm>("m/plain", std::vector<Ticks>{});
+    auto& source = world.emplace<Alarm>("z/source", std::vector<Ticks>{});
+    CHECK(reader.found == nullptr);
+    world.link_all();
+    CHECK(reader.found == &source);
+    CHECK(reader.links == 1);
+    CHECK(plain.woken.empty());   // Body::link() does nothing by default
+
+    world.emplace<Reader>("b/reader", "nowhere");
+    CHECK_THROWS_WITH(world.link_all(), "no alarm \"nowhere\"");
+}
