@@ -86,14 +86,12 @@ struct Rig::Entry {
 };
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
-    : clock_(config.tick_hz), world_(clock_), ticker_(io, clock_, options.time_scale),
+    : clock_(config.tick_hz), world_(clock_), ticker_(io, clock_, options.time_scale, options.paused ? Ticker::Start::Paused : Ticker::Start::Running),
       store_(options.state_file.empty()
                  ? std::make_unique<StateStore>()
                  : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
       watcher_(io)
 {
-    if (options.paused)
-        ticker_.pause();
     tcp_budget_.max_total = options.max_connections;
     tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {

@@ -6,10 +6,10 @@
 
 namespace rigsim {
 
-Ticker::Ticker(boost::asio::io_context& io, Clock& clock, double time_scale,
+Ticker::Ticker(boost::asio::io_context& io, Clock& clock, double time_scale, Start start,
                SteadyClock::duration min_period)
     : clock_(clock), time_scale_(time_scale), min_period_(min_period),
-      start_(SteadyClock::now()), timer_(io), last_fire_(start_)
+      start_(SteadyClock::now()), paused_(start == Start::Paused), timer_(io), last_fire_(start_)
 {
 }
 

@@ -19,8 +19,12 @@ namespace rigsim {
 
 class Ticker {
 public:
+    enum class Start { Running, Paused };
     /// `min_period` bounds the wake-up rate when the clock is scaled beyond 1 tick per period.
-    Ticker(boost::asio::io_context& io, Clock& clock, double time_scale,
+    /// A ticker that starts Paused lets no wall time pass into the clock before resume(): a
+    /// daemon started with --paused, or a test, sits at the clock's tick until it is stepped
+    /// (pausing after construction would count the time spent in between).
+    Ticker(boost::asio::io_context& io, Clock& clock, double time_scale, Start start = Start::Running,
            std::chrono::steady_clock::duration min_period = std::chrono::milliseconds(1));
 
     /// Advance the clock to the tick that is due at the current wall time.

@@ -26,12 +26,12 @@ public:
     Ticks last = 0;
 };
 
-/// A clock at 1 kHz, its ticker (paused unless a test resumes it), one motion and two devices.
+/// A clock at 1 kHz, its ticker (started paused: tick 0 until a test steps or resumes it), one
+/// motion and two devices.
 struct Fixture {
     Fixture()
     {
         clock.add(&motion);
-        ticker.pause();
     }
     ~Fixture() { clock.remove(&motion); }
 
@@ -57,7 +57,7 @@ struct Fixture {
     boost::asio::io_context io;
     Clock clock{1000};
     Motion motion;
-    Ticker ticker{io, clock, 1.0};
+    Ticker ticker{io, clock, 1.0, Ticker::Start::Paused};
     ControlApi api{clock, ticker, [this] { return clock.next_wakeup() != kNever; },
                    {DeviceEndpoints{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/rigsim/mcs0"},
                     DeviceEndpoints{"tdc0", "apt", "TDC001", "127.0.0.1:40101", "/tmp/rigsim/tdc0"}}};

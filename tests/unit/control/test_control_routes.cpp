@@ -77,8 +77,6 @@ public:
 };
 
 struct Fixture {
-    Fixture() { ticker.pause(); }
-
     std::pair<unsigned, json> call(const std::string& method, const std::string& target, const std::string& body = {})
     {
         const auto reply = api.handle(method, target, body);
@@ -98,7 +96,7 @@ struct Fixture {
 
     boost::asio::io_context io;
     Clock clock{1000};
-    Ticker ticker{io, clock, 1.0};
+    Ticker ticker{io, clock, 1.0, Ticker::Start::Paused};
     EventBus bus;
     FakeSurface surface{clock, &bus};
     NullDevice null_device;

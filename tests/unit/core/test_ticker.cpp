@@ -120,6 +120,23 @@ TEST_CASE("ticker: nothing due, nothing armed: an idle rig costs no wake-ups", "
     CHECK(idle.ran.empty());
 }
 
+TEST_CASE("ticker: started paused, no wall time passes into the clock before resume", "[unit][ticker]")
+{
+    // Pausing after construction counted the time in between as ticks: a daemon started with
+    // --paused, or a test fixture under load, did not start at tick 0.
+    boost::asio::io_context io;
+    Clock clock(1000);
+    Ticker ticker(io, clock, 1.0, Ticker::Start::Paused);
+    CHECK(ticker.paused());
+    std::this_thread::sleep_for(20ms);
+    ticker.pause();
+    ticker.sync();
+    CHECK(clock.now() == 0);
+    ticker.resume();
+    CHECK_FALSE(ticker.paused());
+    CHECK(clock.now() == 0);   // resume anchors the wall time at the paused tick
+}
+
 TEST_CASE("ticker: sync() brings the clock to the tick due at the wall time of the call", "[unit][ticker]")
 {
     const double time_scale = GENERATE(1.0, 10.0, 1000.0);
@@ -284,7 +301,7 @@ TEST_CASE("ticker: scaled beyond one tick per min_period, it wakes at most once 
     clock.add(&every);
 
     const auto t0 = SteadyClock::now();
-    Ticker ticker(io, clock, kTimeScale, kMinPeriod);
+    Ticker ticker(io, clock, kTimeScale, Ticker::Start::Running, kMinPeriod);
     ticker.reschedule();
     const auto wakeups = io.run_for(50ms);
     const auto t_end = SteadyClock::now();
