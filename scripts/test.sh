@@ -2,7 +2,8 @@
 # Build and run the whole test suite (installing Debian packages if missing):
 #  1. Release build, warnings as errors: unit, device and e2e tests.
 #  2. AddressSanitizer + UndefinedBehaviorSanitizer build: unit, device and e2e tests (the
-#     e2e tests start the sanitized daemon, so a memory error in it fails the test).
+#     e2e tests start the sanitized daemon, so a memory error in it fails the test; the e2e
+#     client and Catch2's runner are built plain, see tests/CMakeLists.txt).
 # CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
