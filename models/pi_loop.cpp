@@ -34,7 +34,10 @@ double PiLoop::run(double setpoint_frac, double measured_frac, Ticks elapsed, st
         return output_;
     // Integer bookkeeping: `phase_` counts loop periods times tick_hz, so a 4 kHz loop on a 1 kHz
     // clock takes exactly 4 steps a tick and a 1 kHz loop on a 3 kHz clock one every 3 ticks.
-    phase_ += static_cast<std::uint64_t>(elapsed) * loop_rate_hz_;
+    // Over a span longer than kMaxSpanS (a module that slept) the held measurement has long
+    // settled the filter: only the last kMaxSpanS of steps are taken, so one call stays bounded.
+    const auto max_elapsed = static_cast<Ticks>(kMaxSpanS * tick_hz);
+    phase_ += static_cast<std::uint64_t>(std::min(elapsed, max_elapsed)) * loop_rate_hz_;
     const std::uint64_t steps = phase_ / tick_hz;
     phase_ %= tick_hz;
     const double dt_s = 1.0 / loop_rate_hz_;
@@ -48,6 +51,14 @@ void PiLoop::reset(double output_frac)
     output_ = std::clamp(output_frac, 0.0, 1.0);
     integrator_ = output_;
     phase_ = 0;
+}
+
+void PiLoop::reset(double output_frac, double setpoint_frac, double measured_frac)
+{
+    reset(output_frac);
+    // The proportional term of the first step is already in the output: the integrator
+    // takes the rest, so that step starts where the output is.
+    integrator_ = std::clamp(output_ - kp() * (setpoint_frac - measured_frac), 0.0, 1.0);
 }
 
 } // namespace rigsim::models

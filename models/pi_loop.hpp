@@ -54,6 +54,11 @@ public:
     double run(double setpoint_frac, double measured_frac, Ticks elapsed, std::uint32_t tick_hz);
     /// Bumpless restart: the output (and the integrator) becomes `output_frac` (clamped to 0..1).
     void reset(double output_frac);
+    /// Bumpless with an error: the first step after it (same set point and measurement)
+    /// outputs `output_frac` (as far as the integrator's 0..1 range allows).
+    void reset(double output_frac, double setpoint_frac, double measured_frac);
+    /// The longest span run() steps through in one call (s).
+    static constexpr double kMaxSpanS = 1.0;
     /// The output of the last step (0..1).
     double output() const { return output_; }
 

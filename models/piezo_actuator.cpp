@@ -26,8 +26,15 @@ PiezoActuator::PiezoActuator(const Clock& clock, const PiezoActuatorConfig& conf
     require(config.hysteresis >= 0 && config.hysteresis <= 0.5, "hysteresis must be in 0..0.5");
     require(config.creep >= 0 && config.creep <= 0.5, "creep must be in 0..0.5");
     require(config.creep_t0_ms > 0, "creep_t0_ms must be > 0");
-    for (int i = 0; i < kPlays; ++i)
-        threshold_v_[i] = (i + 0.5) / kPlays * config.hysteresis * config.max_voltage_v;
+    // h' = h / (1 + h): after the normalisation of hysteretic_um() the loop is h * travel wide.
+    const double h_v = config.hysteresis / (1 + config.hysteresis) * config.max_voltage_v;
+    double sum_v = 0;
+    for (int i = 0; i < kPlays; ++i) {
+        threshold_v_[i] = (i + 0.5) / kPlays * h_v;
+        state_.play_v[i] = threshold_v_[i];   // at 0 V, where the loop's branches meet
+        sum_v += threshold_v_[i];
+    }
+    mean_threshold_v_ = sum_v / kPlays;
     for (int k = 0; k < kCreepElements; ++k)
         creep_tau_s_[k] = config.creep_t0_ms * 1e-3 * std::pow(10.0, k);
 }
@@ -56,7 +63,7 @@ double PiezoActuator::hysteretic_um(const State& s) const
     double sum_v = 0;
     for (double y : s.play_v)
         sum_v += y;
-    return config_.travel_um / config_.max_voltage_v * (sum_v / kPlays);
+    return config_.travel_um * (sum_v / kPlays - mean_threshold_v_) / (config_.max_voltage_v - 2 * mean_threshold_v_);
 }
 
 double PiezoActuator::extension_of(const State& s) const

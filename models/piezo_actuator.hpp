@@ -9,16 +9,18 @@
 //                                               exact for any dt while v is constant, so ticks
 //                                               and reads agree and a skipped tick changes nothing
 //   y_i  = max(u - r_i, min(u + r_i, y_i))      Prandtl-Ishlinskii hysteresis: 8 play operators of
-//                                               thresholds r_i = (i + 1/2)/8 * h * Vmax, equal weights;
-//                                               a play output depends only on u's path, and u
-//                                               between two steps is monotone, so dt does not
-//                                               change it either
-//   x_h  = travel/Vmax * mean(y_i)              travel proportional to voltage; the loop of a full
-//                                               0..Vmax..0 cycle is h * travel wide at mid-range
-//                                               (exact while r_7 <= Vmax/4, i.e. h <= 0.26; the
-//                                               widest plays saturate above). Its branches sit
-//                                               h/2 * travel below (rising) and above (falling) v:
-//                                               after a cycle, 0 V leaves a remanent h/2 * travel
+//                                               thresholds r_i = (i + 1/2)/8 * h' * Vmax, equal
+//                                               weights, h' = h / (1 + h); a play output depends
+//                                               only on u's path, and u between two steps is
+//                                               monotone, so dt does not change it either. At
+//                                               power-up y_i = r_i: the state at 0 V after a cycle
+//   x_h  = travel * (mean(y_i) - m) / (Vmax - 2m)  m = mean(r_i): both branches of the loop meet
+//                                               at 0 V (x_h = 0) and at Vmax (x_h = travel), so
+//                                               the actuator reaches its travel at its rating; in
+//                                               between the rising branch sits below and the
+//                                               falling branch above the line, h * travel apart
+//                                               at mid-range (exact while r_7 <= Vmax/4, i.e.
+//                                               h <= 0.36; the config allows 0..0.3)
 //   c_k += (g * x_h - c_k)(1 - e^{-dt/tau_k})   creep: 4 Kelvin-Voigt elements, tau_k = t0 * 10^k
 //                                               (t0 = 100 ms: 0.1, 1, 10, 100 s), so a step of x_h
 //   x    = x_h + sum(c_k)                       creeps g * step per decade of time from t0 to 100 t0
@@ -43,7 +45,7 @@
 namespace rigsim::models {
 
 struct PiezoActuatorConfig {
-    double travel_um = 20;        ///< extension at max_voltage_v (without hysteresis and creep)
+    double travel_um = 20;        ///< extension at max_voltage_v (without creep)
     double max_voltage_v = 75;    ///< the actuator's rating (75, 100 or 150 V)
     double response_ms = 1.0;     ///< first-order time constant tau
     double hysteresis = 0.05;     ///< major-loop width / travel (0..0.3)
@@ -100,6 +102,7 @@ private:
     double tolerance_um_;
     double voltage_v_ = 0;
     State state_;
+    double mean_threshold_v_ = 0;   ///< m of the hysteresis normalisation
     Ticks state_tick_ = 0;   ///< the tick state_ describes
     std::vector<Listener> listeners_;
 };

@@ -4,6 +4,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cassert>
+
 namespace rigsim::apt {
 
 namespace {
@@ -58,6 +60,7 @@ Refused Module::patch(const nlohmann::json&)
 
 void Module::ignore(const std::string& text)
 {
+    assert(request_ != nullptr && "a module answers or ignores only while it handles a message");
     request_->ignored = true;
     const auto prefix = std::string(request_->peer) + ": ";
     request_->why = text.compare(0, prefix.size(), prefix) == 0 ? text.substr(prefix.size()) : text;

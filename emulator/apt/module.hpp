@@ -20,6 +20,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <cassert>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -165,6 +166,9 @@ namespace module_detail {
 template <class T, class = void> struct HasChannelWord : std::false_type {};
 template <class T>
 struct HasChannelWord<T, std::void_t<decltype(std::declval<T&>().params.chan_ident)>> : std::true_type {};
+/// Whether T is a data-packet SET/REQ/GET (its fields in `params`).
+template <class T, class = void> struct HasParams : std::false_type {};
+template <class T> struct HasParams<T, std::void_t<decltype(std::declval<T&>().params)>> : std::true_type {};
 } // namespace module_detail
 
 template <class... Sets> std::optional<std::string> SavedSets<Sets...>::data(const msg::Message& m)
@@ -191,11 +195,17 @@ template <class... Sets> std::optional<std::string> SavedSets<Sets...>::data(con
 
 template <class T> void Module::answer(const T& m)
 {
+    assert(request_ != nullptr && "a module answers or ignores only while it handles a message");
     request_->reply += msg::encode(m, request_->host, address_);
 }
 
 template <class Self> void Module::visit_as(Self& self, const msg::Message& m, Request& r)
 {
+    // The request lives for this call only: ticks, PATCHes and power-downs run without one.
+    struct Clear {
+        Module& module;
+        ~Clear() { module.request_ = nullptr; module.message_ = nullptr; }
+    } clear{*this};
     request_ = &r;
     message_ = &m;
     msg::visit([this, &self](const auto& typed) { dispatch(self, typed); }, m);
@@ -209,7 +219,9 @@ template <class Self, class T> void Module::dispatch(Self& self, const T& m)
     } else if constexpr (family == msg::Family::Bay) {
         self.on(m);
     } else {
-        if (!taken() || !channel_ok() || !in_range())
+        // A data packet without a channel word (TPZ_DISPSETTINGS, p. 114) addresses the unit.
+        constexpr bool addressed = !module_detail::HasParams<T>::value || module_detail::HasChannelWord<T>::value;
+        if (!taken() || (addressed && !channel_ok()) || !in_range())
             return;
         if constexpr (Self::handles(family))
             self.on(m);

@@ -19,7 +19,7 @@ using rigsim::test::hex;
 
 namespace {
 
-/// A TDC001 whose model takes only MOT_REQ_VELPARAMS (a MessageSet built here: the catalogue's
+/// A TDC001 whose model takes only MOT_REQ_VELPARAMS and PZ_SET_TPZ_DISPSETTINGS (a MessageSet built here: the catalogue's
 /// motor models have none), as a DC servo module on a stepped clock with its log captured.
 class RestrictedCube {
 public:
@@ -58,8 +58,8 @@ public:
 private:
     static ControllerModel restricted(ControllerModel m)
     {
-        static constexpr std::uint16_t kTakes[] = {MGMSG_MOT_REQ_VELPARAMS};
-        m.takes = {kTakes, 1};
+        static constexpr std::uint16_t kTakes[] = {MGMSG_MOT_REQ_VELPARAMS, MGMSG_PZ_SET_TPZ_DISPSETTINGS};
+        m.takes = {kTakes, 2};
         return m;
     }
 
@@ -97,6 +97,17 @@ TEST_CASE("apt module: a message outside the model's MessageSet is ignored and l
     CHECK(cube.send("05 00 00 00 50 01").substr(0, 17) == "06 00 54 00 81 50");
     CHECK(cube.send("11 02 01 00 50 01") == "12 02 01 01 01 50");
     CHECK_FALSE(cube.ignored);
+}
+
+TEST_CASE("apt module: a data packet without a channel word is not read as a channel", "[unit][apt][module]")
+{
+    // PZ_SET_TPZ_DISPSETTINGS (p. 114): its first word is the intensity (100), not a channel.
+    // Taken by the model, it reaches the module's handlers: a DC servo module has none for
+    // the piezo family, so it is "not a message a TDC001 acts on" -- never "for channel 100".
+    RestrictedCube cube;
+    CHECK(cube.send("D1 07 02 00 D0 01 64 00").empty());
+    CHECK(cube.ignored);
+    CHECK(cube.why == "MGMSG_PZ_SET_TPZ_DISPSETTINGS is not a message a TDC001 acts on: ignored");
 }
 
 TEST_CASE("apt module: SavedSets stores a SET for channel 1: its data packet, or a header-only SET's params",

@@ -88,6 +88,11 @@ TEST_CASE("PI loop: reset is bumpless", "[unit][models][piezo]")
     CHECK(pi.step(0.3, 0.3, 2.5e-4) == 0.4);   // no error: the output stays where it was
     pi.reset(1.7);
     CHECK(pi.output() == 1.0);
+    // With an error in force, the proportional term must not jump the first step: it moves
+    // only by the integral of one step, Ki * error * dt.
+    const double error = 0.2;
+    pi.reset(0.4, 0.5, 0.5 - error);
+    CHECK(pi.step(0.5, 0.5 - error, 2.5e-4) == Approx(0.4 + pi.ki_per_s() * error * 2.5e-4).epsilon(1e-12));
 }
 
 TEST_CASE("PI loop: run() takes the steps of the loop rate inside the ticks", "[unit][models][piezo]")
@@ -107,6 +112,18 @@ TEST_CASE("PI loop: run() takes the steps of the loop rate inside the ticks", "[
     CHECK(slow.run(0.5, 0.0, 1, 3000) == 0.0);
     CHECK(slow.run(0.5, 0.0, 1, 3000) == Approx(400 * 0.5 * 1e-3));
     CHECK(slow.run(0.5, 0.0, 6, 3000) == Approx(3 * 400 * 0.5 * 1e-3));
+
+    // After a long sleep (a simulated day at 4 kHz would be 3.5e8 steps) one call takes at
+    // most kMaxSpanS of steps: the same output as a call over exactly that span. A module in
+    // closed loop therefore runs the loop every tick (it never sleeps through one).
+    PiLoop slept(4000);
+    PiLoop capped(4000);
+    slept.set_gains(10, 1);
+    capped.set_gains(10, 1);
+    slept.run(0.01, 0.0, 86'400'000, 1000);
+    capped.run(0.01, 0.0, static_cast<Ticks>(PiLoop::kMaxSpanS * 1000), 1000);
+    CHECK(slept.output() == capped.output());
+    CHECK(capped.output() < 0.1);   // not saturated: a day of steps would have integrated to 1
 }
 
 TEST_CASE("PI loop: on a creeping actuator it holds the set point within 0.1 % of the travel",
