@@ -5,6 +5,7 @@
 #include "emulator/apt/brushless_module.hpp"
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
+#include "emulator/apt/solenoid_module.hpp"
 #include "emulator/apt/wire.hpp"
 #include "emulator/apt/wire_decode.hpp"
 
@@ -84,7 +85,7 @@ private:
 
 AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      StateStore* store, EventBus* events)
-    : config_(config), clock_(world.clock()), log_(std::move(log)), model_(*find_controller(config.model)),
+    : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)), model_(*find_controller(config.model)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       unit_{config.model, model_, serial_,
             std::max(model_.rack ? config_of(config).bays.size() : std::size_t{1}, static_cast<std::size_t>(model_.max_bays))},
@@ -123,11 +124,26 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
     case UnitKind::Motor:
         return make_motor_module(bay, std::move(save));
     case UnitKind::Solenoid:
+        return make_solenoid_module(bay, std::move(save));
     case UnitKind::Piezo:
     case UnitKind::StrainGauge:
         break;
     }
     throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");
+}
+
+std::unique_ptr<Module> AptDevice::make_solenoid_module(std::size_t bay, Module::SaveToEeprom save)
+{
+    // The output is a body of the world ("<device>/1"); a power cycle keeps it, and the plug.
+    const auto key = config_.name + "/" + std::to_string(bay + 1);
+    auto* output = world_.find_as<models::Solenoid>(key);
+    if (!output)
+        output = &world_.emplace<models::Solenoid>(key);
+    bool fitted = config_of(config_).solenoid.interlock_fitted;
+    if (bay < modules_.size())
+        if (const auto* old = dynamic_cast<const SolenoidModule*>(modules_[bay].get()))
+            fitted = old->interlock_fitted();
+    return std::make_unique<SolenoidModule>(unit_, bay, address_of(bay), *output, clock_, fitted, *log_, save);
 }
 
 std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)

@@ -104,6 +104,8 @@ private:
     std::uint8_t address_of(std::size_t bay) const;
     /// The module of this controller's unit kind (ControllerModel::kind) for bay `bay`.
     std::unique_ptr<Module> make_module(std::size_t bay);
+    /// The solenoid module of bay `bay` over its output in the world (TSC001, KSC101).
+    std::unique_ptr<Module> make_solenoid_module(std::size_t bay, Module::SaveToEeprom save);
     /// The module of this controller's motor kind for bay `bay`.
     std::unique_ptr<MotorModule> make_motor_module(std::size_t bay, Module::SaveToEeprom save);
     /// The motor module of bay `bay` (motor kinds: every bay with a channel has one).
@@ -149,6 +151,7 @@ private:
 
     DeviceConfig config_;
     Clock& clock_;
+    models::World& world_;   ///< where a module kind's bodies live (a solenoid's output)
     std::shared_ptr<spdlog::logger> log_;
     const ControllerModel& model_;
     std::uint32_t serial_;

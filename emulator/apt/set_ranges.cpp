@@ -110,6 +110,14 @@ Ranges ranges(const msg::PmdSettledCurrentLoopParams& p)
             {"KffSettled", p.kff_settled, 0, 32767}};
 }
 
+Ranges ranges(const msg::SolCycleParams& p)
+{
+    // p. 87: OnTime and OffTime in 250 us steps, 100 ms..10,000 s; NumCycles 0 (forever)..1,000,000.
+    return {{"OnTime", p.on_time_250us, 400, 40'000'000},
+            {"OffTime", p.off_time_250us, 400, 40'000'000},
+            {"NumCycles", p.num_cycles, 0, 1'000'000}};
+}
+
 std::optional<std::string> first_out_of_range(const Ranges& fields)
 {
     for (const auto& r : fields)

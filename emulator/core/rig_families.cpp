@@ -19,9 +19,8 @@ std::string_view unserved_kind(apt::UnitKind kind)
 {
     switch (kind) {
     case apt::UnitKind::Motor:
-        return {};
     case apt::UnitKind::Solenoid:
-        return "solenoid";
+        return {};
     case apt::UnitKind::Piezo:
         return "piezo";
     case apt::UnitKind::StrainGauge:
@@ -30,7 +29,7 @@ std::string_view unserved_kind(apt::UnitKind kind)
     return {};
 }
 
-/// An APT device. The solenoid, piezo and strain gauge units are validated like every other,
+/// An APT device. The piezo and strain gauge units are validated like every other,
 /// but their modules do not exist yet: the daemon refuses to run them.
 std::unique_ptr<Device> make_apt_device(const DeviceConfig& config, const DeviceContext& context)
 {

@@ -240,6 +240,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_system.txt", "apt_parameters.txt", "apt_moves.txt", "apt_homing.txt", "apt_limits.txt",
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
+    "apt_solenoid.txt",
 };
 
 } // namespace
@@ -316,4 +317,9 @@ TEST_CASE("apt transcript: PRM1-Z8, DRV014, DDSM100 and S-curve moves", "[device
 TEST_CASE("apt transcript: two TDC001 devices on one world, set up inline, the second addressed as device 2", "[device][apt][transcript]")
 {
     replay("apt_two_devices.txt");
+}
+
+TEST_CASE("apt transcript: TSC001 and KSC101 solenoid controllers", "[device][apt][transcript][solenoid]")
+{
+    replay("apt_solenoid.txt");
 }
