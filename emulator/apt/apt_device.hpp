@@ -104,6 +104,10 @@ private:
     std::uint8_t address_of(std::size_t bay) const;
     /// The module of this controller's unit kind (ControllerModel::kind) for bay `bay`.
     std::unique_ptr<Module> make_module(std::size_t bay);
+    /// Bays with a module: a rack's configured bays (stages or piezo bays), else 1.
+    std::size_t rack_bays() const;
+    /// The piezo module of bay `bay` over its actuator (world key "<device>/<bay+1>").
+    std::unique_ptr<Module> make_piezo_module(std::size_t bay, Module::SaveToEeprom save);
     /// The module of this controller's motor kind for bay `bay`.
     std::unique_ptr<MotorModule> make_motor_module(std::size_t bay, Module::SaveToEeprom save);
     /// The motor module of bay `bay` (motor kinds: every bay with a channel has one).
@@ -149,6 +153,7 @@ private:
 
     DeviceConfig config_;
     Clock& clock_;
+    models::World& world_;
     std::shared_ptr<spdlog::logger> log_;
     const ControllerModel& model_;
     std::uint32_t serial_;
