@@ -3,6 +3,7 @@
 #include "emulator/core/state_store.hpp"
 
 #include "emulator/apt/brushless_module.hpp"
+#include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/solenoid_module.hpp"
@@ -87,15 +88,14 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
                      StateStore* store, EventBus* events)
     : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)), model_(*find_controller(config.model)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
-      unit_{config.model, model_, serial_,
-            std::max(model_.rack ? config_of(config).bays.size() : std::size_t{1}, static_cast<std::size_t>(model_.max_bays))},
+      unit_{config.model, model_, serial_, std::max(rack_bays(), static_cast<std::size_t>(model_.max_bays))},
       store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
     wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_for_log(e.bytes, out); });
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).
     const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };
-    const std::size_t bays = model_.rack ? config_of(config).bays.size() : 1;
+    const std::size_t bays = rack_bays();
     if (model_.kind == UnitKind::Motor)
         for (std::size_t bay = 0; bay < bays; ++bay)
             channels_.push_back(std::make_unique<MotorChannel>(
@@ -126,6 +126,7 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
     case UnitKind::Solenoid:
         return make_solenoid_module(bay, std::move(save));
     case UnitKind::Piezo:
+        return make_piezo_module(bay, std::move(save));
     case UnitKind::StrainGauge:
         break;
     }
@@ -144,6 +145,36 @@ std::unique_ptr<Module> AptDevice::make_solenoid_module(std::size_t bay, Module:
         if (const auto* old = dynamic_cast<const SolenoidModule*>(modules_[bay].get()))
             fitted = old->interlock_fitted();
     return std::make_unique<SolenoidModule>(unit_, bay, address_of(bay), *output, clock_, fitted, *log_, save);
+}
+
+std::size_t AptDevice::rack_bays() const
+{
+    if (!model_.rack)
+        return 1;
+    const auto& apt = config_of(config_);
+    return model_.kind == UnitKind::Piezo ? apt.piezo_bays.size() : apt.bays.size();
+}
+
+std::unique_ptr<Module> AptDevice::make_piezo_module(std::size_t bay, Module::SaveToEeprom save)
+{
+    const auto& apt = config_of(config_);
+    const PiezoBayConfig cube_bay{apt.actuator, false, 2000};
+    const PiezoBayConfig& b = model_.rack ? apt.piezo_bays[bay] : cube_bay;
+    // The actuator is the world's: a power cycle makes a new module over the same body.
+    const auto key = config_.name + "/" + std::to_string(bay + 1);
+    auto* actuator = world_.find_as<models::PiezoActuator>(key);
+    if (!actuator) {
+        models::PiezoActuatorConfig a;
+        a.travel_um = b.actuator.travel_um;
+        a.max_voltage_v = b.actuator.max_voltage_v;
+        a.response_ms = b.actuator.response_ms;
+        a.hysteresis = b.actuator.hysteresis;
+        a.creep = b.actuator.creep;
+        actuator = &world_.emplace<models::PiezoActuator>(key, world_.clock(), a);
+    }
+    const PiezoSetup setup{*actuator, clock_, model_.rack && b.strain_gauge,
+                           model_.rack ? apt.hardware_max_voltage_v : b.actuator.max_voltage_v, b.zero_time_ms};
+    return std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
 }
 
 std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)

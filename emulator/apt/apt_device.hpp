@@ -106,6 +106,10 @@ private:
     std::unique_ptr<Module> make_module(std::size_t bay);
     /// The solenoid module of bay `bay` over its output in the world (TSC001, KSC101).
     std::unique_ptr<Module> make_solenoid_module(std::size_t bay, Module::SaveToEeprom save);
+    /// Bays with a module: a rack's configured bays (stages or piezo bays), else 1.
+    std::size_t rack_bays() const;
+    /// The piezo module of bay `bay` over its actuator (world key "<device>/<bay+1>").
+    std::unique_ptr<Module> make_piezo_module(std::size_t bay, Module::SaveToEeprom save);
     /// The module of this controller's motor kind for bay `bay`.
     std::unique_ptr<MotorModule> make_motor_module(std::size_t bay, Module::SaveToEeprom save);
     /// The motor module of bay `bay` (motor kinds: every bay with a channel has one).

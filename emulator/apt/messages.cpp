@@ -217,8 +217,9 @@ constexpr MessageInfo kTable[] = {
     {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTVOLTS), H, P},
     {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTVOLTS), 4, P},
     // p.97: 4 bytes: chan word, PositionSW word. The example's explanation names header
-    // "43, 06" and value "33, 13" against its bytes "46, 06" / "66, 26" (ERRATA): the
-    // bytes are right; neither changes the length.
+    // "43, 06" (the bytes' "46, 06" is right) and value "33, 13" against the bytes' "66, 26"
+    // (ERRATA): on the 0..32767 scale 15 um of 100 um is 4915 = "33, 13" (9830 = "66, 26" is
+    // 30 %); the explanation's value is right. Neither changes the length.
     {RIGSIM_APT_MSG(MGMSG_PZ_SET_OUTPUTPOS), 4, P},
     {RIGSIM_APT_MSG(MGMSG_PZ_REQ_OUTPUTPOS), H, P},
     {RIGSIM_APT_MSG(MGMSG_PZ_GET_OUTPUTPOS), 4, P},

@@ -125,9 +125,9 @@ protected:
     /// handle() of a kind `Self`: `m` through dispatch() as Self.
     template <class Self> void visit_as(Self& self, const msg::Message& m, Request& r);
     /// The visit of a module kind `Self`: System messages were the shell's; Bay messages go to
-    /// their handler; the others must be in the model's MessageSet (if it has one), address
-    /// channel 1 and have their SET fields in range, then go to Self's handler if Self acts on
-    /// their family, else are ignored and logged.
+    /// their handler; the others must be in the model's MessageSet (if it has one) and address
+    /// channel 1, then go to Self's handler if Self acts on their family and their SET fields are
+    /// in range, else are ignored and logged.
     template <class Self, class T> void dispatch(Self& self, const T& m);
 
     /// Log warning `text` and mark the message ignored (a SET is then not saved by EEPROMPARAMS).
@@ -166,9 +166,12 @@ namespace module_detail {
 template <class T, class = void> struct HasChannelWord : std::false_type {};
 template <class T>
 struct HasChannelWord<T, std::void_t<decltype(std::declval<T&>().params.chan_ident)>> : std::true_type {};
-/// Whether T is a data-packet SET/REQ/GET (its fields in `params`).
+/// Whether T is a parameter SET/GET (it has a parameter block).
 template <class T, class = void> struct HasParams : std::false_type {};
 template <class T> struct HasParams<T, std::void_t<decltype(std::declval<T&>().params)>> : std::true_type {};
+/// A parameter SET whose block carries no channel word (PZ_SET_TPZ_DISPSETTINGS, p. 114): the
+/// unit's one display, whatever its first word says.
+template <class T> constexpr bool kNoChannelWord = HasParams<T>::value && !HasChannelWord<T>::value;
 } // namespace module_detail
 
 template <class... Sets> std::optional<std::string> SavedSets<Sets...>::data(const msg::Message& m)
@@ -219,14 +222,15 @@ template <class Self, class T> void Module::dispatch(Self& self, const T& m)
     } else if constexpr (family == msg::Family::Bay) {
         self.on(m);
     } else {
-        // A data packet without a channel word (TPZ_DISPSETTINGS, p. 114) addresses the unit.
-        constexpr bool addressed = !module_detail::HasParams<T>::value || module_detail::HasChannelWord<T>::value;
-        if (!taken() || (addressed && !channel_ok()) || !in_range())
+        if (!taken() || (!module_detail::kNoChannelWord<T> && !channel_ok()))
             return;
-        if constexpr (Self::handles(family))
-            self.on(m);
-        else
+        // Ranges are the acting module's: a unit without the family's module just ignores it.
+        if constexpr (Self::handles(family)) {
+            if (in_range())
+                self.on(m);
+        } else {
             not_mine();
+        }
     }
 }
 

@@ -118,6 +118,44 @@ Ranges ranges(const msg::SolCycleParams& p)
             {"NumCycles", p.num_cycles, 0, 1'000'000}};
 }
 
+// ---- Piezo (p. 93-125) ----
+
+Ranges ranges(const msg::PzOutputPos& p)
+{
+    return {{"PositionSW", p.position_sw, 0, 32767}};   // p. 97: 0..32767 = 0..100 % of the travel
+}
+
+Ranges ranges(const msg::PzInputVoltsSrc& p)
+{
+    return {{"VoltSrc", p.volt_src, 0, 3}};   // p. 98: software, + external input (1), + potentiometer (2)
+}
+
+Ranges ranges(const msg::PzPiConsts& p)
+{
+    return {{"PropConst", p.prop_const, 0, 255}, {"IntConst", p.int_const, 0, 255}};   // p. 100
+}
+
+Ranges ranges(const msg::TpzDispSettings& p)
+{
+    return {{"DispIntensity", p.disp_intensity, 0, 255}};   // p. 114
+}
+
+Ranges ranges(const msg::TpzIoSettings& p)
+{
+    // p. 115: VoltageLimit 1 75 V, 2 100 V, 3 150 V; HubAnalogInput 1 hub A, 2 hub B, 3 SMA.
+    return {{"VoltageLimit", p.voltage_limit, 1, 3}, {"HubAnalogInput", p.hub_analog_input, 1, 3}};
+}
+
+Ranges ranges(const msg::PzOutputMaxVolts& p)
+{
+    return {{"Voltage", p.voltage, 0, 1500}};   // p. 121: 0.1 V steps, up to 150 V
+}
+
+Ranges ranges(const msg::TpzSlewRates& p)
+{
+    return {{"SlewOpen", p.slew_open, 0, 32767}, {"SlewClosed", p.slew_closed, 0, 32767}};   // p. 123
+}
+
 std::optional<std::string> first_out_of_range(const Ranges& fields)
 {
     for (const auto& r : fields)
