@@ -7,6 +7,7 @@
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/solenoid_module.hpp"
+#include "emulator/apt/strain_gauge_module.hpp"
 #include "emulator/apt/wire.hpp"
 #include "emulator/apt/wire_decode.hpp"
 
@@ -128,7 +129,7 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
     case UnitKind::Piezo:
         return make_piezo_module(bay, std::move(save));
     case UnitKind::StrainGauge:
-        break;
+        return make_strain_gauge_module(unit_, address_of(bay), config_, world_, *log_, std::move(save));
     }
     throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");
 }
@@ -174,7 +175,10 @@ std::unique_ptr<Module> AptDevice::make_piezo_module(std::size_t bay, Module::Sa
     }
     const PiezoSetup setup{*actuator, clock_, model_.rack && b.strain_gauge,
                            model_.rack ? apt.hardware_max_voltage_v : b.actuator.max_voltage_v, b.zero_time_ms};
-    return std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
+    auto module = std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
+    if (!model_.rack)
+        module->set_feedback(gauge_feedback(world_, *actuator));
+    return module;
 }
 
 std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)

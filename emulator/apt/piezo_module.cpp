@@ -116,11 +116,22 @@ std::int16_t PiezoModule::code_of(double v) const
     return static_cast<std::int16_t>(std::clamp(std::lround(v / max_v_ * kFullScale), -32768L, 32767L));
 }
 
-double PiezoModule::position_frac(Ticks) const
+std::optional<double> PiezoModule::fed_back_um(Ticks t) const
 {
-    if (!has_feedback())
-        return 0;
-    return (actuator_.extension_um() - zero_offset_um_) / actuator_.config().travel_um;
+    return feedback_ ? feedback_(t, hub_analog_input_) : std::nullopt;
+}
+
+bool PiezoModule::has_feedback() const
+{
+    return strain_gauge_ || fed_back_um(clock_.now()).has_value();
+}
+
+double PiezoModule::position_frac(Ticks t) const
+{
+    if (strain_gauge_)
+        return (actuator_.extension_um() - zero_offset_um_) / actuator_.config().travel_um;
+    // A TPZ/KPZ knows its position only through the gauge reader wired to its feedback input.
+    return fed_back_um(t).value_or(0.0) / actuator_.config().travel_um;
 }
 
 std::uint16_t PiezoModule::position_word(Ticks t) const
@@ -213,7 +224,7 @@ std::uint32_t PiezoModule::status_bits() const
         bits |= kZeroed;
     if (zero_end_ != kNever)
         bits |= kZeroing;
-    if (strain_gauge_)
+    if (has_feedback())
         bits |= kGaugeConnected;
     if (closed_loop())
         bits |= kClosedLoop;

@@ -12,6 +12,7 @@
 #include "models/piezo_actuator.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -34,6 +35,10 @@ public:
                             msg::SetPzOutputLutParams, msg::SetTpzDispSettings, msg::SetTpzIoSettings,
                             msg::SetPzOutputMaxVolts, msg::SetTpzSlewRates>;
 
+    /// A TPZ/KPZ's position feedback: the reading (µm from its zero) that reaches input
+    /// `hub_analog_input` (TPZ_IOSETTINGS, p. 115) at `now`, or nullopt if none does.
+    using Feedback = std::function<std::optional<double>(Ticks now, std::uint16_t hub_analog_input)>;
+
     PiezoModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, const PiezoSetup& setup,
                 spdlog::logger& log, SaveToEeprom save);
 
@@ -51,6 +56,9 @@ public:
     double output_v() const { return output_at(clock_.now()); }
     /// The voltage limit in force (V): TPZ_IOSETTINGS' VoltageLimit or OUTPUTMAXVOLTS.
     double max_v() const { return max_v_; }
+    /// Where a TPZ/KPZ reads its position in closed loop (a strain gauge reader of the world,
+    /// set by the unit shell; a BPC bay reads its own stage's gauge).
+    void set_feedback(Feedback feedback) { feedback_ = std::move(feedback); }
     /// The PZSTATUSBITS word (p. 101-102).
     std::uint32_t status_bits() const;
 
@@ -99,8 +107,11 @@ private:
         double rate_v_per_tick = 0;
     };
     bool closed_loop() const { return mode_ == 2 || mode_ == 4; }
-    /// Closed loop has a position to act on (D-19: a TPZ/KPZ needs a linked gauge).
-    bool has_feedback() const { return strain_gauge_; }
+    /// Closed loop has a position to act on (D-19: a TPZ/KPZ needs a linked gauge on the
+    /// input HubAnalogInput selects).
+    bool has_feedback() const;
+    /// The feedback reading of a TPZ/KPZ's gauge at `t` (µm), if one reaches the selected input.
+    std::optional<double> fed_back_um(Ticks t) const;
     double output_at(Ticks t) const;
     /// A new demand for the amplifier at `now`: clipped to 0..max (D-17), then slewed.
     void demand(double v, Ticks now);
@@ -124,6 +135,7 @@ private:
     models::PiezoActuator& actuator_;
     const Clock& clock_;
     bool strain_gauge_;
+    Feedback feedback_;
     bool bpc_;                        ///< a BPC30x bay (OUTPUTMAXVOLTS, SET_ZERO, triggers)
     int hardware_max_v_;
     int zero_time_ms_;

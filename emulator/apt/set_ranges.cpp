@@ -156,6 +156,17 @@ Ranges ranges(const msg::TpzSlewRates& p)
     return {{"SlewOpen", p.slew_open, 0, 32767}, {"SlewClosed", p.slew_closed, 0, 32767}};   // p. 123
 }
 
+// ---- Strain gauge (p. 127-129) ----
+
+Ranges ranges(const msg::TsgIoSettings& p)
+{
+    // p. 127: HubAnalogueOutput 1 hub A, 2 hub B pairs; DisplayMode 1 position, 2 voltage, 3 force.
+    // ForceCalib "between 1 and 1000" N in 0.001 N steps does not fit its word: 1..65535 (D-22).
+    return {{"HubAnalogueOutput", p.hub_analogue_output, 1, 2},
+            {"DisplayMode", p.display_mode, 1, 3},
+            {"ForceCalib", p.force_calib, 1, 65535}};
+}
+
 std::optional<std::string> first_out_of_range(const Ranges& fields)
 {
     for (const auto& r : fields)

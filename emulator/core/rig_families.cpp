@@ -1,9 +1,7 @@
 #include "emulator/core/rig_families.hpp"
 
 #include "emulator/apt/apt_device.hpp"
-#include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/config.hpp"
-#include "emulator/core/config_reader.hpp"
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 
@@ -14,30 +12,9 @@
 namespace rigsim {
 namespace {
 
-/// The unit kinds with a catalogue entry and rig keys but no modules yet, for messages.
-std::string_view unserved_kind(apt::UnitKind kind)
-{
-    switch (kind) {
-    case apt::UnitKind::Motor:
-    case apt::UnitKind::Solenoid:
-        return {};
-    case apt::UnitKind::Piezo:
-        return "piezo";
-    case apt::UnitKind::StrainGauge:
-        return "strain gauge";
-    }
-    return {};
-}
-
-/// An APT device. The piezo and strain gauge units are validated like every other,
-/// but their modules do not exist yet: the daemon refuses to run them.
+/// An APT device, of any unit kind of the catalogue.
 std::unique_ptr<Device> make_apt_device(const DeviceConfig& config, const DeviceContext& context)
 {
-    const auto* model = apt::find_controller(config.model);
-    if (const auto kind = model ? unserved_kind(model->kind) : std::string_view{}; !kind.empty())
-        fail(config.source, pointer_to(config.pointer, "model"),
-             config.model + " is a " + std::string(kind) + " unit: its keys are valid, but rigsim does not emulate " +
-                 std::string(kind) + " units yet");
     return std::make_unique<apt::AptDevice>(config, context.world, context.log, &context.store, context.events);
 }
 

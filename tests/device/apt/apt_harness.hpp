@@ -73,6 +73,7 @@ public:
         auto* out = &unit->out;
         unit->session = unit->device->open_session([out](std::string_view b) { out->append(b); }, "test");
         units_.push_back(std::move(unit));
+        world_.link_all();   // as the rig does once its devices exist: a gauge finds its actuator
         return units_.size() - 1;
     }
     /// Hex in to device `d`; hex of everything device `d` sent since the last call out.

@@ -240,7 +240,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_system.txt", "apt_parameters.txt", "apt_moves.txt", "apt_homing.txt", "apt_limits.txt",
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
-    "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt",
+    "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
 };
 
 } // namespace
@@ -332,4 +332,9 @@ TEST_CASE("apt transcript: TPZ001 piezo driver, open loop", "[device][apt][trans
 TEST_CASE("apt transcript: TPZ001 waveform (LUT) output", "[device][apt][transcript][piezo][lut]")
 {
     replay("apt_piezo_lut.txt");
+}
+
+TEST_CASE("apt transcript: TSG001 strain gauge reader on a TPZ001, closed loop", "[device][apt][transcript]")
+{
+    replay("apt_strain_gauge.txt");
 }

@@ -1,0 +1,116 @@
+#pragma once
+// The strain gauge module of an APT unit (module.hpp): a TSG001/KSG101 reader. Its gauge is a
+// body of the world (models/strain_gauge.hpp, key "<device>/1") mounted on the actuator of the
+// piezo driver the rig names ("mounted_on": "<piezo device>/1"): it reads the world, never the
+// piezo driver's protocol state. A reader without a gauge fitted (mounted_on "") answers with
+// status bit 0x1 clear and readings of 0.
+//
+// The piezo driver's closed loop reads the same gauge body through the world
+// (find_gauge_feedback), never this module: the gauge's wiring ("route": hub A, hub B or the
+// SMA cable) must match the driver's TPZ_IOSETTINGS HubAnalogInput (p. 115).
+// Choices the manual leaves open: docs/protocol/errata.md (D-15, D-16, D-22).
+
+#include "emulator/apt/config.hpp"
+#include "emulator/apt/module.hpp"
+#include "models/strain_gauge.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace rigsim::models {
+class PiezoActuator;
+}
+
+namespace rigsim::apt {
+
+/// A strain gauge wired to a piezo driver's feedback input: 1 hub A, 2 hub B, 3 SMA (the
+/// numbers of TPZ_IOSETTINGS HubAnalogInput, p. 115).
+class WiredStrainGauge final : public models::StrainGauge {
+public:
+    WiredStrainGauge(const Clock& clock, models::StrainGaugeConfig config, std::uint16_t feedback_input)
+        : StrainGauge(clock, std::move(config)), feedback_input_(feedback_input)
+    {
+    }
+    /// The driver input the gauge's signal reaches (HubAnalogInput numbering).
+    std::uint16_t feedback_input() const { return feedback_input_; }
+
+private:
+    std::uint16_t feedback_input_;
+};
+
+/// The gauge of the world mounted on `actuator`, or nullptr (none, or not linked yet).
+const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator);
+
+/// A TPZ001/KPZ101's feedback input (PiezoModule::Feedback): the reading (µm from the gauge's
+/// zero, p. 129's 500 Hz sample) of the gauge of the world mounted on `actuator` when its wiring
+/// reaches input `feedback_input` (HubAnalogInput), else nullopt. The gauge is looked up while
+/// none is found, then kept.
+std::function<std::optional<double>(Ticks now, std::uint16_t feedback_input)>
+gauge_feedback(const models::World& world, const models::PiezoActuator& actuator);
+
+/// TSG001 and KSG101.
+class StrainGaugeModule final : public Module {
+public:
+    /// What PZ_SET_EEPROMPARAMS saves (p. 113) on a gauge reader.
+    using Saved = SavedSets<msg::SetTsgIoSettings, msg::SetTpzDispSettings>;
+
+    /// `gauge` is nullptr when no gauge is fitted (mounted_on "").
+    StrainGaugeModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, WiredStrainGauge* gauge,
+                      const Clock& clock, const StrainGaugeConfig& config, spdlog::logger& log, SaveToEeprom save);
+
+    static constexpr bool handles(msg::Family f) { return f == msg::Family::StrainGauge || f == msg::Family::Piezo; }
+    void handle(const msg::Message& m, Request& r) override;
+    std::string status_update(std::uint8_t host) const override;
+    Ticks next_change(Ticks now) const override;
+    void tick(Ticks now) override;
+    bool saves(std::uint16_t id) const override { return Saved::saves(id); }
+    std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
+    void describe(nlohmann::json& out) const override;
+
+    /// The PZ_GET_PZSTATUSUPDATE status bits (p. 101-104): 0x1 a gauge linked, 0x10 zeroed, 0x20 zeroing.
+    std::uint32_t status_bits() const;
+    /// The TSG_READING Reading word at `now` in the display mode in force (p. 129, D-15).
+    std::int16_t reading_code(Ticks now) const;
+
+    using Module::on;
+    void on(const msg::SetTsgIoSettings& m);     ///< MGMSG_PZ_SET_TSG_IOSETTINGS (p. 127)
+    void on(const msg::ReqTsgIoSettings& m);     ///< MGMSG_PZ_REQ_TSG_IOSETTINGS (p. 128)
+    void on(const msg::TsgReqReading& m);        ///< MGMSG_PZ_REQ_TSG_READING (p. 129)
+    void on(const msg::PzAckPzStatusUpdate& m);  ///< MGMSG_PZ_ACK_PZSTATUSUPDATE (p. 105)
+    void on(const msg::PzSetEepromParams& m);    ///< MGMSG_PZ_SET_EEPROMPARAMS (p. 113)
+    void on(const msg::SetTpzDispSettings& m);   ///< MGMSG_PZ_SET_TPZ_DISPSETTINGS (p. 114)
+    void on(const msg::ReqTpzDispSettings& m);   ///< MGMSG_PZ_REQ_TPZ_DISPSETTINGS (p. 114)
+    void on(const msg::PzSetZero& m);            ///< MGMSG_PZ_SET_ZERO (p. 117)
+    void on(const msg::PzReqMaxTravel& m);       ///< MGMSG_PZ_REQ_MAXTRAVEL (p. 118)
+    /// The other Piezo messages: outside the TSG001's MessageSet (p. 134), so dispatch() never
+    /// lets one reach here; a model without a set would log and ignore it.
+    template <class T> void on(const T&) { not_mine(); }
+
+private:
+    bool linked() const { return gauge_ != nullptr && gauge_->actuator() != nullptr; }
+    double travel_um() const;
+    /// `um` from the zero as a Reading word in display mode `mode`.
+    std::int16_t code_of(double um, std::uint16_t mode) const;
+
+    WiredStrainGauge* gauge_;
+    const Clock& clock_;
+    double stiffness_n_per_um_;
+    int zero_time_ms_;
+    std::uint16_t hub_output_ = 1;      ///< HubAnalogueOutput: 1 hub A, 2 hub B pairs
+    std::uint16_t display_mode_ = 1;    ///< 1 position, 2 voltage, 3 force
+    std::uint16_t force_calib_ = 30000; ///< 0.001 N steps (p. 128's default, FSC102)
+    std::uint16_t disp_intensity_ = 255;
+    Ticks zero_end_ = kNever;           ///< SET_ZERO in progress until this tick
+    bool zeroed_ = false;
+};
+
+/// The gauge reader of device `config` at `address`: its gauge body ("<device>/1", made once,
+/// kept across power cycles) mounted on "<mounted_on>/1" when the rig names a piezo driver.
+std::unique_ptr<Module> make_strain_gauge_module(const UnitIdentity& unit, std::uint8_t address,
+                                                 const DeviceConfig& config, models::World& world,
+                                                 spdlog::logger& log, Module::SaveToEeprom save);
+
+} // namespace rigsim::apt
