@@ -35,14 +35,15 @@ namespace msg {
 /// Which module acts on a message; the others ignore it (and log it).
 enum class Family {
     System,      ///< the unit shell: identify, disconnect, update messages, end-of-move messages
-    Bay,         ///< every motor module: channel enable state, info, hub bay
+    Bay,         ///< every module of every kind: channel enable state, info, hub bay
     Rack,        ///< a rack's motherboard
-    Motor,       ///< every motor module: counters, moves, trios, status
+    Motor,       ///< every motor module: counters, moves, trios, status; the solenoid module its
+                 ///< AVMODES, BUTTONPARAMS, EEPROMPARAMS (catalogue takes list)
     DcServo,     ///< DC servo and brushless modules (not steppers): PID, DC status
     Pmd,         ///< brushless (PMD) modules: the PMD parameter trios
-    Solenoid,    ///< TSC001 solenoid modules (none emulated yet)
-    Piezo,       ///< piezo modules (none emulated yet)
-    StrainGauge, ///< strain gauge readers (none emulated yet)
+    Solenoid,    ///< SolenoidModule (TSC001, KSC101)
+    Piezo,       ///< PiezoModule (TPZ001, KPZ101, BPC30x bays); StrainGaugeModule its share of the TSG001 list
+    StrainGauge, ///< StrainGaugeModule (TSG001, KSG101)
     UnitToHost,  ///< sent by units (GETs, end-of-move messages): a unit ignores them
     Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };
@@ -756,7 +757,7 @@ RIGSIM_APT_BARE_MESSAGE(SuspendEndOfMoveMsgs, MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS, S
 RIGSIM_APT_BARE_MESSAGE(ResumeEndOfMoveMsgs, MGMSG_MOT_RESUME_ENDOFMOVEMSGS, System);
 
 // ---- Solenoid Control Messages (p. 84-92): MOT_ messages of the TSC001 solenoid driver ----
-// No emulated unit acts on them yet: every module ignores and logs them.
+// SolenoidModule (TSC001, KSC101) acts on them; every other module ignores and logs them.
 
 /// MGMSG_MOT_SET_SOL_OPERATINGMODE (p. 85).
 struct SolSetOperatingMode {
@@ -844,7 +845,8 @@ using ReqSolCycleParams = Req<SolCycleParams>;
 using GetSolCycleParams = Get<SolCycleParams>;
 
 // ---- Piezo Control Messages (p. 93-126) and the TSG001 strain gauge reader (p. 127-129) ----
-// No emulated unit acts on them yet: every module ignores and logs them.
+// PiezoModule (TPZ001, KPZ101, BPC30x bays) and StrainGaugeModule (TSG001, KSG101) act on the
+// ones their model's takes list names (catalogue.cpp); the other modules ignore and log them.
 
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTVOLTS (p. 96).
 struct PzOutputVolts {
