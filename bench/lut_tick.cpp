@@ -167,13 +167,14 @@ struct Setup {
     ~Setup() { clock.remove(reader.get()); }
 };
 
-/// The sum of every value the players output from tick 0 to `ticks` (exclusive), computed
-/// from the table alone: the bench's check that the loop read what the schedule says.
+/// The sum of every value the players output at ticks 1 to `ticks` (the clock ticks a
+/// Tickable at 1, 2, ... after a start at 0), computed from the table alone: the bench's check
+/// that the loop read what the schedule says.
 std::int64_t expected_sum(const Options& o, const Setup& s, Ticks ticks)
 {
     const LutPlayer& p = *s.players.front();
     std::int64_t sum = 0;
-    for (Ticks t = 0; t < ticks; ++t) {
+    for (Ticks t = 1; t <= ticks; ++t) {
         const std::int64_t us = t * 1'000'000 / o.tick_hz;
         sum += p.sample(static_cast<std::size_t>(us / o.base_us % o.samples));
     }
