@@ -166,7 +166,7 @@ struct Rig {
     EveryTick every_tick;
     bool ticked;
 
-    Rig(Variant v) : out(2), ticked(v != Variant::Skip)
+    explicit Rig(Variant v) : out(2), ticked(v != Variant::Skip)
     {
         if (v != Variant::Clock)
             build(v == Variant::Running);
