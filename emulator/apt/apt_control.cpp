@@ -20,6 +20,22 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+/// The "unit" key of a channel object: the kind of unit it belongs to.
+const char* unit_name(UnitKind kind)
+{
+    switch (kind) {
+    case UnitKind::Motor:
+        return "motor";
+    case UnitKind::Solenoid:
+        return "solenoid";
+    case UnitKind::Piezo:
+        return "piezo";
+    case UnitKind::StrainGauge:
+        return "strain_gauge";
+    }
+    return "motor";
+}
+
 /// SI units (m or rad) per stage count: the catalogue's counts per mm (per degree for a
 /// rotation stage).
 double si_per_count(const StageModel& stage)
@@ -100,7 +116,11 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
     char address[8];
     std::snprintf(address, sizeof address, "0x%02x", address_of(bay));
     if (bay >= channels_.size()) {   // a kind without a motor describes itself
-        nlohmann::json out{{"index", bay}, {"address", address}};
+        nlohmann::json out{{"index", bay}, {"unit", unit_name(model_.kind)}, {"address", address}};
+        // "kind" is what the channel moves, as for the motor stages: a piezo stack extends along
+        // a line; a solenoid's output and a gauge move nothing of their own.
+        if (model_.kind == UnitKind::Piezo)
+            out["kind"] = "linear";
         modules_[bay]->describe(out);
         return out;
     }
@@ -124,6 +144,7 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
           {"max_si", axis.travel_max_counts() * k}}},
         {"switch_pressed", {{"forward", at_forward}, {"reverse", at_reverse}}}};
     return {{"index", bay},
+            {"unit", unit_name(model_.kind)},
             {"kind", stage.rotary ? "rotary" : "linear"},
             {"stage", std::string(stage.name)},
             {"address", address},
@@ -238,6 +259,10 @@ void AptDevice::apply_faults(std::size_t bay)
 
 Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
 {
+    if (model_.kind != UnitKind::Motor)   // every device fault kind acts on a motor and its stage
+        return bad("\"kind\": " + f.kind + " is a motor fault and the " + config_.model + " (a "
+                   + unit_name(model_.kind) + " unit) has no motor; its link faults (unplugged, drop_bytes, "
+                   "corrupt_bytes, latency) and power_cycle act on it");
     const std::size_t bay = f.channel.value_or(0);
     if (bay >= channels_.size())
         return Refusal{404, "no channel " + std::to_string(bay) + " on " + config_.name};
@@ -304,6 +329,7 @@ void AptDevice::power_cycle(const PowerCycle& how)
     for (std::size_t bay = 0; bay < modules_.size(); ++bay) {
         modules_[bay]->power_down(how.restore_positions);
         modules_[bay] = make_module(bay);
+        connect_events(bay);
     }
     for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
         if (how.restore_positions)
@@ -330,6 +356,26 @@ void AptDevice::power_cycle(const PowerCycle& how)
     log_->info("control: power cycle ({} saved settings{})", how.keep_saved ? "kept" : "erased",
                how.restore_positions ? ", stages back at their start positions" : "");
     flush();
+}
+
+Refused AptDevice::trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const
+{
+    if (index >= modules_.size())
+        return Refusal{404, "no channel " + std::to_string(index) + " on " + config_.name};
+    out["tick_hz"] = clock_.tick_hz();
+    out["channel"] = index;
+    return modules_[index]->trace(from_tick, max, out);
+}
+
+void AptDevice::connect_events(std::size_t bay)
+{
+    modules_[bay]->set_event_sink([this, bay](std::string_view type, const nlohmann::json& data) {
+        if (!events_ || !events_->active())
+            return;
+        nlohmann::json with = data;
+        with["channel"] = bay;
+        events_->publish(config_.name, type, clock_.seconds(clock_.now()) * 1000.0, with);
+    });
 }
 
 void AptDevice::publish_events(std::size_t bay, const std::vector<MotorEvent>& events)

@@ -102,8 +102,10 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
             channels_.push_back(std::make_unique<MotorChannel>(
                 model_, *find_stage(model_.rack ? config_of(config).bays[bay] : config_of(config).stage), world,
                 key(bay)));
-    for (std::size_t bay = 0; bay < bays; ++bay)
+    for (std::size_t bay = 0; bay < bays; ++bay) {
         modules_.push_back(make_module(bay));
+        connect_events(bay);
+    }
     patched_switch_.assign(channels_.size(), 0);
     published_status_.assign(channels_.size(), 0);
     was_moving_.assign(channels_.size(), false);

@@ -92,6 +92,7 @@ public:
     Refused add_fault(const DeviceFault& f, bool* kept) override;
     void remove_fault(std::uint64_t id) override;
     void power_cycle(const PowerCycle& how) override;
+    Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Record one frame crossing the wire of connection `peer` (notes: the client's mistakes).
     void record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes = {},
@@ -144,6 +145,8 @@ private:
     void note(std::string text) { notes_.push_back(std::move(text)); }
     /// The channel object of bay `bay` (docs/control-api/apt.md "Channels").
     nlohmann::json channel_json(std::size_t bay) const;
+    /// Bay `bay`'s module publishes its events (lut_started, lut_ended, solenoid) on the stream.
+    void connect_events(std::size_t bay);
     /// What the bay's faults and PATCHes add up to, handed to its channel.
     void apply_faults(std::size_t bay);
     /// Events "move_started", "move_ended" and "status" for the control API's listeners.

@@ -58,6 +58,11 @@ Refused Module::patch(const nlohmann::json&)
     return Refusal{400, "the channels of a " + unit_.model_name + " take no PATCH keys"};
 }
 
+Refused Module::trace(Ticks, std::size_t, nlohmann::json&) const
+{
+    return Refusal{404, "no trace for this channel"};
+}
+
 void Module::ignore(const std::string& text)
 {
     assert(request_ != nullptr && "a module answers or ignores only while it handles a message");

@@ -104,6 +104,14 @@ public:
     virtual void describe(nlohmann::json& /*out*/) const {}
     /// PATCH of the channel: the kind's keys. Motor channels are patched by the shell.
     virtual Refused patch(const nlohmann::json& body);
+    /// GET .../channels/{index}/trace (ControlSurface::trace): the kind's output trace; a kind
+    /// without an output to trace answers 404.
+    virtual Refused trace(Ticks from, std::size_t max, nlohmann::json& out) const;
+
+    /// Where a module publishes its events (lut_started, lut_ended, solenoid) for the control
+    /// API's stream: the unit shell's, which adds the channel and drops them while nobody listens.
+    using EventSink = std::function<void(std::string_view type, const nlohmann::json& data)>;
+    void set_event_sink(EventSink sink) { event_sink_ = std::move(sink); }
 
     std::uint8_t address() const { return address_; }
     std::size_t bay() const { return bay_; }
@@ -146,6 +154,12 @@ protected:
     bool in_range();
     /// Reply with message `m` from this module.
     template <class T> void answer(const T& m);
+    /// Publish event `type` with `data` (an object) through the shell's sink, if any.
+    void publish(std::string_view type, const nlohmann::json& data) const
+    {
+        if (event_sink_)
+            event_sink_(type, data);
+    }
 
     const UnitIdentity& unit_;
     std::size_t bay_;
@@ -157,6 +171,7 @@ protected:
 
 private:
     bool enabled_ = true;
+    EventSink event_sink_;
 };
 
 // ---- templates ----

@@ -7,6 +7,7 @@
 // Choices the manual leaves open: docs/protocol/errata.md (D-7, D-9, D-11, D-13, D-17..D-19).
 
 #include "emulator/apt/module.hpp"
+#include "emulator/apt/output_trace.hpp"
 #include "models/lut_player.hpp"
 #include "models/pi_loop.hpp"
 #include "models/piezo_actuator.hpp"
@@ -51,6 +52,10 @@ public:
     bool saves(std::uint16_t id) const override { return Saved::saves(id); }
     std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
     void describe(nlohmann::json& out) const override;
+    /// `{"trig_in": true|false|"pulse"}`: the TRIG IN level of a BPC30x bay (the LUT's input
+    /// trigger, p. 108); a TPZ001/KPZ101 has none (400).
+    Refused patch(const nlohmann::json& body) override;
+    Refused trace(Ticks from, std::size_t max, nlohmann::json& out) const override;
 
     /// The amplifier's output now (V), after clip and slew.
     double output_v() const { return output_at(clock_.now()); }
@@ -128,6 +133,18 @@ private:
     void apply_lut(Ticks now);
     void apply_closed_loop(Ticks now, Ticks elapsed);
     void restore_power_up_settings();
+    /// A LUT run starts at `now` (START, or TRIG IN on an armed bay): lut_ended "restarted" for
+    /// one in progress, then lut_started. False (logged) if the player refused the parameters.
+    bool start_lut(Ticks now, const char* by, std::string* why);
+    /// The run in progress ends at `now` for `reason`: the lut_ended event.
+    void end_lut(Ticks now, const char* reason);
+    /// A run whose cycles are all out by `now` ends ("cycles_done").
+    void check_lut_end(Ticks now);
+    /// The TRIG IN level changes: an edge into the active state (p. 108, 0x20 sense) starts an
+    /// armed LUT; in gated mode (0x40) the edge out of it stops the run.
+    void set_trig_in(bool level, Ticks now);
+    /// The trace's sample of `now` (output_trace.hpp).
+    void record_trace(Ticks now);
     void finish_zeroing(Ticks now);
     std::uint16_t max_travel_word() const;
     msg::GetPzOutputMaxVolts max_volts_message() const;
@@ -155,6 +172,9 @@ private:
     msg::PzOutputLut last_lut_{1, 0, 0};
     msg::PzOutputLutParams lut_params_{};
     bool lut_armed_ = false;          ///< START with the input trigger mode: waits for TRIG IN
+    bool lut_live_ = false;           ///< a run was started and its lut_ended not published yet
+    bool trig_in_ = false;            ///< the TRIG IN level (BPC30x; the control API sets it)
+    OutputTrace trace_;
     Ramp ramp_;
     Ticks smooth_start_ = kNever;     ///< a smooth mode change ramps from here for 500 ms (D-18)
     double smooth_from_v_ = 0;

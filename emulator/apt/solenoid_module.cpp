@@ -38,18 +38,40 @@ SolenoidModule::SolenoidModule(const UnitIdentity& unit, std::size_t bay, std::u
                                models::Solenoid& output, const Clock& clock, bool interlock_fitted,
                                spdlog::logger& log, SaveToEeprom save)
     : Module(unit, bay, address, log, std::move(save)), output_(output), clock_(clock),
-      interlock_fitted_(interlock_fitted)
+      interlock_fitted_(interlock_fitted), published_active_(output.active_at(clock.now()))
 {
 }
 
 void SolenoidModule::handle(const msg::Message& m, Request& r)
 {
     visit_as(*this, m, r);
+    note_output(clock_.now());
+}
+
+Ticks SolenoidModule::next_change(Ticks now) const
+{
+    const Ticks edge = output_.next_event(now);
+    return edge == kNever ? kNever : std::max(edge, now + 1);
+}
+
+void SolenoidModule::tick(Ticks now)
+{
+    note_output(now);
+}
+
+void SolenoidModule::note_output(Ticks now)
+{
+    const bool active = output_.active_at(now);
+    if (active == published_active_)
+        return;
+    published_active_ = active;
+    publish("solenoid", {{"output", active ? "on" : "off"}, {"cycles_done", output_.cycles_done(now)}});
 }
 
 void SolenoidModule::power_down(bool)
 {
     output_.close(clock_.now());   // the driver's output is off while the unit is
+    note_output(clock_.now());
 }
 
 std::uint32_t SolenoidModule::status_bits() const
@@ -258,6 +280,7 @@ Refused SolenoidModule::patch(const nlohmann::json& body)
             trigger_rising();
         trig_in_ = pulse ? false : level;   // a pulse: rising then falling edge, in one tick
     }
+    note_output(clock_.now());
     return std::nullopt;
 }
 

@@ -32,6 +32,9 @@ public:
     void handle(const msg::Message& m, Request& r) override;
     std::string status_update(std::uint8_t host) const override;
     void power_down(bool restore_positions) override;
+    /// The output's next edge: the shell wakes then so that the "solenoid" event has its tick.
+    Ticks next_change(Ticks now) const override;
+    void tick(Ticks now) override;
     bool saves(std::uint16_t id) const override { return Saved::saves(id); }
     std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
     void describe(nlohmann::json& out) const override;
@@ -71,6 +74,8 @@ private:
     /// The plug pulled or refitted (PATCH interlock_fitted).
     void set_interlock_fitted(bool fitted);
     Ticks ticks_of(std::int32_t units_250us) const;
+    /// Publish the "solenoid" event if the output changed since the last one.
+    void note_output(Ticks now);
 
     models::Solenoid& output_;
     const Clock& clock_;
@@ -81,6 +86,7 @@ private:
     bool primed_ = false;                       ///< triggered mode: ON armed it
     bool interlock_fitted_;
     bool trig_in_ = false;
+    bool published_active_ = false;             ///< the output as the last "solenoid" event said
     msg::AvModes av_modes_{1, 0x000B};
     msg::ButtonParams button_params_{};
 };

@@ -132,15 +132,38 @@ void StrainGaugeModule::tick(Ticks now)
 void StrainGaugeModule::describe(nlohmann::json& out) const
 {
     const Ticks now = clock_.now();
-    out["kind"] = "strain_gauge";
+    static constexpr const char* kUnits[] = {"um", "V", "N"};
+    const std::int16_t code = reading_code(now);
+    const double um = linked() ? gauge_->reading_um(now) : 0.0;
+    // The reading as the display mode shows it (D-15): µm from the zero, the ±10 V output, or
+    // the force through the rig's stiffness.
+    const double value = display_mode_ == 2 ? code / kFullScale * 10.0 : display_mode_ == 3 ? um * stiffness_n_per_um_ : um;
     out["display_mode"] = display_mode_;
-    out["reading_code"] = reading_code(now);
-    out["position_um"] = linked() ? gauge_->reading_um(now) : 0.0;
+    out["reading_code"] = code;
+    out["reading"] = {{"value", value}, {"unit", kUnits[std::clamp<int>(display_mode_, 1, 3) - 1]}};
+    out["reading_um"] = um;
+    // The world: where the actuator the gauge is mounted on physically is.
+    out["position_um"] = linked() ? nlohmann::json(gauge_->actuator()->extension_um()) : nlohmann::json(nullptr);
     out["mounted_on"] = linked() ? nlohmann::json(gauge_->config().actuator_key) : nlohmann::json(nullptr);
     out["zeroed"] = zeroed_;
     out["zeroing"] = zero_end_ != kNever;
     out["noise_um"] = gauge_ ? gauge_->noise_um() : 0.0;
     out["status"] = status_bits();
+}
+
+Refused StrainGaugeModule::patch(const nlohmann::json& body)
+{
+    for (const auto& [key, value] : body.items()) {
+        if (key != "noise_um")
+            return Refusal{400, "unknown key \"" + key + "\" for a strain gauge channel (noise_um)"};
+        if (!value.is_number() || !std::isfinite(value.get<double>()) || value.get<double>() < 0)
+            return Refusal{400, "\"noise_um\" is a number >= 0 (the sigma of one sample, um), got " + value.dump()};
+        if (!gauge_)
+            return Refusal{400, "\"noise_um\": the " + unit_.model_name + " has no gauge fitted (mounted_on \"\")"};
+    }
+    if (const auto it = body.find("noise_um"); it != body.end())
+        gauge_->set_noise_um(it->get<double>());
+    return std::nullopt;
 }
 
 // ---- StrainGauge family (p. 127-129) ----

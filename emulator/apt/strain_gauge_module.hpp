@@ -69,6 +69,8 @@ public:
     bool saves(std::uint16_t id) const override { return Saved::saves(id); }
     std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
     void describe(nlohmann::json& out) const override;
+    /// `{"noise_um": x}`: the gauge's noise sigma from now on (x >= 0, finite).
+    Refused patch(const nlohmann::json& body) override;
 
     /// The PZ_GET_PZSTATUSUPDATE status bits (p. 101-104): 0x1 a gauge linked, 0x10 zeroed, 0x20 zeroing.
     std::uint32_t status_bits() const;

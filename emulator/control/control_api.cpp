@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -200,6 +202,8 @@ HttpReply ControlApi::device_route(std::string_view method, const std::vector<st
                 return ok(ch);
         throw BadRequest{404, "device \"" + d.endpoints.name + "\" has no channel " + dump(json(parts[4]))};
     }
+    if (parts.size() == 6 && parts[3] == "channels" && parts[5] == "trace")
+        return method == "GET" ? get_trace(d, parts[4], target) : not_allowed(method, path, "GET");
     return error(404, "no route " + dump(json(std::string(path))));
 }
 
@@ -259,6 +263,37 @@ HttpReply ControlApi::get_log(ControlledDevice& d, std::string_view target)
                    {"capacity", log.capacity()},
                    {"noted", log.noted()},
                    {"entries", log.to_json(last)}});
+}
+
+HttpReply ControlApi::get_trace(ControlledDevice& d, const std::string& index, std::string_view target)
+{
+    auto& s = surface(d);
+    if (index.empty() || index.size() > 3 || index.find_first_not_of("0123456789") != std::string::npos)
+        throw BadRequest{404, "device \"" + d.endpoints.name + "\" has no channel " + dump(json(index))};
+    // A count of ticks or samples: digits only, within `limit`; 400 naming the field otherwise.
+    const auto count = [](const std::string& key, const std::string& v, std::uint64_t limit) {
+        if (v.empty() || v.size() > 18 || v.find_first_not_of("0123456789") != std::string::npos
+            || std::stoull(v) > limit)
+            throw BadRequest{400, "\"" + key + "\": expected " + (key == "from" ? "a tick (an integer >= 0)" : "a count of samples from 1 to " + std::to_string(kTraceSamples)) + ", got " + dump(json(v))};
+        return std::stoull(v);
+    };
+    std::int64_t from = 0;
+    std::size_t max = kTraceSamples;
+    for (const auto& [key, value] : query_of(target)) {
+        if (key == "from")
+            from = static_cast<std::int64_t>(count(key, value, static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
+        else if (key == "max")
+            max = static_cast<std::size_t>(count(key, value, kTraceSamples));
+        else
+            throw BadRequest{400, "unknown query parameter \"" + key + "\" (expected from, max)"};
+        if (key == "max" && max == 0)
+            throw BadRequest{400, "\"max\": expected a count of samples from 1 to " + std::to_string(kTraceSamples) + ", got \"0\""};
+    }
+    ticker_.sync();
+    auto out = json{{"device", d.endpoints.name}};
+    if (const auto refused = s.trace(static_cast<std::size_t>(std::stoul(index)), from, max, out))
+        throw BadRequest{refused->status, refused->message};
+    return ok(out);
 }
 
 HttpReply ControlApi::fault_route(std::string_view method, const std::vector<std::string>& parts, std::string_view body)
@@ -414,8 +449,14 @@ HttpReply ControlApi::get_rig()
             auto state = json::object();
             d.surface->describe(state);
             auto channels = json::array();
-            for (const auto& ch : state["channels"])
-                channels.push_back({{"index", ch.value("index", -1)}, {"kind", ch.value("kind", "")}});
+            for (const auto& ch : state["channels"]) {
+                // "kind": what the channel moves (null for a channel that moves nothing: a solenoid,
+                // a gauge); "unit": the kind of unit (APT: motor, solenoid, piezo, strain_gauge).
+                json entry_ch{{"index", ch.value("index", -1)}, {"kind", ch.contains("kind") ? ch["kind"] : json(nullptr)}};
+                if (ch.contains("unit"))
+                    entry_ch["unit"] = ch["unit"];
+                channels.push_back(std::move(entry_ch));
+            }
             entry["channels"] = channels;
         }
         devices.push_back(entry);

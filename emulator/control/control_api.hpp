@@ -49,6 +49,8 @@ private:
     HttpReply get_device(const ControlledDevice& d);
     HttpReply patch_channel(ControlledDevice& d, const std::string& index, std::string_view body);
     HttpReply get_log(ControlledDevice& d, std::string_view target);
+    /// GET /api/devices/{name}/channels/{index}/trace?from=&max= (docs/control-api.md "Traces").
+    HttpReply get_trace(ControlledDevice& d, const std::string& index, std::string_view target);
     HttpReply fault_route(std::string_view method, const std::vector<std::string>& parts, std::string_view body);
     HttpReply post_reset(std::string_view body);
     HttpReply get_events(std::string_view target);

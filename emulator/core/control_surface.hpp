@@ -7,6 +7,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -32,6 +33,9 @@ struct DeviceFault {
     const nlohmann::json* params = nullptr;   ///< the POST body's other keys (an object)
 };
 
+/// Samples a channel's trace keeps (GET .../channels/{index}/trace): the newest ones.
+constexpr std::size_t kTraceSamples = 16384;
+
 /// What POST /api/reset and the power_cycle fault do.
 struct PowerCycle {
     bool keep_saved = true;          ///< saved settings (non-volatile memory) survive
@@ -50,6 +54,14 @@ public:
     /// PATCH /api/devices/{name}/channels/{index}: test set-up (physical position, reference
     /// known or lost, limit switch pressed, sensor power). 409 while the channel moves.
     virtual Refused patch_channel(std::size_t index, const nlohmann::json& body) = 0;
+    /// GET /api/devices/{name}/channels/{index}/trace: fills `out` with the channel's sampled
+    /// output trace from tick `from_tick` on, at most `max` samples (docs/control-api.md
+    /// "Traces"). A channel without an output to trace answers 404.
+    virtual Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const
+    {
+        (void)index, (void)from_tick, (void)max, (void)out;
+        return Refusal{404, "no trace for this channel"};
+    }
     /// Start fault `f` (validating its params); a fault whose effect is one-off (reference_lost)
     /// acts at once and is not kept (*kept = false).
     virtual Refused add_fault(const DeviceFault& f, bool* kept) = 0;

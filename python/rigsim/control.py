@@ -1,5 +1,6 @@
 """A client of rigsimd's HTTP control API (docs/control-api.md), standard library only."""
 
+import collections
 import json
 import queue
 import socket
@@ -28,6 +29,14 @@ def _error_message(text):
     except (ValueError, AttributeError):
         message = text
     return message
+
+
+TraceSample = collections.namedtuple("TraceSample", "tick output_code output_v position_um lut_index")
+TraceSample.__doc__ = """One sample of a piezo channel's trace (docs/control-api.md#traces): the clock tick, the
+output as GET_OUTPUTVOLTS codes it, the output in volts, the actuator's physical extension in um, and
+the LUT index being output (None when no LUT runs)."""
+
+TRACE_PAGE = 16384   # the most samples one trace request answers (the ring's capacity)
 
 
 class ControlClient:
@@ -90,6 +99,38 @@ class ControlClient:
         """PATCH /api/devices/{name}/channels/{channel} with `fields` (position_si=, referenced=,
         limit_switch=, sensor=); returns the channel object after the change."""
         return self.request("PATCH", f"/api/devices/{_quote(name)}/channels/{int(channel)}", fields)
+
+    def trace_page(self, name, channel, since=None, max_samples=None):
+        """GET /api/devices/{name}/channels/{channel}/trace[?from=&max=]: one answer as the route
+        gives it (tick_hz, capacity, kept, oldest_tick, next_from, samples)."""
+        query = []
+        if since is not None:
+            query.append(f"from={int(since)}")
+        if max_samples is not None:
+            query.append(f"max={int(max_samples)}")
+        path = f"/api/devices/{_quote(name)}/channels/{int(channel)}/trace"
+        return self.request("GET", path + ("?" + "&".join(query) if query else ""))
+
+    def trace(self, name, channel, since=None):
+        """Every sample the channel's trace keeps from tick `since` on (all when None), oldest
+        first, as TraceSample tuples; pages through the route until it has them all."""
+        samples = []
+        since = 0 if since is None else int(since)
+        while True:
+            page = self.trace_page(name, channel, since, TRACE_PAGE)
+            samples.extend(TraceSample(*s) for s in page["samples"])
+            if len(page["samples"]) < TRACE_PAGE:
+                return samples
+            since = page["next_from"]
+
+    def trigger(self, name, channel):
+        """PATCH trig_in "pulse": a rising and a falling edge on the channel's TRIG IN in one
+        tick (a BPC30x bay's LUT input trigger, a solenoid's triggered mode); returns the channel."""
+        return self.set(name, channel, trig_in="pulse")
+
+    def device(self, name):
+        """A Device handle on `name`."""
+        return Device(self, name)
 
     def log(self, name, last=None):
         """GET /api/devices/{name}/log[?last=N]: the device's wire log."""
@@ -228,3 +269,36 @@ def _close_stream(answer):
         answer.close()
     except Exception:   # closing a response another thread reads may raise anything
         pass
+
+
+class Device:
+    """One device of the rig through a ControlClient: its state, its channels' set-up, traces and
+    triggers, without repeating its name."""
+
+    def __init__(self, control, name):
+        self.control = control
+        self.name = name
+
+    def state(self):
+        """GET /api/devices/{name}."""
+        return self.control.state(self.name)
+
+    def channel(self, channel):
+        """GET /api/devices/{name}/channels/{channel}: one channel object."""
+        return self.control.request("GET", f"/api/devices/{_quote(self.name)}/channels/{int(channel)}")
+
+    def set(self, channel, **fields):
+        """PATCH the channel with `fields`; returns the channel object after the change."""
+        return self.control.set(self.name, channel, **fields)
+
+    def trace(self, channel, since=None):
+        """The channel's output trace from tick `since` on (all it keeps when None): a list of
+        TraceSample(tick, output_code, output_v, position_um, lut_index), oldest first. Only
+        piezo channels have one (ControlError 404 otherwise)."""
+        return self.control.trace(self.name, channel, since)
+
+    def trigger(self, channel):
+        """A pulse on the channel's TRIG IN (PATCH trig_in "pulse"): starts an armed BPC30x LUT
+        (OUTPUTLUTPARAMS input trigger, p. 108) or a primed solenoid's cycles; ControlError 400 on
+        a unit without a trigger input (TPZ001, KPZ101)."""
+        return self.control.trigger(self.name, channel)

@@ -172,6 +172,11 @@ class Rigsim:
         self._use(name)
         return self.control.set(name, channel, **fields)
 
+    def device(self, name):
+        """A rigsim.control.Device handle on device `name` (state, set, trace, trigger)."""
+        self._use(name)
+        return self.control.device(name)
+
     def inject(self, device, kind, channel=None, **params):
         """POST /api/faults: a fault `kind` on `device` (channel 0 unless given); returns its id."""
         self._use(device)
