@@ -118,6 +118,7 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
 
 void AptDevice::power_up()
 {
+    linked_ = true;
     for (std::size_t bay = 0; bay < modules_.size(); ++bay)
         connect_feedback(bay);
     restore_from_eeprom();
@@ -181,7 +182,10 @@ std::unique_ptr<Module> AptDevice::make_piezo_module(std::size_t bay, Module::Sa
     }
     const PiezoSetup setup{*actuator, clock_, model_.rack && b.strain_gauge,
                            model_.rack ? apt.hardware_max_voltage_v : b.actuator.max_voltage_v, b.zero_time_ms};
-    return std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
+    auto module = std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
+    if (!model_.rack && linked_)   // a power cycle's new module; at start-up power_up() connects it
+        module->set_feedback(gauge_feedback(world_, *actuator));
+    return module;
 }
 
 void AptDevice::connect_feedback(std::size_t bay)

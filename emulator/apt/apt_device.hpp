@@ -176,6 +176,7 @@ private:
     bool end_of_move_messages_ = true;      ///< MOT_SUSPEND/RESUME_ENDOFMOVEMSGS
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
+    bool linked_ = false;                   ///< power_up() ran: the world's bodies are linked
     StateStore* store_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
     /// (bay, SET id) -> the last accepted, as its module stores it (Module::saved_data).

@@ -148,6 +148,15 @@ TEST_CASE("apt harness: a TSG001 added before its TPZ001 finds it (the world lin
     CHECK(h.send("50 06 01 00 50 01", 0) == "51 06 04 00 81 50 01 00 C8 00");   // MAXTRAVEL 20 um (p.118)
 }
 
+TEST_CASE("apt TPZ001: after a power cycle its closed loop still reads its gauge", "[device][apt][gauge]")
+{
+    AptHarness h(tpz());
+    h.add_device(tsg());
+    h.device(0).power_cycle(rigsim::PowerCycle{});
+    h.send(kClosedLoop);
+    CHECK(h.send(kReqMode) == kModeClosed);
+}
+
 TEST_CASE("apt TSG001: the zero is lost with the power, as the zeroed bit is", "[device][apt][gauge]")
 {
     AptHarness h(tpz());
