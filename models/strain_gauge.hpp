@@ -53,6 +53,8 @@ public:
     double smoothed_um(Ticks now) const;
     /// Zero reference := the smoothed reading at `now` (so zeroing averages the noise out).
     void zero(Ticks now);
+    /// Forget the zero reference (the reader's power-down): the raw extension reads again.
+    void clear_zero() { offset_um_ = 0; }
     /// The extension that reads 0 (0 until zero()).
     double zero_offset_um() const { return offset_um_; }
     /// Sigma of the noise from now on, for every sample read (std::invalid_argument if < 0).

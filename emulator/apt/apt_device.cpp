@@ -115,8 +115,15 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
         for (std::size_t bay = modules_.size(); bay < unit_.built_in_bays; ++bay)
             empty_bays_.push_back(std::make_unique<EmptyBay>(unit_, bay, model_.motor != MotorKind::Stepper, *log_));
     }
-    restore_from_eeprom();
     clock_.add(this);
+}
+
+void AptDevice::power_up()
+{
+    linked_ = true;
+    for (std::size_t bay = 0; bay < modules_.size(); ++bay)
+        connect_feedback(bay);
+    restore_from_eeprom();
 }
 
 std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
@@ -178,9 +185,18 @@ std::unique_ptr<Module> AptDevice::make_piezo_module(std::size_t bay, Module::Sa
     const PiezoSetup setup{*actuator, clock_, model_.rack && b.strain_gauge,
                            model_.rack ? apt.hardware_max_voltage_v : b.actuator.max_voltage_v, b.zero_time_ms};
     auto module = std::make_unique<PiezoModule>(unit_, bay, address_of(bay), setup, *log_, std::move(save));
-    if (!model_.rack)
+    if (!model_.rack && linked_)   // a power cycle's new module; at start-up power_up() connects it
         module->set_feedback(gauge_feedback(world_, *actuator));
     return module;
+}
+
+void AptDevice::connect_feedback(std::size_t bay)
+{
+    if (model_.kind != UnitKind::Piezo || model_.rack)
+        return;
+    const auto* actuator = world_.find_as<models::PiezoActuator>(config_.name + "/" + std::to_string(bay + 1));
+    if (actuator)
+        static_cast<PiezoModule&>(*modules_[bay]).set_feedback(gauge_feedback(world_, *actuator));
 }
 
 std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)
@@ -267,11 +283,19 @@ void AptDevice::restore_from_eeprom()
         log_->info("restored {} of bay {} from the state file", info->name, bay);
         return std::nullopt;
     };
-    // A copy: reject() drops the entry from the store.
+    // A copy: reject() drops the entry from the store. Keys sort by message ID, but a mode may
+    // need a setting of a higher ID: a closed loop (PZ_SET_POSCONTROLMODE 0x0640) its feedback
+    // input (TPZ_IOSETTINGS 0x07D4, p. 115; D-19). Mode SETs go last.
     const nlohmann::json entries = store_->device_state(config_.name);
-    for (const auto& [key, value] : entries.items())
-        if (const auto why = restore(key, value))
-            store_->reject(config_.name, key, *why);
+    const auto is_mode = [](const std::string& key) {
+        const auto parsed = parse_eeprom_key(key);
+        return parsed && parsed->second == msg::PzSetPosControlMode::id;
+    };
+    for (const bool modes : {false, true})
+        for (const auto& [key, value] : entries.items())
+            if (is_mode(key) == modes)
+                if (const auto why = restore(key, value))
+                    store_->reject(config_.name, key, *why);
 }
 
 std::uint8_t AptDevice::address_of(std::size_t bay) const

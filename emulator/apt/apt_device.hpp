@@ -62,6 +62,9 @@ public:
     AptDevice& operator=(const AptDevice&) = delete;
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
+    /// After World::link_all(): a piezo driver finds the gauge mounted on its actuator, then the
+    /// device replays what the state file holds, as the unit loads its EEPROM at power-up.
+    void power_up() override;
 
     /// Handle one frame from a connection; answers go to `reply`.
     void handle(const Frame& frame, std::string_view peer, std::string& reply);
@@ -111,6 +114,8 @@ private:
     std::size_t rack_bays() const;
     /// The piezo module of bay `bay` over its actuator (world key "<device>/<bay+1>").
     std::unique_ptr<Module> make_piezo_module(std::size_t bay, Module::SaveToEeprom save);
+    /// A TPZ/KPZ's feedback: the gauge of the (linked) world mounted on its actuator, if any.
+    void connect_feedback(std::size_t bay);
     /// The module of this controller's motor kind for bay `bay`.
     std::unique_ptr<MotorModule> make_motor_module(std::size_t bay, Module::SaveToEeprom save);
     /// The motor module of bay `bay` (motor kinds: every bay with a channel has one).
@@ -174,6 +179,7 @@ private:
     bool end_of_move_messages_ = true;      ///< MOT_SUSPEND/RESUME_ENDOFMOVEMSGS
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
+    bool linked_ = false;                   ///< power_up() ran: the world's bodies are linked
     StateStore* store_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
     /// (bay, SET id) -> the last accepted, as its module stores it (Module::saved_data).

@@ -563,10 +563,18 @@ void PiezoModule::on(const msg::ReqTpzDispSettings&)
 
 void PiezoModule::on(const msg::SetTpzIoSettings& m)
 {
+    const Ticks now = clock_.now();
+    const bool fed = has_feedback();
     voltage_limit_ = m.params.voltage_limit;
     hub_analog_input_ = m.params.hub_analog_input;
     max_v_ = limit_v(voltage_limit_);   // p. 115: the output is clipped to the new limit
-    demand(ramp_.target_v, clock_.now());
+    demand(ramp_.target_v, now);
+    // A closed loop idles while its input is switched away; it resumes bumpless from now, not
+    // integrating the time it stood.
+    if (closed_loop() && has_feedback() != fed) {
+        last_tick_ = now;
+        pi_.reset(output_at(now) / max_v_, position_code_ / kFullScale, position_frac(now));
+    }
 }
 
 void PiezoModule::on(const msg::ReqTpzIoSettings&)

@@ -20,20 +20,6 @@ constexpr std::uint32_t kConnected = 0x00000001;
 constexpr std::uint32_t kZeroed = 0x00000010;
 constexpr std::uint32_t kZeroing = 0x00000020;
 
-/// HubAnalogInput numbering of TPZ_IOSETTINGS (p. 115).
-std::uint16_t feedback_input_of(GaugeRoute route)
-{
-    switch (route) {
-    case GaugeRoute::HubA:
-        return 1;
-    case GaugeRoute::HubB:
-        return 2;
-    case GaugeRoute::Sma:
-        return 3;
-    }
-    return 1;
-}
-
 } // namespace
 
 const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator)
@@ -47,15 +33,14 @@ const WiredStrainGauge* find_mounted_gauge(const models::World& world, const mod
 std::function<std::optional<double>(Ticks, std::uint16_t)> gauge_feedback(const models::World& world,
                                                                           const models::PiezoActuator& actuator)
 {
-    // Looked up while none is found (a gauge links once every device exists), then kept: a body
-    // stays in its world for the world's life.
-    return [&world, &actuator, found = static_cast<const WiredStrainGauge*>(nullptr)](
-               Ticks now, std::uint16_t input) mutable -> std::optional<double> {
-        if (!found)
-            found = find_mounted_gauge(world, actuator);
-        if (!found || found->feedback_input() != input)
+    // Looked up once: a body stays in its world for the world's life.
+    const WiredStrainGauge* gauge = find_mounted_gauge(world, actuator);
+    if (!gauge)
+        return [](Ticks, std::uint16_t) -> std::optional<double> { return std::nullopt; };
+    return [gauge](Ticks now, std::uint16_t input) -> std::optional<double> {
+        if (!gauge->reaches(input))
             return std::nullopt;
-        return found->reading_um(now);
+        return gauge->reading_um(now);
     };
 }
 
@@ -63,8 +48,12 @@ StrainGaugeModule::StrainGaugeModule(const UnitIdentity& unit, std::size_t bay, 
                                      WiredStrainGauge* gauge, const Clock& clock, const StrainGaugeConfig& config,
                                      spdlog::logger& log, SaveToEeprom save)
     : Module(unit, bay, address, log, std::move(save)), gauge_(gauge), clock_(clock),
-      stiffness_n_per_um_(config.stiffness_n_per_um), zero_time_ms_(config.zero_time_ms)
+      stiffness_n_per_um_(config.stiffness_n_per_um), zero_time_ms_(config.zero_time_ms),
+      hub_output_(config.route == GaugeRoute::HubB ? 2 : 1)
 {
+    // The rig's route is the power-up HubAnalogueOutput of a reader on the hub (docs/config.md).
+    if (gauge_)
+        gauge_->set_hub_output(hub_output_);
 }
 
 void StrainGaugeModule::handle(const msg::Message& m, Request& r)
@@ -107,10 +96,17 @@ std::uint32_t StrainGaugeModule::status_bits() const
 
 std::string StrainGaugeModule::status_update(std::uint8_t host) const
 {
-    // The reader drives no output (OPVoltage 0); Position is the reading on the position scale.
+    // The reader drives no output (OPVoltage 0); Position is the reading on the position scale,
+    // 0..32767 (p. 103; below the zero reads 0, TSG_READING keeps the sign).
     const Ticks now = clock_.now();
-    const std::int16_t position = linked() ? code_of(gauge_->reading_um(now), 1) : 0;
+    const std::int16_t position = linked() ? std::max<std::int16_t>(0, code_of(gauge_->reading_um(now), 1)) : 0;
     return msg::encode(msg::PzGetPzStatusUpdate{kChan1, 0, position, status_bits()}, host, address_);
+}
+
+void StrainGaugeModule::power_down(bool)
+{
+    if (gauge_)
+        gauge_->clear_zero();
 }
 
 Ticks StrainGaugeModule::next_change(Ticks now) const
@@ -171,6 +167,8 @@ Refused StrainGaugeModule::patch(const nlohmann::json& body)
 void StrainGaugeModule::on(const msg::SetTsgIoSettings& m)
 {
     hub_output_ = m.params.hub_analogue_output;
+    if (gauge_)
+        gauge_->set_hub_output(hub_output_);   // p. 127: where the reading goes to the driver
     display_mode_ = m.params.display_mode;
     force_calib_ = m.params.force_calib;
 }
@@ -243,7 +241,7 @@ std::unique_ptr<Module> make_strain_gauge_module(const UnitIdentity& unit, std::
             m.actuator_key = g.mounted_on + "/1";
             m.noise_um = g.noise_um;
             m.seed = g.seed;
-            gauge = &world.emplace<WiredStrainGauge>(key, world.clock(), m, feedback_input_of(g.route));
+            gauge = &world.emplace<WiredStrainGauge>(key, world.clock(), m, g.route != GaugeRoute::Sma);
         }
     }
     return std::make_unique<StrainGaugeModule>(unit, 0, address, gauge, world.clock(), g, log, std::move(save));

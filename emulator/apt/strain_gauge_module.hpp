@@ -6,8 +6,9 @@
 // status bit 0x1 clear and readings of 0.
 //
 // The piezo driver's closed loop reads the same gauge body through the world
-// (find_gauge_feedback), never this module: the gauge's wiring ("route": hub A, hub B or the
-// SMA cable) must match the driver's TPZ_IOSETTINGS HubAnalogInput (p. 115).
+// (gauge_feedback), never this module: the gauge's wiring (the rig's "route": on the hub or
+// the SMA cable; on the hub, the channel of the reader's HubAnalogueOutput) must reach the
+// driver's TPZ_IOSETTINGS HubAnalogInput (p. 115, p. 127).
 // Choices the manual leaves open: docs/protocol/errata.md (D-15, D-16, D-22).
 
 #include "emulator/apt/config.hpp"
@@ -26,28 +27,34 @@ class PiezoActuator;
 
 namespace rigsim::apt {
 
-/// A strain gauge wired to a piezo driver's feedback input: 1 hub A, 2 hub B, 3 SMA (the
-/// numbers of TPZ_IOSETTINGS HubAnalogInput, p. 115).
+/// A strain gauge and how its reader is cabled to the piezo driver: on the hub, where the
+/// reader's TSG_IOSETTINGS HubAnalogueOutput (p. 127: 1 hub A, 2 hub B) picks the hub channel
+/// the signal goes to, or over the SMA cable. The reader module writes its output here; the
+/// driver's feedback reads it from the world.
 class WiredStrainGauge final : public models::StrainGauge {
 public:
-    WiredStrainGauge(const Clock& clock, models::StrainGaugeConfig config, std::uint16_t feedback_input)
-        : StrainGauge(clock, std::move(config)), feedback_input_(feedback_input)
+    WiredStrainGauge(const Clock& clock, models::StrainGaugeConfig config, bool on_hub)
+        : StrainGauge(clock, std::move(config)), on_hub_(on_hub)
     {
     }
-    /// The driver input the gauge's signal reaches (HubAnalogInput numbering).
-    std::uint16_t feedback_input() const { return feedback_input_; }
+    /// Whether the signal reaches driver input `input` (TPZ_IOSETTINGS HubAnalogInput, p. 115:
+    /// 1 hub A, 2 hub B, 3 SMA).
+    bool reaches(std::uint16_t input) const { return on_hub_ ? input == hub_output_ : input == 3; }
+    /// The reader's HubAnalogueOutput (1 hub A, 2 hub B).
+    void set_hub_output(std::uint16_t output) { hub_output_ = output; }
 
 private:
-    std::uint16_t feedback_input_;
+    bool on_hub_;
+    std::uint16_t hub_output_ = 1;
 };
 
 /// The gauge of the world mounted on `actuator`, or nullptr (none, or not linked yet).
 const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator);
 
 /// A TPZ001/KPZ101's feedback input (PiezoModule::Feedback): the reading (µm from the gauge's
-/// zero, p. 129's 500 Hz sample) of the gauge of the world mounted on `actuator` when its wiring
-/// reaches input `feedback_input` (HubAnalogInput), else nullopt. The gauge is looked up while
-/// none is found, then kept.
+/// zero, p. 129's 500 Hz sample) of the gauge mounted on `actuator` when its signal reaches
+/// input `feedback_input` (HubAnalogInput), else nullopt. The gauge is looked up once, now:
+/// call it after World::link_all().
 std::function<std::optional<double>(Ticks now, std::uint16_t feedback_input)>
 gauge_feedback(const models::World& world, const models::PiezoActuator& actuator);
 
@@ -64,6 +71,8 @@ public:
     static constexpr bool handles(msg::Family f) { return f == msg::Family::StrainGauge || f == msg::Family::Piezo; }
     void handle(const msg::Message& m, Request& r) override;
     std::string status_update(std::uint8_t host) const override;
+    /// The zero is lost with the power, as the zeroed bit is (the gauge body outlives the module).
+    void power_down(bool restore_positions) override;
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
     bool saves(std::uint16_t id) const override { return Saved::saves(id); }
@@ -101,7 +110,7 @@ private:
     const Clock& clock_;
     double stiffness_n_per_um_;
     int zero_time_ms_;
-    std::uint16_t hub_output_ = 1;      ///< HubAnalogueOutput: 1 hub A, 2 hub B pairs
+    std::uint16_t hub_output_;          ///< HubAnalogueOutput: 1 hub A, 2 hub B pairs
     std::uint16_t display_mode_ = 1;    ///< 1 position, 2 voltage, 3 force
     std::uint16_t force_calib_ = 30000; ///< 0.001 N steps (p. 128's default, FSC102)
     std::uint16_t disp_intensity_ = 255;

@@ -36,6 +36,9 @@ public:
     virtual std::uint32_t serial_baud() const { return 0; }
     /// What the control API reads and steers (nullptr: a device with none, as in transport tests).
     virtual ControlSurface* control() { return nullptr; }
+    /// Called once every device of the rig exists and the world is linked (World::link_all()):
+    /// the device may now read other devices' bodies and restores its non-volatile settings.
+    virtual void power_up() {}
 };
 
 /// Printable form of client bytes for log lines (non-printable bytes as \xNN, at most `max` bytes).

@@ -3,6 +3,10 @@
 // bytes as hex. No sockets, no sleeps:
 //   AptHarness h;  h.send("43 04 01 00 50 01");  h.advance_ms(2000);  h.take();
 // Several devices share the world and clock: h.add_device(config) == 1; h.send("...", 1).
+// As the rig does, the harness links the world and powers the devices up (saved settings
+// restored) once they all exist: at start(), which the first send, take, advance, device() or
+// world() call makes; a harness built on a state store starts at once (tests read its verdicts
+// before they send), so a multi-device one on a store takes all its devices in its constructor.
 
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/apt/messages.hpp"
@@ -62,6 +66,15 @@ public:
     explicit AptHarness(const DeviceConfig& config = tdc001(), StateStore* store = nullptr, EventBus* events = nullptr)
     {
         add_device(config, store, events);
+        if (store)
+            start();
+    }
+    /// Devices 0, 1, ... on one state store, started (linked, powered up) once all exist.
+    AptHarness(const std::vector<DeviceConfig>& configs, StateStore* store)
+    {
+        for (const auto& config : configs)
+            add_device(config, store);
+        start();
     }
     /// Another device on the same world and clock; returns its index (1, 2, ...).
     std::size_t add_device(const DeviceConfig& config, StateStore* store = nullptr, EventBus* events = nullptr)
@@ -73,26 +86,52 @@ public:
         auto* out = &unit->out;
         unit->session = unit->device->open_session([out](std::string_view b) { out->append(b); }, "test");
         units_.push_back(std::move(unit));
-        world_.link_all();   // as the rig does once its devices exist: a gauge finds its actuator
+        if (started_)
+            start_last();
         return units_.size() - 1;
+    }
+    /// Link the world and power every device up, as the rig does once its devices exist (a
+    /// gauge finds its actuator wherever it was added); the other calls do it first.
+    void start()
+    {
+        if (started_)
+            return;
+        started_ = true;
+        world_.link_all();
+        for (auto& unit : units_)
+            unit->device->power_up();
     }
     /// Hex in to device `d`; hex of everything device `d` sent since the last call out.
     std::string send(const std::string& hex_in, std::size_t d = 0)
     {
+        start();
         units_.at(d)->session->receive(bytes(hex_in));
         return take(d);
     }
     /// Hex of everything device `d` sent since the last call.
     std::string take(std::size_t d = 0)
     {
+        start();
         auto r = hex(units_.at(d)->out);
         units_[d]->out.clear();
         return r;
     }
-    void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
-    AptDevice& device(std::size_t d = 0) { return *units_.at(d)->device; }
+    void advance_ms(std::int64_t ms)
+    {
+        start();
+        clock_.advance_ms(ms);
+    }
+    AptDevice& device(std::size_t d = 0)
+    {
+        start();
+        return *units_.at(d)->device;
+    }
     std::size_t device_count() const { return units_.size(); }
-    models::World& world() { return world_; }
+    models::World& world()
+    {
+        start();
+        return world_;
+    }
 
 private:
     /// A device, what it sent, and its session (destroyed before the device).
@@ -104,6 +143,14 @@ private:
     Clock clock_;
     models::World world_{clock_};
     std::vector<std::unique_ptr<Unit>> units_;
+    bool started_ = false;
+
+    /// A device added after start(): linked and powered up at once.
+    void start_last()
+    {
+        world_.link_all();
+        units_.back()->device->power_up();
+    }
 };
 
 inline std::int32_t position_of(const std::string& reply_hex)

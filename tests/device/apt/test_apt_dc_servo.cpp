@@ -301,6 +301,7 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves the last SET of a message, a new device re
     Clock clock;
     models::World world(clock);
     AptDevice device(tdc001(), world, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()), &reloaded);
+    device.power_up();                                             // the rig's start-up: EEPROM restored
     std::string out;
     auto session = device.open_session([&](std::string_view b) { out.append(b); }, "test");
     session->receive(bytes("14 04 01 00 50 01"));
