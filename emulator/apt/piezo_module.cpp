@@ -116,6 +116,8 @@ double PiezoModule::volts_of(std::int16_t code) const
 
 std::int16_t PiezoModule::code_of(double v) const
 {
+    if (max_v_ <= 0)   // OUTPUTMAXVOLTS 0 (p. 121 allows it): the output is 0 V, 0 % of any maximum
+        return 0;
     return static_cast<std::int16_t>(std::clamp(std::lround(v / max_v_ * kFullScale), -32768L, 32767L));
 }
 

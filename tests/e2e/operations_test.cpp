@@ -16,7 +16,9 @@ using namespace std::chrono_literals;
 
 namespace {
 
-const std::vector<std::string> kDefaultRigDevices{"mcs0", "tdc001", "kdc101", "bbd203", "tst001", "kst101", "bsc203"};
+const std::vector<std::string> kDefaultRigDevices{"mcs0",   "tdc001", "kdc101", "bbd203", "tst001",
+                                                  "kst101", "bsc203", "tsc001", "ksc101", "tpz001",
+                                                  "tsg001", "kpz101", "ksg101", "bpc303"};
 
 /// What a sanitizer or a crash leaves in the log.
 bool log_is_clean(const std::string& log)

@@ -170,3 +170,71 @@ TEST_CASE("MOT_SET_EEPROMPARAMS saves only the parameter SETs of the manual, nev
     REQUIRE(f.store().get("cube", "bay0/0x043a"));
     CHECK(*f.store().get("cube", "bay0/0x043a") == "0100000d0000");
 }
+
+namespace {
+
+/// Issue 12's units for the EEPROM case: a TPZ001, a BPC303 with three 150 V bays, a TSG001.
+DeviceConfig pz_unit(const std::string& name, const std::string& model)
+{
+    DeviceConfig c;
+    c.name = name;
+    c.protocol = "apt";
+    c.model = model;
+    auto& apt = config_of(c);
+    if (model == "BPC303") {
+        PiezoBayConfig bay;
+        bay.actuator.max_voltage_v = 150;
+        bay.strain_gauge = true;
+        apt.piezo_bays = {bay, bay, bay};
+    }
+    return c;
+}
+
+} // namespace
+
+TEST_CASE("state file: PZ_SET_EEPROMPARAMS saves TPZ001 and TSG001 settings across a power cycle, a BPC303 bay ignores it",
+          "[device][apt][eeprom][state][piezo]")
+{
+    StateFileFixture f("{}");
+    {
+        AptHarness h(pz_unit("tpz", "TPZ001"), &f.store());
+        const auto bpc = h.add_device(pz_unit("bpc", "BPC303"), &f.store());
+        const auto tsg = h.add_device(pz_unit("tsg", "TSG001"), &f.store());
+        // TPZ001: PICONSTS 50/5 (p.100), display intensity 100 (p.114, no channel word), slew rates
+        // 1266/1266 (p.123), each saved with PZ_SET_EEPROMPARAMS (p.113) naming it.
+        CHECK(h.send("55 06 06 00 D0 01 01 00 32 00 05 00") == "");
+        CHECK(h.send("D0 07 04 00 D0 01 01 00 55 06") == "");
+        CHECK(h.send("D1 07 02 00 D0 01 64 00") == "");
+        CHECK(h.send("D0 07 04 00 D0 01 01 00 D1 07") == "");
+        CHECK(h.send("83 06 06 00 D0 01 01 00 F2 04 F2 04") == "");
+        CHECK(h.send("D0 07 04 00 D0 01 01 00 83 06") == "");
+        // Changed after the save: not what the EEPROM holds.
+        CHECK(h.send("55 06 06 00 D0 01 01 00 3C 00 06 00") == "");
+        // BPC303 bay 1 (0x22): OUTPUTMAXVOLTS 100 V (p.121 answers with the new maximum and travel).
+        // The BPC30x table (p.132) has no PZ_SET_EEPROMPARAMS: the bay ignores it, nothing is saved.
+        CHECK(frames(h.send("80 06 06 00 A2 01 01 00 E8 03 00 00", bpc)).size() == 2);
+        CHECK(h.send("D0 07 04 00 A2 01 01 00 80 06", bpc) == "");
+        // TSG001: TSG_IOSETTINGS display mode 2 (volts), force calibration 30000 (p.128).
+        CHECK(h.send("DA 07 0E 00 D0 01 01 00 01 00 02 00 30 75 00 00 00 00 00 00", tsg) == "");
+        CHECK(h.send("D0 07 04 00 D0 01 01 00 DA 07", tsg) == "");
+        REQUIRE(f.store().get("tpz", "bay0/0x0655"));
+        CHECK(*f.store().get("tpz", "bay0/0x0655") == "010032000500");
+        CHECK(f.store().device_state("bpc").empty());
+        REQUIRE(f.store().get("tsg", "bay0/0x07da"));
+        CHECK(*f.store().get("tsg", "bay0/0x07da") == "0100010002003075000000000000");
+        f.store().flush();
+    }
+    // Power cycle: the daemon restarts on the state file it wrote.
+    StateStore reloaded(f.path());
+    AptHarness h(pz_unit("tpz", "TPZ001"), &reloaded);
+    const auto bpc = h.add_device(pz_unit("bpc", "BPC303"), &reloaded);
+    const auto tsg = h.add_device(pz_unit("tsg", "TSG001"), &reloaded);
+    CHECK(h.take() == "");   // restoring answers nobody
+    CHECK(h.take(bpc) == "");
+    CHECK(h.send("56 06 01 00 50 01") == "57 06 06 00 81 50 01 00 32 00 05 00");
+    CHECK(h.send("D2 07 01 00 50 01") == "D3 07 02 00 81 50 64 00");
+    CHECK(h.send("84 06 01 00 50 01") == "85 06 06 00 81 50 01 00 F2 04 F2 04");
+    CHECK(h.send("81 06 01 00 22 01", bpc) == "82 06 06 00 81 22 01 00 DC 05 08 00");   // power-up 150 V
+    CHECK(h.send("DB 07 01 00 50 01", tsg) == "DC 07 0E 00 81 50 01 00 01 00 02 00 30 75 00 00 00 00 00 00");
+    CHECK(f.log().find("skipped") == std::string::npos);
+}

@@ -241,6 +241,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
     "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
+    "apt_piezo_bpc303.txt",
 };
 
 } // namespace
@@ -337,4 +338,9 @@ TEST_CASE("apt transcript: TPZ001 waveform (LUT) output", "[device][apt][transcr
 TEST_CASE("apt transcript: TSG001 strain gauge reader on a TPZ001, closed loop", "[device][apt][transcript]")
 {
     replay("apt_strain_gauge.txt");
+}
+
+TEST_CASE("apt transcript: BPC303 bays, maximum voltage, closed loop on one bay", "[device][apt][transcript][piezo]")
+{
+    replay("apt_piezo_bpc303.txt");
 }

@@ -70,6 +70,27 @@ std::vector<const MessageInfo*> piezo_and_strain_gauge_messages()
     return out;
 }
 
+/// A controller of `model` with the default "apt" section; a BPC303 with one default bay.
+DeviceConfig motorless_unit(const std::string& model)
+{
+    DeviceConfig c;
+    c.name = "unit";
+    c.protocol = "apt";
+    c.model = model;
+    auto& apt = config_of(c);
+    if (model == "BPC303")
+        apt.piezo_bays = {PiezoBayConfig{}};
+    return c;
+}
+
+/// Motor messages a client might send any APT unit (p.27-83): no piezo, strain gauge or
+/// solenoid unit moves a motor (their tables p.132-134, p.138; D-4).
+const std::vector<std::uint16_t> kMotorMoves{
+    MGMSG_MOT_MOVE_HOME,       MGMSG_MOT_MOVE_ABSOLUTE, MGMSG_MOT_MOVE_RELATIVE,   MGMSG_MOT_MOVE_JOG,
+    MGMSG_MOT_MOVE_STOP,       MGMSG_MOT_SET_VELPARAMS, MGMSG_MOT_REQ_VELPARAMS,   MGMSG_MOT_SET_HOMEPARAMS,
+    MGMSG_MOT_REQ_POSCOUNTER,  MGMSG_MOT_SET_EEPROMPARAMS,
+};
+
 } // namespace
 
 TEST_CASE("apt TDC001 ignores and logs a piezo request, then answers the next one", "[device][apt][unknown-modules]")
@@ -179,4 +200,60 @@ TEST_CASE("apt TSC001 ignores and logs a motor move (D-4), then answers the next
     CHECK(d.take_log().find("MGMSG_MOT_MOVE_HOME is not a message a TSC001 acts on: ignored") != std::string::npos);
     CHECK(hex(d.send(bytes("CC 04 01 00 50 01"))) == "CD 04 01 02 01 50");
     CHECK(d.take_log().empty());
+}
+
+TEST_CASE("apt piezo, strain gauge and solenoid units ignore and log motor messages, no bytes out",
+          "[device][apt][unknown-modules][piezo]")
+{
+    for (const std::string model : {"TPZ001", "KPZ101", "BPC303", "TSG001", "KSG101", "TSC001", "KSC101"}) {
+        LoggedDevice d(motorless_unit(model));
+        // A BPC303's channels are its bays (0x21...): the motor message goes to bay 0.
+        const std::uint8_t dest = model == "BPC303" ? kBay0 : kGenericUsb;
+        const std::string req_info = encode_header_only(MGMSG_HW_REQ_INFO, 0, 0, dest, kHost);
+        for (const auto id : kMotorMoves) {
+            if (id == MGMSG_MOT_SET_EEPROMPARAMS && (model == "TSC001" || model == "KSC101"))
+                continue;   // the solenoid units save with it (TSC001 table, p.138)
+            const auto* m = find_message(id);
+            REQUIRE(m != nullptr);
+            INFO(model << ": " << m->name);
+            // The message and a request in one read, as a client's burst arrives.
+            const auto reply = d.send(client_frame(*m, dest) + req_info);
+            REQUIRE(reply.size() == 6 + 84);
+            CHECK(hex(reply.substr(0, 4)) == "06 00 54 00");   // HW_GET_INFO, and nothing else
+            const auto log = d.take_log();
+            CHECK(log.find(std::string(m->name) + " is not a message a " + model + " acts on: ignored")
+                  != std::string::npos);
+            CHECK(log.find("[warning]") != std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("apt stepper and DC servo units ignore and log every piezo and strain gauge message",
+          "[device][apt][unknown-modules][piezo]")
+{
+    const auto messages = piezo_and_strain_gauge_messages();
+    for (const auto& config : {apt_cube("KDC101", "Z825B"), apt_cube("TST001", "DRV001"), apt_cube("KST101", "ZST225B"),
+                               apt_rack("BSC203", {"DRV001"})}) {
+        LoggedDevice d(config);
+        const std::uint8_t dest = config.model == "BSC203" ? kBay0 : kGenericUsb;
+        const std::string req_info = encode_header_only(MGMSG_HW_REQ_INFO, 0, 0, dest, kHost);
+        for (const auto* m : messages) {
+            INFO(config.model << ": " << m->name);
+            const auto reply = d.send(client_frame(*m, dest) + req_info);
+            REQUIRE(reply.size() == 6 + 84);
+            CHECK(hex(reply.substr(0, 4)) == "06 00 54 00");
+            CHECK(d.take_log().find(std::string(m->name) + " is not a message a " + config.model + " acts on: ignored")
+                  != std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("apt BPC303 bay ignores and logs PZ_SET_EEPROMPARAMS (not in the BPC30x table, p.132)",
+          "[device][apt][unknown-modules][piezo]")
+{
+    LoggedDevice d(motorless_unit("BPC303"));
+    CHECK(d.send(bytes("80 06 06 00 A1 01 01 00 E8 03 00 00")).size() == 12 + 10);   // GET_OUTPUTMAXVOLTS + GET_MAXTRAVEL
+    d.take_log();
+    CHECK(d.send(bytes("D0 07 04 00 A1 01 01 00 80 06")).empty());
+    CHECK(d.take_log().find("MGMSG_PZ_SET_EEPROMPARAMS is not a message a BPC303 acts on: ignored") != std::string::npos);
 }

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
+#include <iterator>
 #include <string>
 #include <string_view>
 
@@ -124,7 +126,7 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
 TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
-    REQUIRE(rig.devices.size() == 7);
+    REQUIRE(rig.devices.size() == 14);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
     CHECK(d.protocol == "mcs");
@@ -140,6 +142,35 @@ TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 4
     CHECK(rigsim::apt::config_of(rig.devices[5]).bays.size() == 3);
     CHECK(rig.devices[6].model == "BBD203");
     CHECK(rigsim::apt::config_of(rig.devices[6]).bays.size() == 3);
+    // Issue 12's units: each on its own port from 40107, serial <prefix>000001 (D-1 prefixes).
+    struct Unit {
+        const char* name;
+        const char* model;
+        int port;
+        std::uint32_t serial;
+    };
+    const Unit units[] = {{"tsc001", "TSC001", 40107, 85000001}, {"ksc101", "KSC101", 40108, 68000001},
+                          {"tpz001", "TPZ001", 40109, 81000001}, {"tsg001", "TSG001", 40110, 84000001},
+                          {"kpz101", "KPZ101", 40111, 29000001}, {"ksg101", "KSG101", 40112, 59000001},
+                          {"bpc303", "BPC303", 40113, 71000001}};
+    for (std::size_t k = 0; k < std::size(units); ++k) {
+        const auto& dev = rig.devices[7 + k];
+        INFO(units[k].name);
+        CHECK(dev.name == units[k].name);
+        CHECK(dev.protocol == "apt");
+        CHECK(dev.model == units[k].model);
+        CHECK(dev.tcp_port == units[k].port);
+        CHECK(dev.pty.empty());   // its own pty at <pty-dir>/<name>
+        CHECK(rigsim::apt::config_of(dev).serial_number == units[k].serial);
+    }
+    // The gauge readers sit on the piezo drivers' actuators (closed loop possible), and every
+    // BPC303 bay has a strain gauge.
+    CHECK(rigsim::apt::config_of(rig.devices[10]).gauge.mounted_on == "tpz001");
+    CHECK(rigsim::apt::config_of(rig.devices[12]).gauge.mounted_on == "kpz101");
+    const auto& bpc = rigsim::apt::config_of(rig.devices[13]);
+    REQUIRE(bpc.piezo_bays.size() == 3);
+    for (const auto& bay : bpc.piezo_bays)
+        CHECK(bay.strain_gauge);
 }
 
 TEST_CASE("rig config: an unreadable file names the path and the reason", "[unit][config]")
