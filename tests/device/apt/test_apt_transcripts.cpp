@@ -39,6 +39,8 @@
 #include <string>
 #include <vector>
 
+namespace test_apt_transcripts {
+
 using rigsim::test::AptHarness;
 
 namespace {
@@ -338,3 +340,5 @@ TEST_CASE("apt transcript: TSG001 strain gauge reader on a TPZ001, closed loop",
 {
     replay("apt_strain_gauge.txt");
 }
+
+} // namespace test_apt_transcripts
