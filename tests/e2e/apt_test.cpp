@@ -14,6 +14,8 @@
 #include "apt_support.hpp"
 #include "e2e_support.hpp"
 
+namespace apt_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -106,3 +108,5 @@ TEST_CASE("APT: what MOT_SET_EEPROMPARAMS saves survives a daemon restart (--sta
     CHECK(get32(vel->data, 6) == 16);
     CHECK(get32(vel->data, 10) == 4096);
 }
+
+} // namespace apt_test

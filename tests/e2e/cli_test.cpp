@@ -7,6 +7,8 @@
 
 #include "e2e_support.hpp"
 
+namespace cli_test {
+
 using namespace rigsim::e2e;
 
 namespace {
@@ -107,3 +109,5 @@ TEST_CASE("cli: --help lists every flag and exits 0", "[e2e][cli]")
         CHECK(r.out.find(flag) != std::string::npos);
     }
 }
+
+} // namespace cli_test

@@ -9,6 +9,8 @@
 
 #include <string>
 
+namespace control_devices_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -160,3 +162,5 @@ TEST_CASE("control: paused, a 100 ms step brings exactly one APT status update, 
     CHECK(homed);
     CHECK(has(http(api, "GET", "/api/devices/tdc001/channels/0").body, "\"referenced\":true"));
 }
+
+} // namespace control_devices_test

@@ -7,6 +7,8 @@
 
 #include <string>
 
+namespace control_routes_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -123,3 +125,5 @@ TEST_CASE("control: the event stream carries clock and fault events, filtered by
     CHECK(http(api, "GET", "/api/clock").status == 200);
     CHECK(daemon.running());
 }
+
+} // namespace control_routes_test

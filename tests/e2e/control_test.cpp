@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace control_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -175,3 +177,5 @@ TEST_CASE("control: out of descriptors, the control API's accept backs off inste
         5000ms));
     CHECK(daemon.log().find("control: accepting again") != std::string::npos);
 }
+
+} // namespace control_test

@@ -8,6 +8,8 @@
 
 #include "e2e_support.hpp"
 
+namespace lifecycle_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -129,3 +131,5 @@ TEST_CASE(
     INFO("daemon log:\n" << daemon.log());
     CHECK(logged);
 }
+
+} // namespace lifecycle_test

@@ -11,6 +11,8 @@
 
 #include "e2e_support.hpp"
 
+namespace pty_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -234,3 +236,5 @@ TEST_CASE("pty: a client that leaves ECHO on gets each answer once, with no echo
     CHECK(p.request(":GSI\n") == ":ID3118100\n");
     CHECK(daemon.log().find("error 2") == std::string::npos);
 }
+
+} // namespace pty_test

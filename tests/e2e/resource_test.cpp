@@ -14,6 +14,8 @@
 
 #include "e2e_support.hpp"
 
+namespace resource_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -198,3 +200,5 @@ TEST_CASE("resources: the connection limits are flags, listed by --help and chec
         CHECK(r.err == "rigsimd: " + std::string(flag) + ": expected an integer 1..65536, got \"0\"\n");
     }
 }
+
+} // namespace resource_test

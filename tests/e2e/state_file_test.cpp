@@ -13,6 +13,8 @@
 
 #include "e2e_support.hpp"
 
+namespace state_file_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -164,3 +166,5 @@ TEST_CASE("state file: a damaged entry is skipped and logged, and the damaged fi
     REQUIRE(wait_until([&] { return daemon.log().find("kept the file as loaded as " + state + ".damaged") != std::string::npos; },
                        5000ms));
 }
+
+} // namespace state_file_test

@@ -11,6 +11,8 @@
 
 #include "e2e_support.hpp"
 
+namespace tcp_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -158,3 +160,5 @@ TEST_CASE("TCP: an oversize line is answered E-1,1 and leaves the daemon and a b
     CHECK(a.request(":GNC\n") == ":N3\n");
     CHECK(daemon.running());
 }
+
+} // namespace tcp_test

@@ -35,6 +35,8 @@
 #include "control_support.hpp"
 #include "e2e_support.hpp"
 
+namespace transcript_test {
+
 #ifndef RIGSIM_SOURCE_DIR
 #error "RIGSIM_SOURCE_DIR is set by tests/e2e/CMakeLists.txt"
 #endif
@@ -306,3 +308,5 @@ TEST_CASE("transcript replay: every wrong answer is reported at its line, the re
     CHECK(result.failures[2].find(":GP0: expected :P0,1000001, got :P0,1000000") != std::string::npos);
     CHECK(result.failures[3].find(":GS0: expected :S0,3, got :S0,0") != std::string::npos);
 }
+
+} // namespace transcript_test

@@ -14,6 +14,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_apt_closed_loop {
+
 using namespace rigsim::test;
 
 namespace {
@@ -130,3 +132,5 @@ TEST_CASE("apt closed loop: a TSG001 without a gauge fitted reads 0 with bit 0x1
     h->send("40 06 01 02 50 01");   // D-19: no feedback
     CHECK(h->send("41 06 01 00 50 01") == "42 06 01 01 01 50");
 }
+
+} // namespace test_apt_closed_loop

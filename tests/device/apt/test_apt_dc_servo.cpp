@@ -5,6 +5,8 @@
 #include <unistd.h>
 #include <stdlib.h>
 
+namespace test_apt_dc_servo {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -381,3 +383,5 @@ TEST_CASE("a BSC203 stepper rack: three bays, MOTSTATUS from each bay", "[device
     CHECK(updates.find("81 04 0E 00 81 21") != std::string::npos);
     CHECK(updates.find("81 04 0E 00 81 23") != std::string::npos);
 }
+
+} // namespace test_apt_dc_servo

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+namespace test_apt_frames_ranges {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -177,3 +179,5 @@ TEST_CASE("PMDSTAGEAXISPARAMS only narrows the travel: a wider or inverted one i
     CHECK(get_i32(narrowed, 30) == min_position + 1000);
     CHECK(get_i32(narrowed, 34) == max_position - 1000);
 }
+
+} // namespace test_apt_frames_ranges

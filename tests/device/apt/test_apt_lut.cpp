@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace test_apt_lut {
+
 using namespace rigsim::test;
 
 namespace {
@@ -137,3 +139,5 @@ TEST_CASE("apt BPC303 LUT: a bad index or bad parameters are ignored and logged"
     h.send("06 07 01 00 21 01");
     CHECK(output_code(h) == 0);
 }
+
+} // namespace test_apt_lut

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdint>
 
+namespace test_apt_piezo {
+
 using namespace rigsim::test;
 
 namespace {
@@ -189,3 +191,5 @@ TEST_CASE("apt TPZ001: closed loop without a linked gauge is ignored (D-19)", "[
     CHECK(h.send("40 06 01 03 50 01").empty());   // open loop smoothed is taken
     CHECK(h.send("41 06 01 00 50 01") == "42 06 01 03 01 50");
 }
+
+} // namespace test_apt_piezo

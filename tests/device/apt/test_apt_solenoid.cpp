@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+namespace test_apt_solenoid {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -244,3 +246,5 @@ TEST_CASE("apt solenoid: control API describe and PATCH of the channel", "[devic
     CHECK(channel(h)["state"] == "on");
     CHECK(channel(h)["status"] == 0x1001);
 }
+
+} // namespace test_apt_solenoid

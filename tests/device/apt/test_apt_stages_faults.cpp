@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+namespace test_apt_stages_faults {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -319,3 +321,5 @@ TEST_CASE("software limit mode 2 stops dead at the limit, mode 3 brakes to it", 
         CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
     }
 }
+
+} // namespace test_apt_stages_faults

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+namespace test_apt_timing {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -83,3 +85,5 @@ TEST_CASE("status updates during a move: ten per second of clock, the position i
     for (const auto& f : frames(h.take()))
         CHECK(f.substr(0, 5) != "91 04");
 }
+
+} // namespace test_apt_timing

@@ -39,6 +39,8 @@
 #include <string>
 #include <vector>
 
+namespace test_apt_transcripts {
+
 using rigsim::test::AptHarness;
 
 namespace {
@@ -344,3 +346,5 @@ TEST_CASE("apt transcript: BPC303 bays, maximum voltage, closed loop on one bay"
 {
     replay("apt_piezo_bpc303.txt");
 }
+
+} // namespace test_apt_transcripts

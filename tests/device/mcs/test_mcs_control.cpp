@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_control {
+
 using nlohmann::json;
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
@@ -442,3 +444,5 @@ TEST_CASE("MCS describe and PATCH on a rotary channel: radians and micro degrees
     CHECK(refused->status == 400);
     CHECK(h.send(":GA0\n") == ":A0,90000000,0\n");
 }
+
+} // namespace test_mcs_control

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_end_effectors {
+
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
 
@@ -87,3 +89,5 @@ TEST_CASE("K stops positioners only, R opens the gripper and keeps its type", "[
     CHECK(h.send(":K0\n:R\n") == ":E-1,0\n:E-1,0\n");
     CHECK(h.send(":GS1\n:GGO1\n:GEET1\n") == ":S1,0\n:GO1,0\n:EET1,1,10000,0\n");
 }
+
+} // namespace test_mcs_end_effectors

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_events {
+
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
 
@@ -98,3 +100,5 @@ TEST_CASE("counters and capture buffer 0 follow their trigger source", "[device]
     h.advance_ms(100);
     CHECK(h.send(":GB0,0\n:TC0\n:GB0,0\n:GB0,1\n") == ":CB0,0,1000000,0,2\n:CB0,0,2000000,0,3\n:E0,7\n");
 }
+
+} // namespace test_mcs_events

@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_open_loop {
+
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
 
@@ -91,3 +93,5 @@ TEST_CASE("MSCA/MSCR scan the piezo: status 2, GVL, deflection", "[device][mcs][
           == ":E0,7\n:E0,7\n:E0,7\n:E0,7\n");
     CHECK(h.send(":MSCA0,0,4294967296\n") == ":E-1,3\n");
 }
+
+} // namespace test_mcs_open_loop

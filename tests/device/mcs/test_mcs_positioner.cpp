@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+namespace test_mcs_positioner {
+
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
 
@@ -223,3 +225,5 @@ TEST_CASE("an open-loop positioner drifts at drift_nm_per_s after a burst, not w
     h.advance_ms(1000);
     CHECK(h.send(":GP0\n") == ":P0,21000\n");
 }
+
+} // namespace test_mcs_positioner

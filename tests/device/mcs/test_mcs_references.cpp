@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_references {
+
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
 
@@ -222,3 +224,5 @@ TEST_CASE("goniometers have end stops, linear channels refuse angle commands", "
     CHECK(h.send(":GS0\n:GA0\n") == ":S0,0\n:A0,10000000,0\n");
     CHECK(h.send(":GA1\n:MAA1,0,0,0\n:MAR1,0,0,0\n:GAL1\n") == ":E1,143\n:E1,143\n:E1,143\n:E1,143\n");
 }
+
+} // namespace test_mcs_references

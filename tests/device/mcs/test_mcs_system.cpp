@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_system {
+
 using rigsim::test::McsHarness;
 
 TEST_CASE("SCM switches to async mode: acknowledges vanish and errors remain", "[device][mcs][async]")
@@ -156,3 +158,5 @@ TEST_CASE("identification: SHE, CB, GSN, GFV, GFP, GSD/SSD, SSWS", "[device][mcs
     CHECK(h.send(":SSWS0,0\n:SSWS0,3\n") == ":E0,0\n:E0,7\n");
     CHECK(h.send(":GSN3\n") == ":E-1,7\n");
 }
+
+} // namespace test_mcs_system

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_mcs_timing {
+
 using rigsim::Ticks;
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
@@ -114,3 +116,5 @@ TEST_CASE("faithful_timing: the serial line runs at 9600 baud until CB and R cha
         CHECK(h.device().serial_baud() == 0);
     }
 }
+
+} // namespace test_mcs_timing

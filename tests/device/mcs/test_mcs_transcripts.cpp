@@ -19,6 +19,8 @@
 #include <memory>
 #include <sstream>
 
+namespace test_mcs_transcripts {
+
 using rigsim::test::McsHarness;
 
 namespace {
@@ -122,3 +124,5 @@ TEST_CASE("transcript: end effectors", "[device][mcs][transcript]")
 {
     replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_end_effectors.txt");
 }
+
+} // namespace test_mcs_transcripts

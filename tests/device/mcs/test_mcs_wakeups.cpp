@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_wakeups {
+
 using rigsim::Ticks;
 using rigsim::test::McsHarness;
 using rigsim::test::mcs_device_config;
@@ -41,3 +43,5 @@ TEST_CASE("MCS: moving channels wake the clock at their events only, not once pe
     CHECK(wakeups_over(h, 60'000) == 0);   // a minute of open-loop steps
     CHECK(h.send(":GS1\n:S1\n:GS1\n") == ":S1,1\n:S1,0\n");
 }
+
+} // namespace test_mcs_wakeups

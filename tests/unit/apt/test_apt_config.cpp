@@ -16,6 +16,8 @@
 
 #include <string>
 
+namespace test_apt_config {
+
 namespace {
 
 using nlohmann::json;
@@ -235,3 +237,5 @@ TEST_CASE("apt config: the daemon runs every APT unit kind: motor, solenoid, pie
         CHECK(apt.make(device, context) != nullptr);
     world.link_all();   // the TSG001's gauge finds the TPZ001's actuator
 }
+
+} // namespace test_apt_config

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+namespace test_catalogue {
+
 using namespace rigsim::apt;
 
 TEST_CASE("catalogue: TDC001 and KST101 keep their identity and scaling", "[unit][apt][catalogue]")
@@ -271,3 +273,5 @@ TEST_CASE("catalogue: the solenoid, piezo and strain gauge units' identity, ACK 
     CHECK(find_controller("TDC001")->ack_id == MGMSG_MOT_ACK_DCSTATUSUPDATE);
     CHECK(find_controller("TDC001")->kind == UnitKind::Motor);
 }
+
+} // namespace test_catalogue

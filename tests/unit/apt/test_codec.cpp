@@ -8,6 +8,8 @@
 
 #include <string>
 
+namespace test_apt_codec {
+
 using namespace rigsim::apt;
 using namespace rigsim::apt::msg;
 using rigsim::test::hex;
@@ -653,3 +655,5 @@ TEST_CASE("MGMSG_PZ_REQ_TSG_READING and MGMSG_PZ_GET_TSG_READING round-trip", "[
     round_trip(TsgReqReading{1}, "DD 07 01 00 50 01");
     round_trip(TsgGetReading{1, 0x0052, 0x0050}, "DE 07 06 00 81 50 01 00 52 00 50 00", 0x01, 0x50);   // p. 129
 }
+
+} // namespace test_apt_codec

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+namespace test_frame_framer {
+
 using namespace rigsim::apt;
 using rigsim::test::hex;
 
@@ -368,3 +370,5 @@ TEST_CASE("discard_partial drops a frame short of its data or a partial header, 
     CHECK(frame(f, set_vel, 1) == std::vector<std::string>{"0413 d=50 s=01 [01 00 00 00 00 00 F4 01 00 00 40 42 0F 00]"});
     CHECK(f.discard_partial() == 0);   // the last frame is not a partial one
 }
+
+} // namespace test_frame_framer

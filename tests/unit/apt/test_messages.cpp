@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace test_messages {
+
 using namespace rigsim::apt;
 using rigsim::test::hex;
 const auto unhex = rigsim::test::bytes;
@@ -597,3 +599,5 @@ TEST_CASE("apt manual examples that the ERRATA correct", "[unit][apt][messages]"
         }
     }
 }
+
+} // namespace test_messages

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_module {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using rigsim::test::bytes;
@@ -132,3 +134,5 @@ TEST_CASE("apt module: SavedSets stores a SET for channel 1: its data packet, or
     // Not one of the set: nothing stored.
     CHECK_FALSE(Saved::data(msg::SetPosCounter{{1, 5}}).has_value());
 }
+
+} // namespace test_module

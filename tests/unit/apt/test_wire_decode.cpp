@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+namespace test_wire_decode {
+
 using namespace rigsim::apt;
 
 TEST_CASE("decode_for_log names every field of the names table for every message", "[unit][apt][wire]")
@@ -48,3 +50,5 @@ TEST_CASE("status_bit_names reads the manual's bits", "[unit][apt][wire]")
     CHECK(status_bit_names(0x80002500) == std::vector<std::string_view>{"motor_connected", "homed", "settled", "enabled"});
     CHECK(status_bit_names(0).empty());
 }
+
+} // namespace test_wire_decode

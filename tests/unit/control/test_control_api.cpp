@@ -10,6 +10,8 @@
 
 #include <string>
 
+namespace test_control_api {
+
 using namespace rigsim;
 using rigsim::control::ControlApi;
 using nlohmann::json;
@@ -191,3 +193,5 @@ TEST_CASE("control api: a deeply nested or binary body is refused, not a crash",
     CHECK(f.error_of("POST", "/api/clock", std::string(binary, sizeof binary - 1), 400)
           .rfind("body: expected a JSON object, got invalid JSON", 0) == 0);
 }
+
+} // namespace test_control_api

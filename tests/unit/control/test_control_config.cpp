@@ -7,6 +7,8 @@
 
 #include <string>
 
+namespace test_control_config {
+
 using nlohmann::json;
 using rigsim::ConfigError;
 using rigsim::parse_rig_config;
@@ -99,3 +101,5 @@ TEST_CASE("rig config: the clock's start mode, real time unless the rig says oth
     CHECK(clock_error_of(json{{"paused", "yes"}}) == "rig.json: /clock/paused: expected true or false, got \"yes\"");
     CHECK(clock_error_of(json{{"mode", "fast"}}) == "rig.json: /clock: unknown key \"mode\" (allowed: time_scale, paused)");
 }
+
+} // namespace test_control_config

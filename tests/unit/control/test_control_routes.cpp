@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace test_control_routes {
+
 using namespace rigsim;
 using rigsim::control::ControlApi;
 using nlohmann::json;
@@ -346,3 +348,5 @@ TEST_CASE("GET /api/events: a stream of the bus's events, filtered by device and
     CHECK(f.api.handle("GET", "/api/events?device=nope", "").status == 404);
     CHECK(f.api.handle("GET", "/api/events?colour=red", "").status == 400);
 }
+
+} // namespace test_control_routes

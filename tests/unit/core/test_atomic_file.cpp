@@ -16,6 +16,8 @@
 #include <system_error>
 #include <vector>
 
+namespace test_atomic_file {
+
 using namespace rigsim;
 using rigsim::test::TempDir;
 using rigsim::test::read;
@@ -114,3 +116,5 @@ TEST_CASE("write_new_file never replaces: base, then base.1, base.2", "[unit][at
     CHECK(read(base + ".1") == "b");
     CHECK(read(base + ".3") == "c");
 }
+
+} // namespace test_atomic_file

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+namespace test_link {
+
 using namespace rigsim;
 
 namespace {
@@ -223,3 +225,5 @@ TEST_CASE("a reset link has no fault, holds no answer, its line idle and its cou
     f.session->receive("y");
     CHECK(f.out == "y");
 }
+
+} // namespace test_link

@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_logging {
+
 using rigsim::LogLevels;
 using rigsim::apply_log_level;
 
@@ -34,3 +36,5 @@ TEST_CASE("log levels: NAME=LEVEL sets one logger and bad values are named", "[u
           == "--log-level: unknown level \"loud\" (expected trace, debug, info, warn, error, critical or off)");
     CHECK(*apply_log_level("=debug", l) == "--log-level: expected LEVEL or NAME=LEVEL, got \"=debug\"");
 }
+
+} // namespace test_logging

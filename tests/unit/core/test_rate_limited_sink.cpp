@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+namespace test_rate_limited_sink {
+
 namespace {
 
 using namespace std::chrono_literals;
@@ -107,3 +109,5 @@ TEST_CASE("rate-limited log: the peer is the text before the first \": \"", "[un
     CHECK(rigsim::log_peer("pty /tmp/x: closed") == "pty /tmp/x");
     CHECK(rigsim::log_peer("no separator") == "");
 }
+
+} // namespace test_rate_limited_sink

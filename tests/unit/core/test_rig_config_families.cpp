@@ -9,6 +9,8 @@
 
 #include <string>
 
+namespace test_rig_config_families {
+
 namespace {
 
 struct LampConfig {
@@ -102,3 +104,5 @@ TEST_CASE("rig config: a family's rig-wide check runs once every device is loade
     CHECK(error_of(R"({"devices":[{"name":"f","protocol":"lamp","lamp":{"watts":0}}]})", checked) ==
           "rig.json: /devices/0/lamp/watts: expected an integer 1..100, got 0");
 }
+
+} // namespace test_rig_config_families

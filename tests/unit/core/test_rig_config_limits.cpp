@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+namespace test_rig_config_limits {
+
 using rigsim::ConfigError;
 
 namespace {
@@ -111,3 +113,5 @@ TEST_CASE("rig config: only regular files of at most 4 MiB are read", "[unit][co
     ::unlink(big.c_str());
     ::rmdir(dir.c_str());
 }
+
+} // namespace test_rig_config_limits

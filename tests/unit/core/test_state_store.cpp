@@ -22,6 +22,8 @@
 #include <thread>
 #include <vector>
 
+namespace test_state_store {
+
 using namespace rigsim;
 using rigsim::test::TempDir;
 using rigsim::test::read;
@@ -207,3 +209,5 @@ TEST_CASE("state store: a symlinked state file stays a link, and stale temporari
     CHECK(log.text.str().find("removed " + dir.file("real.json.tmp999999999") + ", left by a rigsimd that was killed")
           != std::string::npos);
 }
+
+} // namespace test_state_store

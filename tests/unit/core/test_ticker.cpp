@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+namespace test_ticker {
+
 using namespace rigsim;
 using namespace std::chrono_literals;
 
@@ -432,3 +434,5 @@ TEST_CASE("ticker: run_until_idle() runs wake-up to wake-up until not busy, or u
     CHECK(ticker.paused());
     CHECK_THROWS_AS(ticker.run_until_idle(-1, busy), std::invalid_argument);
 }
+
+} // namespace test_ticker

@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_mcs_codec {
+
 using namespace rigsim::mcs;
 
 namespace {
@@ -103,3 +105,5 @@ TEST_CASE("codec encodes answers without spaces", "[unit][mcs][codec]")
     CHECK(encode(Error{2, ErrorCode::WrongSensorType}) == ":E2,143\n");
     CHECK(encode(Answer{"P0,2000000"}) == ":P0,2000000\n");
 }
+
+} // namespace test_mcs_codec

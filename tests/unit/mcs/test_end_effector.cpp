@@ -8,6 +8,8 @@
 
 #include <stdexcept>
 
+namespace test_end_effector {
+
 using namespace rigsim;
 using namespace rigsim::mcs;
 
@@ -663,3 +665,5 @@ TEST_CASE("end effector rejects an impossible model", "[unit][mcs][end_effector]
     CHECK_THROWS_AS(EndEffector(clock, EndEffectorModel{-1, 5}), std::invalid_argument);
     CHECK_NOTHROW(EndEffector(clock, EndEffectorModel{0, 1}));
 }
+
+} // namespace test_end_effector

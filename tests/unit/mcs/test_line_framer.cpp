@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+namespace test_line_framer {
+
 using rigsim::mcs::LineFramer;
 
 namespace {
@@ -115,3 +117,5 @@ TEST_CASE("framer survives 10 MB without a newline", "[unit][mcs][framer]")
     CHECK(f.in_command());
     CHECK(frame(f, "\n:GNC\n", 100) == std::vector<std::string>{"O", "C:GNC"});
 }
+
+} // namespace test_line_framer

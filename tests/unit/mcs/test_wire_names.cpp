@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_wire_names {
+
 using nlohmann::json;
 using namespace rigsim::mcs;
 
@@ -47,3 +49,5 @@ TEST_CASE("MCS wire names: a queued command as its command string", "[unit][mcs]
     CHECK(command_text(MoveStep{0, -30000, 4095, 18500}) == "MST0,-30000,4095,18500");
     CHECK(command_text(FindReferenceMark{2, 1, 0, 1}) == "FRM2,1,0,1");
 }
+
+} // namespace test_wire_names

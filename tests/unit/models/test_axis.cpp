@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_axis {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -302,3 +304,5 @@ TEST_CASE("axis: a rule changed while a stepper presses on its end stop acts fro
     CHECK(r.axis.position_counts() == 100'000);
     CHECK(r.axis.lost_counts() == lost);
 }
+
+} // namespace test_axis

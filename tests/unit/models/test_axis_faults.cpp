@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_axis_faults {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -128,3 +130,5 @@ TEST_CASE("a pressed limit switch ends motion toward it at once, and stops one u
     CHECK(r.axis.position_counts() > 40'000);
     CHECK(r.axis.position_counts() < 60'000);
 }
+
+} // namespace test_axis_faults

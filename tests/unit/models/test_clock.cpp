@@ -5,6 +5,8 @@
 
 #include <vector>
 
+namespace test_clock {
+
 using namespace rigsim;
 
 namespace {
@@ -51,3 +53,5 @@ TEST_CASE("clock converts milliseconds to ticks rounding up", "[unit][clock]")
     CHECK(Clock(1000).seconds(250) == Approx(0.25));
     CHECK_THROWS(Clock(0));
 }
+
+} // namespace test_clock

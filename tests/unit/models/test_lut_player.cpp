@@ -11,6 +11,8 @@
 #include <optional>
 #include <vector>
 
+namespace test_lut_player {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -276,3 +278,5 @@ TEST_CASE("lut player: a start the unit ignores leaves the output as it was", "[
     CHECK(*lut.value_at(10) == 40);
     CHECK(lut.end_tick() == 4);
 }
+
+} // namespace test_lut_player

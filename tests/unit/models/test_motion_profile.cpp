@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+namespace test_motion_profile {
+
 using rigsim::models::AxisState;
 using rigsim::models::MotionProfile;
 
@@ -120,3 +122,5 @@ TEST_CASE("an S-curve short move peaks below top speed and is slower than a trap
     const auto m = MotionProfile::plan_s_curve(AxisState{0, 1}, 5, 10, 20, 1000);
     CHECK(m.duration() == Approx(MotionProfile::plan(AxisState{0, 1}, 5, 10, 20).duration()));
 }
+
+} // namespace test_motion_profile

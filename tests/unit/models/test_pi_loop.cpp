@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace test_pi_loop {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -163,3 +165,5 @@ TEST_CASE("PI loop: a step response overshoots by less than 5 % over a grid of g
         }
     }
 }
+
+} // namespace test_pi_loop

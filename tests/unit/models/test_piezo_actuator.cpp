@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+namespace test_piezo_actuator {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -193,3 +195,5 @@ TEST_CASE("piezo actuator: a configuration out of range is refused", "[unit][mod
     CHECK_THROWS_AS(bad([](auto& c) { c.creep_t0_ms = 0; })(), std::invalid_argument);
     CHECK_NOTHROW(bad([](auto&) {})());
 }
+
+} // namespace test_piezo_actuator

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_piezo_scanner {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -27,3 +29,5 @@ TEST_CASE("piezo scanner: the level follows the clock and the end tick is the fi
     s.start(300, s.level_at(300), 5);   // no span: over at its start
     CHECK(s.end_tick() == 300);
 }
+
+} // namespace test_piezo_scanner

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_solenoid {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -102,3 +104,5 @@ TEST_CASE("solenoid: close during a cycle switches off at once and keeps the cyc
     CHECK(r.sol.cycles_done(r.clock.now()) == 1);
     CHECK_FALSE(r.sol.running(r.clock.now()));
 }
+
+} // namespace test_solenoid

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+namespace test_stick_slip {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -262,3 +264,5 @@ TEST_CASE("stick-slip: a negative drift stops at the minimum end stop, and a dri
     CHECK(still.position_nm() == 0.0);
     CHECK(p.woken.empty());
 }
+
+} // namespace test_stick_slip

@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+namespace test_stick_slip_faults {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -84,3 +86,5 @@ TEST_CASE("stick-slip slip: shorter steps and slower closed-loop moves", "[unit]
     clock.advance(667);
     CHECK(p.velocity_nm_per_s() == Approx(7'500));
 }
+
+} // namespace test_stick_slip_faults

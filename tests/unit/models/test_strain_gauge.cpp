@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace test_strain_gauge {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -175,3 +177,5 @@ TEST_CASE("strain gauge: a missing or unfit actuator key is refused when linked"
     zero_rate.sample_hz = 0;
     CHECK_THROWS_AS(StrainGauge(clock, zero_rate), std::invalid_argument);
 }
+
+} // namespace test_strain_gauge

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+namespace test_world {
+
 using namespace rigsim;
 using namespace rigsim::models;
 
@@ -129,3 +131,5 @@ TEST_CASE("world: link_all lets every body find the bodies it reads, whatever th
     world.emplace<Reader>("b/reader", "nowhere");
     CHECK_THROWS_WITH(world.link_all(), "no alarm \"nowhere\"");
 }
+
+} // namespace test_world
