@@ -49,7 +49,7 @@ enum class GaugeRoute { HubA, HubB, Sma };
 struct StrainGaugeConfig {
     /// The TPZ001/KPZ101 device whose actuator carries the gauge; empty: no gauge fitted.
     std::string mounted_on;
-    GaugeRoute route = GaugeRoute::HubA;   ///< "hub_a", "hub_b" or "sma"
+    GaugeRoute route = GaugeRoute::HubA;   ///< the cabling: "sma", or "hub_a"/"hub_b" (the power-up hub output)
     double noise_um = 0.002;      ///< standard deviation of each 500 Hz sample: 0..1
     std::uint32_t seed = 1;       ///< of the noise: the same seed reads the same noise
     double stiffness_n_per_um = 1.0;    ///< force per extension for display mode 3 (N): > 0, <= 1e6

@@ -2,7 +2,7 @@
 // The strain gauge module of an APT unit (module.hpp): a TSG001/KSG101 reader. Its gauge is a
 // body of the world (models/strain_gauge.hpp, key "<device>/1") mounted on the actuator of the
 // piezo driver the rig names ("mounted_on": "<piezo device>/1"): it reads the world, never the
-// piezo driver's protocol state. A reader without a gauge fitted (mounted_on "") answers with
+// piezo driver's protocol state. A reader without a gauge fitted (no mounted_on) answers with
 // status bit 0x1 clear and readings of 0.
 //
 // The piezo driver's closed loop reads the same gauge body through the world
@@ -64,7 +64,7 @@ public:
     /// What PZ_SET_EEPROMPARAMS saves (p. 113) on a gauge reader.
     using Saved = SavedSets<msg::SetTsgIoSettings, msg::SetTpzDispSettings>;
 
-    /// `gauge` is nullptr when no gauge is fitted (mounted_on "").
+    /// `gauge` is nullptr when no gauge is fitted (no mounted_on).
     StrainGaugeModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, WiredStrainGauge* gauge,
                       const Clock& clock, const StrainGaugeConfig& config, spdlog::logger& log, SaveToEeprom save);
 

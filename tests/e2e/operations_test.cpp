@@ -11,6 +11,8 @@
 
 #include "e2e_support.hpp"
 
+namespace operations_test {
+
 using namespace rigsim::e2e;
 using namespace std::chrono_literals;
 
@@ -171,3 +173,5 @@ TEST_CASE("operations: a flood of bad commands gets every error answer but a bou
     CHECK(other.request(":BAR\n") == ":E-1,2\n");
     CHECK(wait_until([&] { return daemon.log().find("\"BAR\"") != std::string::npos; }, 3000ms));
 }
+
+} // namespace operations_test

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace test_apt_control {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -575,3 +577,5 @@ TEST_CASE("control: a rotation stage is a rotary channel in radians, placed at a
     CHECK(refused->status == 400);
     CHECK(channel(h)["position_si"].get<double>() == Approx(4 * M_PI));
 }
+
+} // namespace test_apt_control

@@ -16,6 +16,8 @@
 #include <string>
 #include <unistd.h>
 
+namespace test_apt_gauge_state {
+
 using namespace rigsim::test;
 
 namespace {
@@ -298,3 +300,5 @@ TEST_CASE("apt TSG001: status updates stop after 50 without PZ_ACK_PZSTATUSUPDAT
     h.advance_ms(1000);
     CHECK(h.take(1).empty());
 }
+
+} // namespace test_apt_gauge_state

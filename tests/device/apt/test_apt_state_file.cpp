@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+namespace test_apt_state_file {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -238,3 +240,5 @@ TEST_CASE("state file: PZ_SET_EEPROMPARAMS saves TPZ001 and TSG001 settings acro
     CHECK(h.send("DB 07 01 00 50 01", tsg) == "DC 07 0E 00 81 50 01 00 01 00 02 00 30 75 00 00 00 00 00 00");
     CHECK(f.log().find("skipped") == std::string::npos);
 }
+
+} // namespace test_apt_state_file

@@ -8,6 +8,8 @@
 
 #include <sstream>
 
+namespace test_apt_unknown_modules {
+
 using namespace rigsim;
 using namespace rigsim::apt;
 using namespace rigsim::test;
@@ -257,3 +259,5 @@ TEST_CASE("apt BPC303 bay ignores and logs PZ_SET_EEPROMPARAMS (not in the BPC30
     CHECK(d.send(bytes("D0 07 04 00 A1 01 01 00 80 06")).empty());
     CHECK(d.take_log().find("MGMSG_PZ_SET_EEPROMPARAMS is not a message a BPC303 acts on: ignored") != std::string::npos);
 }
+
+} // namespace test_apt_unknown_modules

@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+namespace test_rig_config {
+
 using nlohmann::json;
 using rigsim::ConfigError;
 using rigsim::parse_rig_config;
@@ -663,3 +665,5 @@ TEST_CASE("rig config: drift_nm_per_s is a signed channel integer, 0 by default"
     rig["devices"][0]["mcs"]["channels"][0]["drift_nm_per_s"] = 1'000'001;
     CHECK(error_of(rig) == expected + "1000001");
 }
+
+} // namespace test_rig_config
