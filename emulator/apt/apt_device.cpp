@@ -126,6 +126,11 @@ void AptDevice::power_up()
     restore_from_eeprom();
 }
 
+int AptDevice::power_up_phase() const
+{
+    return model_.kind == UnitKind::StrainGauge ? 0 : 1;
+}
+
 std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
 {
     auto save = [this, bay](std::uint16_t id, std::string_view peer) { save_to_eeprom(bay, id, peer); };

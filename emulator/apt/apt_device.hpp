@@ -65,6 +65,9 @@ public:
     /// After World::link_all(): a piezo driver finds the gauge mounted on its actuator, then the
     /// device replays what the state file holds, as the unit loads its EEPROM at power-up.
     void power_up() override;
+    /// A strain gauge reader powers up first: a piezo driver's saved closed loop reads the hub
+    /// output the reader restores (TSG_IOSETTINGS, p. 127).
+    int power_up_phase() const override;
 
     /// Handle one frame from a connection; answers go to `reply`.
     void handle(const Frame& frame, std::string_view peer, std::string& reply);

@@ -184,7 +184,8 @@ void PiezoModule::finish_zeroing(Ticks)
 Ticks PiezoModule::next_change(Ticks now) const
 {
     Ticks next = kNever;
-    if (output_at(now) != ramp_.target_v || (closed_loop() && has_feedback()))
+    // A closed loop also ticks once when its feedback comes or goes, to note it (resume_loop()).
+    if (output_at(now) != ramp_.target_v || (closed_loop() && (has_feedback() || fed_)))
         next = now + 1;
     if (smooth_start_ != kNever)
         next = now + 1;
@@ -195,8 +196,21 @@ Ticks PiezoModule::next_change(Ticks now) const
     return next;
 }
 
+void PiezoModule::resume_loop(Ticks now)
+{
+    const bool fed = has_feedback();
+    if (closed_loop() && fed && !fed_) {
+        last_tick_ = now;
+        pi_.reset(output_at(now) / max_v_, position_code_ / kFullScale, position_frac(now));
+    }
+    fed_ = fed;
+}
+
 void PiezoModule::tick(Ticks now)
 {
+    // The feedback came back (TPZ_IOSETTINGS or the reader's own hub output): the loop resumes
+    // bumpless from now, the output held while it was away.
+    resume_loop(now);
     const Ticks elapsed = now - last_tick_;
     last_tick_ = now;
     if (zero_end_ != kNever && now >= zero_end_)
@@ -418,6 +432,7 @@ void PiezoModule::on(const msg::PzSetPosControlMode& m)
     }
     mode_ = m.mode;
     last_tick_ = now;
+    fed_ = has_feedback();
     if (!closed && smooth_start_ == kNever && !lut_.started())
         demand(volts_of(volts_code_), now);
 }
@@ -577,6 +592,7 @@ void PiezoModule::on(const msg::SetTpzIoSettings& m)
         last_tick_ = now;
         pi_.reset(output_at(now) / max_v_, position_code_ / kFullScale, position_frac(now));
     }
+    fed_ = has_feedback();
 }
 
 void PiezoModule::on(const msg::ReqTpzIoSettings&)

@@ -146,6 +146,8 @@ private:
     /// The trace's sample of `now` (output_trace.hpp).
     void record_trace(Ticks now);
     void finish_zeroing(Ticks now);
+    /// A closed loop whose feedback came back since the last tick restarts bumpless at `now`.
+    void resume_loop(Ticks now);
     std::uint16_t max_travel_word() const;
     msg::GetPzOutputMaxVolts max_volts_message() const;
 
@@ -182,6 +184,7 @@ private:
     bool zeroed_ = false;
     double zero_offset_um_ = 0;
     Ticks last_tick_ = 0;
+    bool fed_ = false;                ///< has_feedback() at the last tick or feedback change seen
 };
 
 } // namespace rigsim::apt

@@ -3,11 +3,13 @@
 // connection, a Session that it feeds bytes; the session answers through `send`.
 // Neither side knows the other's details.
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rigsim {
 
@@ -39,7 +41,25 @@ public:
     /// Called once every device of the rig exists and the world is linked (World::link_all()):
     /// the device may now read other devices' bodies and restores its non-volatile settings.
     virtual void power_up() {}
+    /// When power_up() runs among the rig's devices: lower phases first, file order within a
+    /// phase. A device whose power-up state others read in theirs (a signal it routes to them)
+    /// returns 0 so that it is restored before they replay their own saved settings.
+    virtual int power_up_phase() const { return 1; }
 };
+
+/// Power every device of `entries` up (Device::power_up()), lower phases first, in the
+/// given order within a phase; `device_of(entry)` is the entry's Device&.
+template <class Range, class DeviceOf>
+void power_up_in_phases(Range& entries, DeviceOf device_of)
+{
+    std::vector<Device*> order;
+    for (auto& e : entries)
+        order.push_back(&device_of(e));
+    std::stable_sort(order.begin(), order.end(),
+                     [](const Device* a, const Device* b) { return a->power_up_phase() < b->power_up_phase(); });
+    for (auto* d : order)
+        d->power_up();
+}
 
 /// Printable form of client bytes for log lines (non-printable bytes as \xNN, at most `max` bytes).
 std::string printable(std::string_view bytes, std::size_t max = 80);

@@ -125,9 +125,9 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     // Bodies that read other bodies (a strain gauge on a piezo) find them once all exist, so
     // the JSON may list a gauge before its piezo.
     world_.link_all();
-    // Then the devices power up (a piezo driver's saved closed loop needs its linked gauge).
-    for (auto& e : entries_)
-        e->device->power_up();
+    // Then the devices power up (a piezo driver's saved closed loop needs its linked gauge),
+    // the ones whose state others read first (a gauge reader's saved hub output).
+    power_up_in_phases(entries_, [](auto& e) -> Device& { return *e->device; });
 }
 
 Rig::~Rig()

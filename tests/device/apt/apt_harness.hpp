@@ -90,16 +90,16 @@ public:
             start_last();
         return units_.size() - 1;
     }
-    /// Link the world and power every device up, as the rig does once its devices exist (a
-    /// gauge finds its actuator wherever it was added); the other calls do it first.
+    /// Link the world and power every device up in the rig's order (power_up_in_phases), as the
+    /// rig does once its devices exist (a gauge finds its actuator wherever it was added); the
+    /// other calls do it first.
     void start()
     {
         if (started_)
             return;
         started_ = true;
         world_.link_all();
-        for (auto& unit : units_)
-            unit->device->power_up();
+        power_up_in_phases(units_, [](auto& unit) -> Device& { return *unit->device; });
     }
     /// Hex in to device `d`; hex of everything device `d` sent since the last call out.
     std::string send(const std::string& hex_in, std::size_t d = 0)
