@@ -2,7 +2,8 @@
 // (TSG_IOSETTINGS HubAnalogueOutput, p.127): at power-up the reader restores its hub output
 // before the driver replays its saved closed loop, whichever the rig lists first; a closed
 // loop whose reader switched its output away and back resumes without a jump (p.94, p.115).
-#include "apt_harness.hpp"
+#include "gauge_pair.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include "models/piezo_actuator.hpp"
 
@@ -10,74 +11,12 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
-#include <unistd.h>
 
 namespace test_apt_gauge_order {
 
 using namespace rigsim::test;
-
-constexpr double kTravelUm = 20;
-
-/// A TPZ001 "tpz": a 20 um, 75 V actuator without creep or hysteresis.
-rigsim::DeviceConfig tpz()
-{
-    rigsim::DeviceConfig c;
-    c.name = "tpz";
-    c.protocol = "apt";
-    c.model = "TPZ001";
-    auto& a = config_of(c).actuator;
-    a.travel_um = kTravelUm;
-    a.max_voltage_v = 75;
-    a.creep = 0;
-    a.hysteresis = 0;
-    a.response_ms = 1;
-    return c;
-}
-
-/// A TSG001 "tsg" whose noiseless gauge is mounted on "tpz", cabled to hub channel A.
-rigsim::DeviceConfig tsg()
-{
-    rigsim::DeviceConfig c;
-    c.name = "tsg";
-    c.protocol = "apt";
-    c.model = "TSG001";
-    auto& g = config_of(c).gauge;
-    g.mounted_on = "tpz";
-    g.route = GaugeRoute::HubA;
-    g.noise_um = 0;
-    return c;
-}
-
-/// A state file in a fresh directory, removed with its directory at the end.
-class StateFile {
-public:
-    StateFile()
-    {
-        char dir_template[] = "/tmp/rigsim-gauge-order-XXXXXX";
-        REQUIRE(::mkdtemp(dir_template));
-        dir_ = dir_template;
-        path_ = dir_ + "/state.json";
-    }
-    ~StateFile()
-    {
-        std::remove(path_.c_str());
-        ::rmdir(dir_.c_str());
-    }
-    const std::string& path() const { return path_; }
-
-private:
-    std::string dir_;
-    std::string path_;
-};
-
-constexpr const char* kClosedLoop = "40 06 01 02 50 01";          // PZ_SET_POSCONTROLMODE 2 (p.94)
-constexpr const char* kReqMode = "41 06 01 00 50 01";
-constexpr const char* kModeClosed = "42 06 01 02 01 50";
-constexpr const char* kTpzInput2 = "D4 07 0A 00 D0 01 01 00 01 00 02 00 00 00 00 00";   // 75 V, hub B (p.115)
-constexpr const char* kTsgOutput1 = "DA 07 0E 00 D0 01 01 00 01 00 01 00 30 75 00 00 00 00 00 00";   // p.127
-constexpr const char* kTsgOutput2 = "DA 07 0E 00 D0 01 01 00 02 00 01 00 30 75 00 00 00 00 00 00";
+using namespace rigsim::test::gauge_pair;
 
 /// PZ_GET_OUTPUTVOLTS of the TPZ in volts of the 75 V limit (p.96).
 double output_v(AptHarness& h)
@@ -87,20 +26,14 @@ double output_v(AptHarness& h)
     return static_cast<std::int16_t>(get_u16(b, 8)) / 32767.0 * 75.0;
 }
 
-double extension_um(AptHarness& h)
-{
-    auto* a = h.world().find_as<rigsim::models::PiezoActuator>("tpz/1");
-    REQUIRE(a != nullptr);
-    return a->extension_um();
-}
-
 TEST_CASE("apt gauge order: a TPZ001 listed before its TSG001 replays its closed loop on the reader's saved hub "
           "output, both entries kept",
           "[device][apt][gauge][eeprom]")
 {
-    StateFile file;
+    TempDir dir;
+    const auto state_path = dir.file("state.json");
     {
-        rigsim::StateStore store(file.path());
+        rigsim::StateStore store(state_path);
         AptHarness h({tpz(), tsg()}, &store);
         h.send(kTsgOutput2, 1);
         h.send("D0 07 04 00 D0 01 01 00 DA 07", 1);   // PZ_SET_EEPROMPARAMS TSG_IOSETTINGS (p.113)
@@ -112,7 +45,7 @@ TEST_CASE("apt gauge order: a TPZ001 listed before its TSG001 replays its closed
         REQUIRE(store.get("tsg", "bay0/0x07da") != nullptr);
         REQUIRE(store.get("tpz", "bay0/0x0640") != nullptr);
     }
-    rigsim::StateStore reloaded(file.path());         // the daemon restarts on the same file
+    rigsim::StateStore reloaded(state_path);         // the daemon restarts on the same file
     AptHarness h({tpz(), tsg()}, &reloaded);
     CHECK(h.send(kReqMode) == kModeClosed);
     CHECK(reloaded.get("tpz", "bay0/0x0640") != nullptr);

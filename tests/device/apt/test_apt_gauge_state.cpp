@@ -4,7 +4,8 @@
 // its power, its status update's Position stays in 0..32767, its HubAnalogueOutput picks the
 // hub channel, a closed loop resumes bumpless when its input comes back, and its status
 // updates stop after 50 without PZ_ACK_PZSTATUSUPDATE.
-#include "apt_harness.hpp"
+#include "gauge_pair.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include "models/piezo_actuator.hpp"
 
@@ -12,78 +13,17 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
-#include <unistd.h>
 
 namespace test_apt_gauge_state {
 
 using namespace rigsim::test;
+using namespace rigsim::test::gauge_pair;
 
 namespace {
 
-constexpr double kTravelUm = 20;
-
-/// A TPZ001 "tpz": a 20 um, 75 V actuator without creep or hysteresis.
-rigsim::DeviceConfig tpz()
-{
-    rigsim::DeviceConfig c;
-    c.name = "tpz";
-    c.protocol = "apt";
-    c.model = "TPZ001";
-    auto& a = config_of(c).actuator;
-    a.travel_um = kTravelUm;
-    a.max_voltage_v = 75;
-    a.creep = 0;
-    a.hysteresis = 0;
-    a.response_ms = 1;
-    return c;
-}
-
-/// A TSG001 "tsg" whose noiseless gauge is mounted on "tpz", cabled as `route`.
-rigsim::DeviceConfig tsg(GaugeRoute route = GaugeRoute::HubA)
-{
-    rigsim::DeviceConfig c;
-    c.name = "tsg";
-    c.protocol = "apt";
-    c.model = "TSG001";
-    auto& g = config_of(c).gauge;
-    g.mounted_on = "tpz";
-    g.route = route;
-    g.noise_um = 0;
-    return c;
-}
-
-/// A state file in a fresh directory, removed with its directory at the end.
-class StateFile {
-public:
-    StateFile()
-    {
-        char dir_template[] = "/tmp/rigsim-gauge-state-XXXXXX";
-        REQUIRE(::mkdtemp(dir_template));
-        dir_ = dir_template;
-        path_ = dir_ + "/state.json";
-    }
-    ~StateFile()
-    {
-        std::remove(path_.c_str());
-        ::rmdir(dir_.c_str());
-    }
-    const std::string& path() const { return path_; }
-
-private:
-    std::string dir_;
-    std::string path_;
-};
-
-constexpr const char* kClosedLoop = "40 06 01 02 50 01";          // PZ_SET_POSCONTROLMODE 2 (p.94)
-constexpr const char* kReqMode = "41 06 01 00 50 01";
-constexpr const char* kModeClosed = "42 06 01 02 01 50";
 constexpr const char* kModeOpen = "42 06 01 01 01 50";
 constexpr const char* kTpzInput1 = "D4 07 0A 00 D0 01 01 00 01 00 01 00 00 00 00 00";   // 75 V, hub A (p.115)
-constexpr const char* kTpzInput2 = "D4 07 0A 00 D0 01 01 00 01 00 02 00 00 00 00 00";   // 75 V, hub B
-constexpr const char* kTsgOutput1 = "DA 07 0E 00 D0 01 01 00 01 00 01 00 30 75 00 00 00 00 00 00";   // p.127
-constexpr const char* kTsgOutput2 = "DA 07 0E 00 D0 01 01 00 02 00 01 00 30 75 00 00 00 00 00 00";
 
 /// TSG_READING's Reading word of device `d` (p.129).
 std::int16_t reading(AptHarness& h, std::size_t d)
@@ -101,23 +41,17 @@ double output_v(AptHarness& h, std::size_t d = 0)
     return static_cast<std::int16_t>(get_u16(b, 8)) / 32767.0 * 75.0;
 }
 
-double extension_um(AptHarness& h)
-{
-    auto* a = h.world().find_as<rigsim::models::PiezoActuator>("tpz/1");
-    REQUIRE(a != nullptr);
-    return a->extension_um();
-}
-
 } // namespace
 
 TEST_CASE("apt gauge state: a TPZ001's saved closed loop comes back at power-up on its TSG001, the entry kept",
           "[device][apt][gauge][eeprom]")
 {
-    StateFile file;
+    TempDir dir;
+    const auto state_path = dir.file("state.json");
     const bool hub_b = GENERATE(false, true);
     INFO((hub_b ? "hub B: TPZ_IOSETTINGS input 2 saved too (0x07D4 replays before 0x0640)" : "hub A"));
     {
-        rigsim::StateStore store(file.path());
+        rigsim::StateStore store(state_path);
         AptHarness h({tpz(), tsg(hub_b ? GaugeRoute::HubB : GaugeRoute::HubA)}, &store);
         if (hub_b) {
             h.send(kTpzInput2);
@@ -128,7 +62,7 @@ TEST_CASE("apt gauge state: a TPZ001's saved closed loop comes back at power-up 
         h.send("D0 07 04 00 D0 01 01 00 40 06");       // PZ_SET_EEPROMPARAMS POSCONTROLMODE
         REQUIRE(store.get("tpz", "bay0/0x0640") != nullptr);
     }
-    rigsim::StateStore reloaded(file.path());          // the daemon restarts on the same file
+    rigsim::StateStore reloaded(state_path);          // the daemon restarts on the same file
     AptHarness h({tpz(), tsg(hub_b ? GaugeRoute::HubB : GaugeRoute::HubA)}, &reloaded);
     CHECK(h.send(kReqMode) == kModeClosed);
     CHECK(reloaded.get("tpz", "bay0/0x0640") != nullptr);
