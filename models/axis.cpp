@@ -78,10 +78,30 @@ void Axis::set_limits(double min_counts, double max_counts)
     replan();
 }
 
+void Axis::set_obstacles(std::optional<double> min_counts, std::optional<double> max_counts)
+{
+    // A carriage already past an obstacle is held where it stands, not put back on it.
+    const double x = position_counts();
+    if (min_counts)
+        min_counts = std::min(*min_counts, x);
+    if (max_counts)
+        max_counts = std::max(*max_counts, x);
+    if (min_counts == obstacle_min_counts_ && max_counts == obstacle_max_counts_)
+        return;
+    settle();
+    obstacle_min_counts_ = min_counts;
+    obstacle_max_counts_ = max_counts;
+    replan();
+}
+
 void Axis::place(double counts)
 {
     anchor_ = now_track();
     anchor_.position_counts = config_.rotary ? counts : std::clamp(counts, config_.travel_min_counts, config_.travel_max_counts);
+    if (obstacle_min_counts_)
+        obstacle_min_counts_ = std::min(*obstacle_min_counts_, anchor_.position_counts);
+    if (obstacle_max_counts_)
+        obstacle_max_counts_ = std::max(*obstacle_max_counts_, anchor_.position_counts);
     anchor_.contact = 0;
     jam_position_counts_ = anchor_.position_counts;
     moving_ = false;
@@ -191,9 +211,24 @@ bool Axis::stops_at(bool forward) const
     return limit_min_counts_ > config_.travel_min_counts || reverse_switch_stops_;
 }
 
+std::optional<Axis::Stop> Axis::stop_ahead(bool forward) const
+{
+    const std::optional<double>& obstacle = forward ? obstacle_max_counts_ : obstacle_min_counts_;
+    const double limit = forward ? limit_max_counts_ : limit_min_counts_;
+    // An obstacle short of the travel limit is met first; at or past it, the limit is.
+    if (obstacle && (config_.rotary || (forward ? *obstacle < limit : *obstacle > limit)))
+        return Stop{*obstacle, false};
+    if (config_.rotary)
+        return std::nullopt;
+    return Stop{limit, stops_at(forward)};
+}
+
 bool Axis::slips(int dir) const
 {
-    return config_.drive == Drive::Stepper && !config_.rotary && !stops_at(dir > 0);
+    if (config_.drive != Drive::Stepper)
+        return false;
+    const auto stop = stop_ahead(dir > 0);
+    return stop && !stop->stops;
 }
 
 void Axis::move_to(double target_counts, double velocity_counts_per_s, double acceleration_counts_per_s2,
@@ -286,10 +321,12 @@ std::optional<Axis::Hit> Axis::classify(Ticks k, double profile_before, double p
             return Hit{AxisEvent::SoftStopped, Track{k, soft_min_motor_counts_ - lost_before, lost_before, 0}};
     }
     const double x = profile - slip;
-    const bool forward = x > limit_max_counts_ + kTolerance;
-    if (!config_.rotary && (forward || x < limit_min_counts_ - kTolerance)) {
-        const double end = forward ? limit_max_counts_ : limit_min_counts_;
-        if (stops_at(forward))
+    for (const bool forward : {true, false}) {
+        const auto stop = stop_ahead(forward);
+        if (!stop || !(forward ? x > stop->at_counts + kTolerance : x < stop->at_counts - kTolerance))
+            continue;
+        const double end = stop->at_counts;
+        if (stop->stops)
             return Hit{AxisEvent::StoppedAtLimit, Track{k, end, lost_before, 0}};
         if (config_.drive == Drive::Servo)
             return Hit{AxisEvent::Stalled, Track{k, end, lost_before, 0}};
@@ -331,7 +368,13 @@ std::optional<Axis::Hit> Axis::scan_piece(Track& s, Ticks b, bool find_hits) con
     // A stepper pressing on (the profile runs on into the end stop it stands at): the carriage
     // stays, the motor's steps are lost.
     const bool pressing = dir != 0 && dir == s.contact && slips(dir);
-    const double end = dir > 0 ? limit_max_counts_ : limit_min_counts_;
+    bool has_stop = false;   // a stop lies ahead, at `end`
+    double end = 0;
+    if (dir != 0)
+        if (const auto stop = stop_ahead(dir > 0)) {
+            has_stop = true;
+            end = stop->at_counts;
+        }
     const auto lost_at = [&](double profile) {
         if (!pressing)
             return s.lost_counts;
@@ -356,10 +399,10 @@ std::optional<Axis::Hit> Axis::scan_piece(Track& s, Ticks b, bool find_hits) con
         if (soft_stops_ && (dir > 0 ? ma < soft_max_motor_counts_ && m >= soft_max_motor_counts_
                                     : dir < 0 && ma > soft_min_motor_counts_ && m <= soft_min_motor_counts_))
             return true;
-        if (pressing || config_.rotary || dir == 0)
+        if (pressing || !has_stop)
             return false;
         const double x = p - slip;
-        return dir > 0 ? x > limit_max_counts_ + kTolerance : x < limit_min_counts_ - kTolerance;
+        return dir > 0 ? x > end + kTolerance : x < end - kTolerance;
     };
     for (Ticks lo = a + 1; find_hits && lo <= b;) {
         if (const auto hit = hit_at(lo))

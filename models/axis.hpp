@@ -74,6 +74,14 @@ public:
     void set_limits(double min_counts, double max_counts);
     /// Whether the limit switch at each end stops the axis (else the carriage meets the end stop).
     void set_limit_switches(bool forward_stops, bool reverse_stops);
+    /// Obstacles met in a collision (carriage counts; std::nullopt: none on that side). Each acts
+    /// as the end stop on its side while set, a rotation stage's too: a servo meeting it stalls
+    /// there (Stalled), a stepper presses on and loses microsteps (LostSteps); no limit switch is
+    /// pressed. A carriage already past one is held where it stands (the obstacle is taken to be
+    /// there). Setting or clearing one mid-motion re-plans the motion from now.
+    void set_obstacles(std::optional<double> min_counts, std::optional<double> max_counts);
+    const std::optional<double>& obstacle_min_counts() const { return obstacle_min_counts_; }
+    const std::optional<double>& obstacle_max_counts() const { return obstacle_max_counts_; }
     /// Soft stops in motor position (motor_position_counts()): a crossing stops the axis dead.
     void set_soft_stops(double min_motor_counts, double max_motor_counts);
     void clear_soft_stops();
@@ -131,6 +139,14 @@ private:
         std::optional<Hit> hit;
     };
 
+    /// The first stop ahead in a direction: an obstacle, else (a linear axis) the travel limit;
+    /// `stops` if a limit switch or a narrowed travel ends the motion there (else the carriage
+    /// meets it: a servo stalls, a stepper presses on).
+    struct Stop {
+        double at_counts;
+        bool stops;
+    };
+    std::optional<Stop> stop_ahead(bool forward) const;
     /// Profile position at tick `k` (the target from the end of the profile on).
     double profile_at(Ticks k) const;
     bool stops_at(bool forward) const;
@@ -165,6 +181,8 @@ private:
     bool soft_stops_ = false;
     double soft_min_motor_counts_ = 0;
     double soft_max_motor_counts_ = 0;
+    std::optional<double> obstacle_min_counts_;
+    std::optional<double> obstacle_max_counts_;
 
     MotionProfile profile_;
     bool moving_ = false;

@@ -5,6 +5,12 @@
 
 namespace rigsim::models {
 
+namespace {
+
+constexpr double kTolerance_nm = 1e-6;   // a profile that ends on an obstacle may round past it
+
+} // namespace
+
 StickSlipPositioner::StickSlipPositioner(const Clock& clock, const StickSlipConfig& config)
     : clock_(clock), config_(config), rest_nm_(config.start_position_nm), jitter_state_(config.jitter_seed),
       scanner_(clock, config.scan_range_nm)
@@ -15,6 +21,68 @@ void StickSlipPositioner::set_travel(double min_nm, double max_nm)
 {
     config_.travel_min_nm = min_nm;
     config_.travel_max_nm = max_nm;
+}
+
+double StickSlipPositioner::stop_min_nm() const
+{
+    return obstacle_min_nm_ ? std::max(end_min_nm(), *obstacle_min_nm_) : end_min_nm();
+}
+
+double StickSlipPositioner::stop_max_nm() const
+{
+    return obstacle_max_nm_ ? std::min(end_max_nm(), *obstacle_max_nm_) : end_max_nm();
+}
+
+double StickSlipPositioner::within_obstacles(double x, double from) const
+{
+    if (obstacle_max_nm_ && x > *obstacle_max_nm_)
+        x = std::max(*obstacle_max_nm_, from);
+    if (obstacle_min_nm_ && x < *obstacle_min_nm_)
+        x = std::min(*obstacle_min_nm_, from);
+    return x;
+}
+
+void StickSlipPositioner::set_obstacles(std::optional<double> min_nm, std::optional<double> max_nm)
+{
+    // The steps due so far were made without them (position_nm() replays them).
+    const double here = position_nm();
+    if (min_nm)
+        min_nm = std::min(*min_nm, here);
+    if (max_nm)
+        max_nm = std::max(*max_nm, here);
+    if (min_nm == obstacle_min_nm_ && max_nm == obstacle_max_nm_)
+        return;
+    if (motion_ == Motion::Rest) {   // the drift so far crept under the old stops
+        rest_nm_ = here;
+        rest_since_ = clock_.now();
+    }
+    obstacle_min_nm_ = min_nm;
+    obstacle_max_nm_ = max_nm;
+    reschedule();
+}
+
+Ticks StickSlipPositioner::obstacle_tick() const
+{
+    if (motion_ != Motion::Profile)
+        return kNever;
+    const bool forward = profile_.target() > rest_nm_;
+    const std::optional<double>& obstacle = forward ? obstacle_max_nm_ : obstacle_min_nm_;
+    if (!obstacle)
+        return kNever;
+    const auto past = [&](Ticks k) {
+        const double x = k >= profile_end_ ? profile_.target()
+                                           : profile_.sample(clock_.seconds(k - profile_start_)).position;
+        return forward ? x > *obstacle + kTolerance_nm : x < *obstacle - kTolerance_nm;
+    };
+    if (!past(profile_end_))
+        return kNever;
+    // A profile from rest runs one way: the first tick past the obstacle, by bisection.
+    Ticks lo = profile_start_, hi = profile_end_;
+    while (hi - lo > 1) {
+        const Ticks mid = lo + (hi - lo) / 2;
+        (past(mid) ? hi : lo) = mid;
+    }
+    return hi;
 }
 
 void StickSlipPositioner::set_closed_loop_hold(bool hold)
@@ -45,17 +113,28 @@ double StickSlipPositioner::velocity_nm_per_s() const
         const bool creeping = config_.drift_nm_per_s != 0 && !hold_ && !blocked_;
         return creeping && rest_position(now) == rest_nm_ + drifted ? config_.drift_nm_per_s : 0.0;
     }
-    case Motion::Profile:
-        return now >= profile_end_ ? 0.0 : profile_.sample(clock_.seconds(now - profile_start_)).velocity;
-    case Motion::Burst:
+    case Motion::Profile: {
+        if (now >= profile_end_)
+            return 0.0;
+        const AxisState s = profile_.sample(clock_.seconds(now - profile_start_));
+        return within_obstacles(s.position, rest_nm_) == s.position ? s.velocity : 0.0;   // 0: on an obstacle
+    }
+    case Motion::Burst: {
         catch_up();
-        if (replay_.limit_met || (burst_.steps > 0 && replay_.done >= burst_.steps) || blocked_)
+        const bool pressing = burst_.direction > 0 ? replay_.position_nm >= stop_max_nm()
+                                                   : replay_.position_nm <= stop_min_nm();
+        if (replay_.limit_met || (burst_.steps > 0 && replay_.done >= burst_.steps) || blocked_ || pressing)
             return 0.0;
         return burst_.direction * step_width_nm_ * burst_.frequency_hz;
-    case Motion::Scan:
+    }
+    case Motion::Scan: {
         if (now >= scanner_.end_tick() || blocked_)
             return 0.0;
-        return (scanner_.displacement_nm(now + 1) - scanner_.displacement_nm(now)) * clock_.tick_hz();
+        const auto at = [&](Ticks k) {
+            return std::clamp(rest_nm_ + scanner_.displacement_nm(k), stop_min_nm(), stop_max_nm());
+        };
+        return (at(now + 1) - at(now)) * clock_.tick_hz();
+    }
     }
     return 0.0;
 }
@@ -96,7 +175,9 @@ double StickSlipPositioner::position_nm() const
     case Motion::Rest:
         return rest_position(now);
     case Motion::Profile:
-        return now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_)).position;
+        return within_obstacles(
+            now >= profile_end_ ? profile_.target() : profile_.sample(clock_.seconds(now - profile_start_)).position,
+            rest_nm_);
     case Motion::Burst:
         catch_up();
         return replay_.position_nm;
@@ -154,6 +235,10 @@ void StickSlipPositioner::place(double position_nm)
     rest_nm_ = position_nm;
     if (blocked_)
         block_nm_ = position_nm;   // the obstacle goes where the stage was put
+    if (obstacle_min_nm_)
+        obstacle_min_nm_ = std::min(*obstacle_min_nm_, position_nm);
+    if (obstacle_max_nm_)
+        obstacle_max_nm_ = std::max(*obstacle_max_nm_, position_nm);
     reschedule();
 }
 
@@ -162,7 +247,8 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     settle();
     outcome_ = Outcome::None;
     const Ticks now = clock_.now();
-    target_nm = std::clamp(target_nm, std::min(stop_min_nm(), rest_nm_), std::max(stop_max_nm(), rest_nm_));
+    // Planned to the end stops; an obstacle is met on the way (outcome Blocked).
+    target_nm = std::clamp(target_nm, std::min(end_min_nm(), rest_nm_), std::max(end_max_nm(), rest_nm_));
     profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, target_nm, speed_nm_per_s * (1.0 - slip_),
                                    acceleration_nm_per_s2);
     profile_start_ = now;
@@ -320,7 +406,7 @@ Ticks StickSlipPositioner::next_event(Ticks now) const
     case Motion::Rest:
         return kNever;
     case Motion::Profile:
-        return profile_end_;
+        return std::min(profile_end_, obstacle_tick());
     case Motion::Scan:
         return scanner_.end_tick();
     case Motion::Burst:
@@ -351,6 +437,11 @@ void StickSlipPositioner::on_event(Ticks now)
     case Motion::Rest:
         return;
     case Motion::Profile:
+        if (now >= obstacle_tick()) {   // met an obstacle: held there, the move or search ends
+            settle();
+            end_motion(Outcome::Blocked);
+            return;
+        }
         if (now >= profile_end_) {
             rest_nm_ = profile_.target();
             rest_since_ = now;

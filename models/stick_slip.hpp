@@ -25,6 +25,11 @@
 // closed-loop move or search in progress ends at once, outcome Blocked); a slipping stage makes
 // every step shorter by a fraction and drives closed-loop moves slower by it (from the next
 // movement on).
+//
+// Obstacles (a collision, models/collision_watch.hpp) narrow the travel on one side like the
+// mechanical end stops: a closed-loop move or a search that meets one ends there (outcome
+// Blocked, as the stall's), steps against one go on without moving, a scan or the drift stops
+// at it. Motion away is free.
 
 #include "models/clock.hpp"
 #include "models/motion_profile.hpp"
@@ -34,6 +39,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace rigsim::models {
@@ -87,9 +93,18 @@ public:
     void set_travel(double min_nm, double max_nm);
     double travel_min_nm() const { return config_.travel_min_nm; }
     double travel_max_nm() const { return config_.travel_max_nm; }
-    /// The end stops the stage meets now: the mechanical ones, or the obstacle of a stall.
-    double stop_min_nm() const { return blocked_ ? block_nm_ : config_.travel_min_nm; }
-    double stop_max_nm() const { return blocked_ ? block_nm_ : config_.travel_max_nm; }
+    /// The end stops the stage meets now: the mechanical ones, or the obstacle of a stall,
+    /// narrowed by the obstacles of a collision.
+    double stop_min_nm() const;
+    double stop_max_nm() const;
+
+    /// Obstacles met in a collision (nm; std::nullopt: none on that side), each acting as the
+    /// end stop on its side while set. A stage already past one is held where it stands (the
+    /// obstacle is taken to be there). A closed-loop move or search in progress that meets one
+    /// ends there, outcome Blocked.
+    void set_obstacles(std::optional<double> min_nm, std::optional<double> max_nm);
+    const std::optional<double>& obstacle_min_nm() const { return obstacle_min_nm_; }
+    const std::optional<double>& obstacle_max_nm() const { return obstacle_max_nm_; }
 
     /// Stall: the stage moves no further than where it is now; a closed-loop move in progress
     /// ends there (outcome Blocked). `false`: free again, at rest where it stands.
@@ -160,6 +175,13 @@ private:
     /// One step of `delta_nm` from `position_nm` within end stops and limit; false if the
     /// range limit cut it short.
     bool step(double& position_nm, double delta_nm) const;
+    /// The end stops without the obstacles: mechanical, or the stall's.
+    double end_min_nm() const { return blocked_ ? block_nm_ : config_.travel_min_nm; }
+    double end_max_nm() const { return blocked_ ? block_nm_ : config_.travel_max_nm; }
+    /// `x` within the obstacles, as seen from `from` (a stage past one stays where it is).
+    double within_obstacles(double x, double from) const;
+    /// The tick at which the closed-loop profile under way meets an obstacle, or kNever.
+    Ticks obstacle_tick() const;
     /// Position at rest at `now`, drift included.
     double rest_position(Ticks now) const;
     /// Replay the burst up to now.
@@ -196,6 +218,8 @@ private:
     bool blocked_ = false;
     double block_nm_ = 0;             ///< where a stalled stage is held
     double slip_ = 0;                 ///< fraction lost per step / of the closed-loop speed
+    std::optional<double> obstacle_min_nm_;
+    std::optional<double> obstacle_max_nm_;
 };
 
 } // namespace rigsim::models

@@ -60,7 +60,17 @@ void World::reschedule(Body& body)
     ++body.generation_;
     const Ticks at = body.next_event(clock_.now());
     if (at != kNever)
-        due_.push(Due{std::max(at, clock_.now() + 1), &body, body.generation_});
+        due_.push(Due{std::max(at, clock_.now() + 1), body.phase(), &body, body.generation_});
+    for (Body* watcher : body.watchers_)
+        watcher->on_watched(body);
+}
+
+void World::watch(Body& watched, Body& watcher)
+{
+    if (&watched == &watcher || watched.world_ != this || watcher.world_ != this)
+        throw std::invalid_argument("a body watches another body of its world");
+    if (std::find(watched.watchers_.begin(), watched.watchers_.end(), &watcher) == watched.watchers_.end())
+        watched.watchers_.push_back(&watcher);
 }
 
 void World::prune() const

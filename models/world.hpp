@@ -37,6 +37,12 @@ public:
     /// exists, so a body may be added before the one it reads). std::invalid_argument for a
     /// missing or unfit body.
     virtual void link(World& world) { (void)world; }
+    /// A body watching `body` (World::watch()) hears here that `body` was rescheduled: a
+    /// motion of it started, changed or ended.
+    virtual void on_watched(Body& body) { (void)body; }
+    /// Bodies due at the same tick run in phase order: a body that reads the others at their
+    /// state after the tick (a collision watch) has a later phase than the bodies it reads.
+    virtual int phase() const { return 0; }
 
     const std::string& key() const { return key_; }
 
@@ -50,6 +56,7 @@ private:
     World* world_ = nullptr;
     std::string key_;
     std::uint64_t generation_ = 0;   ///< scheduled wake-ups of older generations are void
+    std::vector<Body*> watchers_;    ///< told on every reschedule of this body
 };
 
 /// Every body of a rig, on one clock. The world is one Tickable of the clock: the clock
@@ -85,8 +92,11 @@ public:
     /// Body::link() of every body, in key order (the rig calls it once all devices exist).
     void link_all();
 
-    /// Re-read `body`'s next_event() (Body::reschedule() calls this).
+    /// Re-read `body`'s next_event() (Body::reschedule() calls this), then tell its watchers.
     void reschedule(Body& body);
+    /// From now on `watcher`'s on_watched() hears of every reschedule of `watched` (a body of
+    /// this world other than the watcher; std::invalid_argument otherwise).
+    void watch(Body& watched, Body& watcher);
 
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
@@ -94,9 +104,10 @@ public:
 private:
     struct Due {
         Ticks at;
+        int phase;
         Body* body;
         std::uint64_t generation;
-        bool operator>(const Due& o) const { return at > o.at; }
+        bool operator>(const Due& o) const { return at != o.at ? at > o.at : phase > o.phase; }
     };
     void insert(const std::string& key, std::unique_ptr<Body> body);
     /// Drops void wake-ups from the top of the queue.

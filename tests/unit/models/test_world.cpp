@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace test_world {
@@ -130,6 +131,75 @@ TEST_CASE("world: link_all lets every body find the bodies it reads, whatever th
 
     world.emplace<Reader>("b/reader", "nowhere");
     CHECK_THROWS_WITH(world.link_all(), "no alarm \"nowhere\"");
+}
+
+namespace {
+
+/// An alarm of a later phase that records, when woken, what it heard from the bodies it watches.
+class Watcher : public Alarm {
+public:
+    Watcher() : Alarm({}) {}
+    int phase() const override { return 1; }
+    void on_watched(Body& body) override { heard.push_back(body.key()); }
+    void on_event(Ticks now) override
+    {
+        Alarm::on_event(now);
+        order.push_back("watcher");
+    }
+    std::vector<std::string> heard;
+    std::vector<std::string> order;
+};
+
+/// An alarm that appends its key to a shared list when woken.
+class Logged : public Alarm {
+public:
+    Logged(std::vector<Ticks> at, std::vector<std::string>& order) : Alarm(std::move(at)), order_(order) {}
+    void on_event(Ticks now) override
+    {
+        Alarm::on_event(now);
+        order_.push_back(key());
+    }
+
+private:
+    std::vector<std::string>& order_;
+};
+
+} // namespace
+
+TEST_CASE("world: a body of a later phase runs after the others due at the same tick", "[unit][models][world]")
+{
+    Clock clock;
+    World world(clock);
+    // Keys and insertion order put the watcher first; its phase puts it last.
+    auto& w = world.emplace<Watcher>("a/watch");
+    world.emplace<Logged>("z/0", std::vector<Ticks>{5}, w.order);
+    world.emplace<Logged>("m/0", std::vector<Ticks>{5}, w.order);
+    w.set({5});
+    clock.advance(6);
+    REQUIRE(w.order.size() == 3);
+    CHECK(w.order.back() == "watcher");
+    CHECK(w.woken == std::vector<Ticks>{5});
+}
+
+TEST_CASE("world: a watcher hears every reschedule of the bodies it watches, and no other", "[unit][models][world]")
+{
+    Clock clock;
+    World world(clock);
+    auto& w = world.emplace<Watcher>("w/0");
+    auto& a = world.emplace<Alarm>("a/0", std::vector<Ticks>{});
+    auto& b = world.emplace<Alarm>("b/0", std::vector<Ticks>{});
+    world.watch(a, w);
+    world.watch(a, w);   // once is enough
+    a.set({10});
+    b.set({10});
+    CHECK(w.heard == std::vector<std::string>{"a/0"});
+    clock.advance(10);   // a's event: the world reschedules it after on_event()
+    CHECK(w.heard == std::vector<std::string>{"a/0", "a/0"});
+    CHECK_THROWS_AS(world.watch(w, w), std::invalid_argument);
+    Clock other_clock;
+    World other(other_clock);
+    auto& stranger = other.emplace<Alarm>("s/0", std::vector<Ticks>{});
+    CHECK_THROWS_AS(world.watch(stranger, w), std::invalid_argument);
 }
 
 } // namespace test_world
