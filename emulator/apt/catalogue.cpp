@@ -267,10 +267,10 @@ constexpr std::array<ControllerModel, 14> kControllers{
 };
 
 /// A stage: its name, motor and travel.
-constexpr StageModel stage(std::string_view name, MotorKind motor, double travel_mm)
+StageModel stage(std::string_view name, MotorKind motor, double travel_mm)
 {
     StageModel s;
-    s.name = name;
+    s.name = std::string(name);
     s.motor = motor;
     s.travel_mm = travel_mm;
     return s;
@@ -278,7 +278,7 @@ constexpr StageModel stage(std::string_view name, MotorKind motor, double travel
 
 // Stepper actuators on a 1 mm lead screw: 25,600 microsteps per mm ("In the APT Stepper Motor
 // controllers the encoder resolution is 25,600 counts per mm", p. 77).
-constexpr StageModel stepper_actuator(std::string_view name, double travel_mm)
+StageModel stepper_actuator(std::string_view name, double travel_mm)
 {
     auto s = stage(name, MotorKind::Stepper, travel_mm);
     s.counts_per_mm = 25'600.0;
@@ -291,7 +291,7 @@ constexpr StageModel stepper_actuator(std::string_view name, double travel_mm)
 
 // Z8 actuators: 512-count encoder, 67.49:1 gearbox, 1 mm lead screw: 34,304 counts per mm
 // (34,555 in some documents; Thorlabs' APT software uses 34,304).
-constexpr StageModel z8_actuator(std::string_view name, double travel_mm, double max_velocity_mm_s,
+StageModel z8_actuator(std::string_view name, double travel_mm, double max_velocity_mm_s,
                                  double acceleration_mm_s2)
 {
     auto s = stage(name, MotorKind::DcServo, travel_mm);
@@ -305,7 +305,7 @@ constexpr StageModel z8_actuator(std::string_view name, double travel_mm, double
 
 // PRM1-Z8 rotation stage: the Z8 motor through a 1:20.145 worm, 1,919.64 counts per degree;
 // continuous rotation, a home switch; APT defaults 10 deg/s, 10 deg/s², home offset 4 deg.
-constexpr StageModel prm1_z8()
+StageModel prm1_z8()
 {
     auto s = stage("PRM1-Z8", MotorKind::DcServo, 360.0);
     s.counts_per_mm = 1'919.6418;
@@ -313,13 +313,13 @@ constexpr StageModel prm1_z8()
     s.acceleration_mm_s2 = 10.0;
     s.home_velocity_mm_s = 10.0;
     s.home_offset_mm = 4.0;
-    s.rotary = true;
+    s.kind = StageKind::Rotary;
     return s;
 }
 
 // MLS203 (7.1): 20,000 counts/mm; X 110 mm, Y 75 mm of travel. p. 76's example: part number
 // "MLS203 Y Axis", MaxAccn 27,488 (2,000 mm/s²), MaxVel 26,843,546 (200 mm/s).
-constexpr StageModel mls203_axis(std::string_view name, double travel_mm, std::uint16_t pmd_stage_id,
+StageModel mls203_axis(std::string_view name, double travel_mm, std::uint16_t pmd_stage_id,
                                  std::string_view pmd_part_number)
 {
     auto s = stage(name, MotorKind::Brushless, travel_mm);
@@ -331,14 +331,14 @@ constexpr StageModel mls203_axis(std::string_view name, double travel_mm, std::u
     s.velocity_per_mm_s = 134'218.0;
     s.acceleration_per_mm_s2 = 13.7439;
     s.pmd_stage_id = pmd_stage_id;
-    s.pmd_part_number = pmd_part_number;
+    s.pmd_part_number = std::string(pmd_part_number);
     s.pmd_max_velocity = 26'843'546;
     s.pmd_max_acceleration = 27'488;
     return s;
 }
 
 // DDSM100 direct-drive stage: 100 mm, 0.5 µm encoder (2,000 counts/mm), 500 mm/s, 5,000 mm/s².
-constexpr StageModel ddsm100()
+StageModel ddsm100()
 {
     auto s = stage("DDSM100", MotorKind::Brushless, 100.0);
     s.counts_per_mm = 2'000.0;
@@ -349,7 +349,7 @@ constexpr StageModel ddsm100()
     return s;
 }
 
-constexpr std::array<StageModel, 11> kStages{
+const std::array<StageModel, 11> kStages{
     stepper_actuator("DRV001", 13.0),
     stepper_actuator("ZST225B", 25.0),
     // DRV014: 50 mm of travel on the same 1 mm lead screw and motor as the DRV001.

@@ -77,7 +77,7 @@ TEST_CASE("catalogue: MTS50-Z8, DRV014, PRM1-Z8 and MLS203-Y keep their values",
     CHECK(mts->acceleration_mm_s2 == 1.5);
     CHECK(mts->home_velocity_mm_s == 1.0);
     CHECK(mts->home_offset_mm == 0.3);
-    CHECK_FALSE(mts->rotary);
+    CHECK(mts->kind == StageKind::Linear);
     CHECK(mts->pmd_part_number.empty());
 
     const auto* drv = find_stage("DRV014");
@@ -95,7 +95,7 @@ TEST_CASE("catalogue: MTS50-Z8, DRV014, PRM1-Z8 and MLS203-Y keep their values",
     CHECK(prm->counts_per_mm == 1'919.6418);
     CHECK(prm->home_velocity_mm_s == 10.0);
     CHECK(prm->home_offset_mm == 4.0);
-    CHECK(prm->rotary);
+    CHECK(prm->kind == StageKind::Rotary);
 
     const auto* mls = find_stage("MLS203-Y");
     REQUIRE(mls);
