@@ -111,10 +111,7 @@ struct StageModel {
 
 /// The controller with this name, or nullptr.
 const ControllerModel* find_controller(std::string_view name);
-/// The stage with this name, or nullptr.
-const StageModel* find_stage(std::string_view name);
 /// Names for error messages ("TDC001, KDC101").
 std::string_view controller_names();
-std::string_view stage_names();
 
 } // namespace rigsim::apt

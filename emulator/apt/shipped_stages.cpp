@@ -91,4 +91,23 @@ const std::vector<StageModel>& shipped_stages()
     return stages;
 }
 
+const StageModel* find_stage(std::string_view name)
+{
+    for (const auto& s : shipped_stages())
+        if (s.name == name)
+            return &s;
+    return nullptr;
+}
+
+const std::string& stage_names()
+{
+    static const std::string names = [] {
+        std::string out;
+        for (const auto& s : shipped_stages())
+            out += (out.empty() ? "" : ", ") + s.name;
+        return out;
+    }();
+    return names;
+}
+
 } // namespace rigsim::apt

@@ -5,6 +5,7 @@
 
 #include "emulator/apt/catalogue.hpp"
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -27,5 +28,10 @@ StageModel read_stage_file(const StageFile& file);
 /// Every shipped stage, in file name order: the files are read at the first call (a bad file
 /// throws its ConfigError there, and again at the next call).
 const std::vector<StageModel>& shipped_stages();
+
+/// The shipped stage with this name, or nullptr.
+const StageModel* find_stage(std::string_view name);
+/// The shipped stages' names, for error messages: "DDSM100, DRV001, ...".
+const std::string& stage_names();
 
 } // namespace rigsim::apt
