@@ -90,7 +90,8 @@ std::vector<FramePair> auto_collision_pairs(const Kinematics& kinematics)
 
 CollisionWatch::CollisionWatch(Kinematics& kinematics, std::vector<FramePair> pairs, std::vector<JointDrive> drives)
     : kinematics_(kinematics), pairs_(std::move(pairs)), drives_(std::move(drives)),
-      direction_(kinematics.size(), 0), last_q_(kinematics.size(), 0), live_(pairs_.size()), depth_mm_(pairs_.size(), 0)
+      direction_(kinematics.size(), 0), last_q_(kinematics.size(), 0), pairs_of_(kinematics.size()),
+      pair_due_(pairs_.size(), false), live_(pairs_.size()), depth_mm_(pairs_.size(), 0)
 {
     if (drives_.size() != kinematics_.size())
         throw std::invalid_argument("collision watch: " + std::to_string(drives_.size()) + " joint drives for " +
@@ -105,12 +106,16 @@ CollisionWatch::CollisionWatch(Kinematics& kinematics, std::vector<FramePair> pa
             if (!kinematics_.box(f))
                 throw std::invalid_argument(frame_pair_name(kinematics_, p) + ": frame \"" + kinematics_.name(f) +
                                             "\" has no box");
+        radius_mm_.push_back((kinematics_.box(p.first)->sizes().norm() + kinematics_.box(p.second)->sizes().norm()) / 2
+                             * (1 + 1e-9));
         paths_.push_back(joints_between(kinematics_, p.first, p.second));
-        for (const std::size_t f : paths_.back())
+        for (const std::size_t f : paths_.back()) {
             if (!seen[f]) {
                 seen[f] = true;
                 watched_.push_back(f);
             }
+            pairs_of_[f].push_back(paths_.size() - 1);
+        }
     }
 }
 
@@ -148,7 +153,11 @@ void CollisionWatch::on_event(Ticks now)
     // The way each watched joint moves: its velocity's sign, or (at a turn, where the velocity
     // is 0 for an instant) the way it went since the check on the tick before.
     const bool consecutive = last_check_ == now - 1;
+    const bool first = checks_ == 1;
     bool moving = false;
+    // Only a pair with a joint between its frames that went somewhere since the last check
+    // can have come together or apart: the others keep their state untested.
+    std::fill(pair_due_.begin(), pair_due_.end(), first);
     for (const std::size_t f : watched_) {
         const double q = kinematics_.joint_position(f);
         int dir = drives_[f].velocity ? sign(drives_[f].velocity()) : 0;
@@ -156,20 +165,28 @@ void CollisionWatch::on_event(Ticks now)
             dir = sign(q - last_q_[f]);
         direction_[f] = dir;
         moving = moving || dir != 0;
+        if (q != last_q_[f])
+            for (const std::size_t p : pairs_of_[f])
+                pair_due_[p] = true;
         last_q_[f] = q;
     }
     last_check_ = now;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
+        if (!pair_due_[i])
+            continue;
         const auto [a, b] = pairs_[i];
         const auto& box_a = *kinematics_.box(a);
         const auto& box_b = *kinematics_.box(b);
         const auto& pose_a = kinematics_.world_pose(a);
         const auto& pose_b = kinematics_.world_pose(b);
-        const bool touching = boxes_overlap(box_a, pose_a, box_b, pose_b);
+        // Two spheres round the boxes apart: the boxes are (most pairs, most ticks, cheaply).
+        const double reach = radius_mm_[i];
+        const bool touching = (pose_a * box_a.center() - pose_b * box_b.center()).squaredNorm() <= reach * reach
+                              && boxes_overlap(box_a, pose_a, box_b, pose_b);
         if (touching && !live_[i]) {
             depth_mm_[i] = penetration_mm(box_a, pose_a, box_b, pose_b);
             begin_contact(i);
-        } else if (touching && moving) {
+        } else if (touching) {
             // A joint that began to move during the contact and takes the boxes deeper is
             // stopped too; sliding along or parting is free.
             const double depth = penetration_mm(box_a, pose_a, box_b, pose_b);

@@ -3,8 +3,10 @@
 //
 // The watch is a body of the World. While a joint on the path between the two frames of a
 // watched pair moves, it wakes on every tick, after the bodies that move (phase 1): it updates
-// the poses and tests the boxes of every pair. Otherwise it sleeps, and the World wakes it when
-// a body that drives one of those joints is rescheduled (a motion starts, changes or ends).
+// the poses and tests the boxes of every pair with a joint between its frames that went
+// somewhere since the last test (the others cannot have come together or apart). Otherwise it
+// sleeps, and the World wakes it when a body that drives one of those joints is rescheduled (a
+// motion starts, changes or ends).
 //
 // On a new contact every joint on the two frames' paths up to their common ancestor that moves
 // is stopped where it stands: an obstacle at its position on the side it moves toward (moving
@@ -127,9 +129,12 @@ private:
     std::vector<FramePair> pairs_;
     std::vector<JointDrive> drives_;
     std::vector<std::vector<std::size_t>> paths_;   ///< per pair: joints_between()
+    std::vector<double> radius_mm_;                 ///< per pair: the sum of the boxes' half diagonals
     std::vector<std::size_t> watched_;              ///< frames on any path, once each
     std::vector<int> direction_;                    ///< per frame: the way its joint moves now
     std::vector<double> last_q_;                    ///< per frame: its position at the last check
+    std::vector<std::vector<std::size_t>> pairs_of_;   ///< per frame: the pairs it lies between
+    std::vector<bool> pair_due_;                    ///< per pair: a joint between moved since the last check
     std::vector<std::optional<Contact>> live_;      ///< per pair
     std::vector<double> depth_mm_;                  ///< per pair: penetration at the last check
     std::vector<Hold> holds_;
