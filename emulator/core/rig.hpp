@@ -108,6 +108,11 @@ private:
     std::vector<std::pair<std::size_t, std::size_t>> collision_pairs_;
 };
 
+/// What --check-config checks beyond the loader when the rig has frames: every device built in
+/// a world of its own (no endpoints, no state file, nothing served) and every joint bound to its
+/// channel (emulator/core/rig_kinematics.hpp). Throws ConfigError.
+void check_rig_devices(const RigConfig& config);
+
 /// The address a client on this machine connects to for a socket bound to `bound`: loopback
 /// for a wildcard address (0.0.0.0, ::), `bound` otherwise.
 boost::asio::ip::address client_address(const boost::asio::ip::address& bound);
