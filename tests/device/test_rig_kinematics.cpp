@@ -29,7 +29,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// An MCS stack (two linear channels, an end effector, a goniometer, a rotary channel), a KDC101
-/// with a PRM1-Z8 rotation stage, a TSC001 solenoid controller and a TPZ001 piezo driver.
+/// with a PRM1-Z8 rotation stage, a TSC001 solenoid controller, a TPZ001 piezo driver and a
+/// TDC001 with a goniometer stage described in the rig.
 json devices()
 {
     return json::parse(R"([
@@ -37,7 +38,11 @@ json devices()
          "mcs": {"channels": [{}, {}, {"kind": "end_effector"}, {"sensor_type": "G605S"}, {"sensor_type": "SR"}]}},
         {"name": "apt_rot", "protocol": "apt", "model": "KDC101", "apt": {"stage": "PRM1-Z8"}},
         {"name": "tsc", "protocol": "apt", "model": "TSC001", "apt": {}},
-        {"name": "tpz", "protocol": "apt", "model": "TPZ001", "apt": {}}])");
+        {"name": "tpz", "protocol": "apt", "model": "TPZ001", "apt": {}},
+        {"name": "apt_gonio", "protocol": "apt", "model": "TDC001",
+         "apt": {"stage": {"name": "GONIO-10", "kind": "goniometer", "motor": "dc_servo",
+                           "angle_range_deg": [-10, 10], "counts_per_deg": 34304, "max_velocity_deg_s": 2,
+                           "acceleration_deg_s2": 2, "home_velocity_deg_s": 1}}}])");
 }
 
 /// The table; a rotation stage 50 mm above it turning about z; X on it; a sample 40 mm above X.
@@ -183,10 +188,16 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     CHECK(rot.position() == channel.axis().position_counts() / counts_per_degree);
     CHECK(k->joint_position(f.frame("rot")) == rot.position());
 
-    // The rotary MCS channel is a rotary stage.
+    // The rotary MCS channel is a rotary stage; the APT goniometer stage a goniometer, in degrees.
     JointBinding sr;
     CHECK_FALSE(f.device<mcs::McsDevice>("stack").joint(4, sr));
     CHECK(sr.kind == JointBinding::Kind::Rotary);
+    JointBinding gonio;
+    auto& apt_gonio = f.device<apt::AptDevice>("apt_gonio");
+    CHECK_FALSE(apt_gonio.joint(0, gonio));
+    CHECK(gonio.kind == JointBinding::Kind::Goniometer);
+    CHECK(gonio.body_key == "apt_gonio/1");
+    CHECK(gonio.position() == apt_gonio.channel(0).axis().position_counts() / 34304);
 }
 
 TEST_CASE("rig kinematics: moving channels on the stepped clock moves the frames", "[device][kinematics]")
@@ -281,6 +292,14 @@ TEST_CASE("rig kinematics: a joint that does not suit its stage is a config erro
     k["frames"][3]["joint"] = json{{"type", "prismatic"}, {"axis", {0, 0, 1}}};
     CHECK(check_error(k) ==
           "rig.json: /kinematics/frames/3/joint/type: a prismatic joint on a goniometer stage (stack channel 3)");
+    // An APT goniometer stage: a goniometer or revolute joint, nothing else.
+    k = kinematics();
+    k["frames"][4] = json::parse(R"({"name": "g", "parent": "table", "axis": {"device": "apt_gonio", "channel": 0},
+                                    "joint": {"type": "goniometer", "axis": [1, 0, 0], "centre_mm": [0, 0, 20]}})");
+    CHECK(check_error(k) == "(no error)");
+    k["frames"][4]["joint"] = json{{"type", "prismatic"}, {"axis", {0, 0, 1}}};
+    CHECK(check_error(k) ==
+          "rig.json: /kinematics/frames/4/joint/type: a prismatic joint on a goniometer stage (apt_gonio channel 0)");
     // A goniometer may drive a revolute joint; a piezo a prismatic one.
     k = kinematics();
     k["frames"][3]["joint"] = json{{"type", "revolute"}, {"axis", {1, 0, 0}}};
