@@ -150,8 +150,8 @@ void CollisionWatch::on_event(Ticks now)
 {
     kinematics_.update();
     ++checks_;
-    // The way each watched joint moves: its velocity's sign, or (at a turn, where the velocity
-    // is 0 for an instant) the way it went since the check on the tick before.
+    // The way each watched joint moves: the way it went since the check on the tick before
+    // (what its velocity says may lag: a piezo creeping on), else its velocity's sign.
     const bool consecutive = last_check_ == now - 1;
     const bool first = checks_ == 1;
     bool moving = false;
@@ -160,9 +160,9 @@ void CollisionWatch::on_event(Ticks now)
     std::fill(pair_due_.begin(), pair_due_.end(), first);
     for (const std::size_t f : watched_) {
         const double q = kinematics_.joint_position(f);
-        int dir = drives_[f].velocity ? sign(drives_[f].velocity()) : 0;
-        if (dir == 0 && consecutive)
-            dir = sign(q - last_q_[f]);
+        int dir = consecutive ? sign(q - last_q_[f]) : 0;
+        if (dir == 0 && drives_[f].velocity)
+            dir = sign(drives_[f].velocity());
         direction_[f] = dir;
         moving = moving || dir != 0;
         if (q != last_q_[f])

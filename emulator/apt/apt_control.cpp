@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace rigsim::apt {
 
@@ -202,7 +203,15 @@ Refused AptDevice::joint(std::size_t index, JointBinding& out) const
     out.body_key = axis->key();
     out.position = [axis, counts_per_unit] { return axis->position_counts() / counts_per_unit; };
     out.velocity = [axis, counts_per_unit] { return axis->velocity_counts_per_s() / counts_per_unit; };
-    out.set_obstacles = nullptr;
+    // A collision's obstacle: the carriage meets it as its end stop (a servo stalls, a stepper
+    // loses microsteps).
+    models::Axis* carriage = world_.find_as<models::Axis>(axis->key());
+    out.set_obstacles = [carriage, counts_per_unit](std::optional<double> min, std::optional<double> max) {
+        const auto counts = [counts_per_unit](std::optional<double> q) {
+            return q ? std::optional<double>(*q * counts_per_unit) : std::nullopt;
+        };
+        carriage->set_obstacles(counts(min), counts(max));
+    };
     return std::nullopt;
 }
 

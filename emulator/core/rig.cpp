@@ -135,6 +135,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     // a config error, found before any endpoint opens.
     if (config.kinematics) {
         auto built = build_kinematics(*config.kinematics, surfaces_of(config, entries_));
+        collisions_ = watch_collisions(world_, built, *config.kinematics, events_);
         kinematics_ = std::move(built.kinematics);
         joint_bindings_ = std::move(built.bindings);
         collision_pairs_ = config.kinematics->collisions;
@@ -165,6 +166,15 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
                   e.pty->device_path());
     }
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> Rig::contacts() const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    if (collisions_)
+        for (const auto& c : collisions_->contacts())
+            out.emplace_back(c.frame_a, c.frame_b);
+    return out;
 }
 
 void check_rig_devices(const RigConfig& config)

@@ -14,6 +14,7 @@
 #include "emulator/transport/inotify_watcher.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
+#include "models/collision_watch.hpp"
 #include "models/kinematics.hpp"
 #include "models/world.hpp"
 
@@ -86,6 +87,9 @@ public:
     /// The pairs of frames (indices of kinematics()) whose boxes are checked for contact
     /// ("collisions" of the rig JSON, "auto" resolved); empty when the rig has no frames.
     const std::vector<std::pair<std::size_t, std::size_t>>& collision_pairs() const { return collision_pairs_; }
+    /// The pairs of collision_pairs() whose boxes touch now (as of the collision watch's last
+    /// check: it checks on every tick while a joint between them moves), in that order.
+    std::vector<std::pair<std::size_t, std::size_t>> contacts() const;
 
 private:
     struct Entry;
@@ -106,6 +110,8 @@ private:
     std::unique_ptr<models::Kinematics> kinematics_;
     std::vector<JointBinding> joint_bindings_;
     std::vector<std::pair<std::size_t, std::size_t>> collision_pairs_;
+    /// A body of world_ (nullptr: no pair to watch).
+    models::CollisionWatch* collisions_ = nullptr;
 };
 
 /// What --check-config checks beyond the loader when the rig has frames: every device built in

@@ -1,9 +1,12 @@
 #include "emulator/core/rig_kinematics.hpp"
 
 #include "emulator/core/config_reader.hpp"
+#include "emulator/core/event_bus.hpp"
 
 #include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 
+#include <memory>
 #include <string>
 
 namespace rigsim {
@@ -122,6 +125,49 @@ RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& 
             out.kinematics->set_box(i, Eigen::AlignedBox3d(vector_of(b->min), vector_of(b->max)));
     out.kinematics->update();
     return out;
+}
+
+nlohmann::json collision_json(const models::Kinematics& kinematics, const KinematicsConfig& config,
+                              const models::Contact& contact)
+{
+    const auto joints = [&](const std::vector<models::ContactJoint>& list) {
+        auto out = nlohmann::json::array();
+        for (const auto& j : list) {
+            const auto& axis = config.frames[j.frame].axis;
+            out.push_back({{"device", axis ? axis->device : std::string()},
+                           {"channel", axis ? axis->channel : 0},
+                           {"position", j.position}});
+        }
+        return out;
+    };
+    return {{"frames", {kinematics.name(contact.frame_a), kinematics.name(contact.frame_b)}},
+            {"stopped", joints(contact.stopped)},
+            {"not_stopped", joints(contact.not_stopped)}};
+}
+
+models::CollisionWatch* watch_collisions(models::World& world, RigKinematics& rig, const KinematicsConfig& config,
+                                         EventBus& events)
+{
+    if (config.collisions.empty())
+        return nullptr;
+    std::vector<models::JointDrive> drives(rig.bindings.size());
+    for (std::size_t i = 0; i < drives.size(); ++i) {
+        const JointBinding& b = rig.bindings[i];
+        drives[i].body_key = b.body_key;
+        drives[i].velocity = b.velocity;
+        drives[i].set_obstacles = b.set_obstacles;
+    }
+    auto& watch = world.emplace<models::CollisionWatch>("rig/collisions", *rig.kinematics, config.collisions,
+                                                        std::move(drives));
+    watch.link(world);   // after World::link_all: the watch is the last body
+    const models::Kinematics* kinematics = rig.kinematics.get();
+    auto kept = std::make_shared<const KinematicsConfig>(config);   // the rig's config is gone after start-up
+    watch.set_listener([kinematics, kept, &events, &world](const models::Contact& c) {
+        if (events.active())
+            events.publish("", "collision", world.clock().seconds(world.now()) * 1000.0,
+                           collision_json(*kinematics, *kept, c));
+    });
+    return &watch;
 }
 
 } // namespace rigsim

@@ -7,7 +7,11 @@
 
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/kinematics_config.hpp"
+#include "models/collision_watch.hpp"
 #include "models/kinematics.hpp"
+#include "models/world.hpp"
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <functional>
 #include <memory>
@@ -15,6 +19,8 @@
 #include <vector>
 
 namespace rigsim {
+
+class EventBus;
 
 /// The frames of a rig and what drives their joints.
 struct RigKinematics {
@@ -30,5 +36,16 @@ using SurfaceOf = std::function<ControlSurface*(std::string_view name)>;
 /// channel; throws ConfigError naming the frame's pointer when the device refuses the channel
 /// or the joint does not suit the stage.
 RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of);
+
+/// The collision watch of the rig's frames, a body of `world` under "rig/collisions" watching
+/// `config.collisions` (nullptr when there are none), each joint stopped through its binding.
+/// Every contact is published on `events` as a "collision" event (collision_json).
+models::CollisionWatch* watch_collisions(models::World& world, RigKinematics& rig, const KinematicsConfig& config,
+                                         EventBus& events);
+
+/// A "collision" event's data: {"frames": [a, b], "stopped": [{"device", "channel", "position"}],
+/// "not_stopped": [...]} (positions in mm or degrees, where the joint stood at the contact).
+nlohmann::json collision_json(const models::Kinematics& kinematics, const KinematicsConfig& config,
+                              const models::Contact& contact);
 
 } // namespace rigsim

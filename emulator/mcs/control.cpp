@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace rigsim::mcs {
 
@@ -150,7 +151,13 @@ Refused McsDevice::joint(std::size_t index, JointBinding& out) const
     // nm -> mm and µ° -> degrees are the same factor.
     out.position = [body] { return body->position_nm() * 1e-6; };
     out.velocity = [body] { return body->velocity_nm_per_s() * 1e-6; };
-    out.set_obstacles = nullptr;
+    // A collision's obstacle: the stage meets it as an end stop (a closed-loop move ends with 142,
+    // as under the stall fault; steps make no way).
+    models::StickSlipPositioner* stage = world_.find_as<models::StickSlipPositioner>(body->key());
+    out.set_obstacles = [stage](std::optional<double> min_mm, std::optional<double> max_mm) {
+        const auto nm = [](std::optional<double> mm) { return mm ? std::optional<double>(*mm * 1e6) : std::nullopt; };
+        stage->set_obstacles(nm(min_mm), nm(max_mm));
+    };
     return std::nullopt;
 }
 

@@ -94,6 +94,7 @@ private:
 
     DeviceConfig config_;
     Clock& clock_;
+    models::World& world_;   ///< where the channels' bodies live (joint(): a collision stops them)
     std::shared_ptr<spdlog::logger> log_;
     Controller controller_;
     Handler handler_;

@@ -8,6 +8,7 @@
 #include "emulator/mcs/mcs_device.hpp"
 #include "models/axis.hpp"
 #include "models/piezo_actuator.hpp"
+#include "models/stick_slip.hpp"
 #include "tests/support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace test_rig_kinematics {
@@ -174,8 +176,20 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
         REQUIRE(j->position);
         REQUIRE(j->velocity);
         CHECK(j->velocity() == 0.0);
-        CHECK_FALSE(j->set_obstacles);   // the collision slice fills it
     }
+    // A collision stops a motor or a stick-slip positioner at an obstacle in joint units; a piezo
+    // pushes on (no set_obstacles).
+    REQUIRE(rot.set_obstacles);
+    REQUIRE(x.set_obstacles);
+    REQUIRE(tilt.set_obstacles);
+    CHECK_FALSE(piezo.set_obstacles);
+    x.set_obstacles(std::nullopt, 1.5);
+    const auto* x_body = f.rig->world().find_as<models::StickSlipPositioner>("stack/0");
+    REQUIRE(x_body);
+    CHECK(x_body->obstacle_max_nm() == 1.5e6);
+    CHECK_FALSE(x_body->obstacle_min_nm());
+    x.set_obstacles(std::nullopt, std::nullopt);
+    CHECK_FALSE(x_body->obstacle_max_nm());
     // Physical positions: the MCS stages and the piezo start at 0; an APT stage starts in the
     // middle of its travel, where its counters read 0.
     CHECK(x.position() == 0.0);
@@ -186,6 +200,10 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     CHECK(counts_per_degree == Approx(1919.64).margin(0.01));
     CHECK(channel.axis().position_counts() != 0.0);
     CHECK(rot.position() == channel.axis().position_counts() / counts_per_degree);
+    rot.set_obstacles(rot.position() - 10, std::nullopt);
+    CHECK(channel.axis().obstacle_min_counts() == Approx(channel.axis().position_counts() - 10 * counts_per_degree));
+    rot.set_obstacles(std::nullopt, std::nullopt);
+    CHECK_FALSE(channel.axis().obstacle_min_counts());
     CHECK(k->joint_position(f.frame("rot")) == rot.position());
 
     // The rotary MCS channel is a rotary stage; the APT goniometer stage a goniometer, in degrees.
