@@ -375,3 +375,24 @@ def test_real_reset_and_events(rigsim):
     rig = rigsim()
     assert "mcs0" in real(rig, "reset")["reset"]
     real(rig, "events", "--timeout", "0.3")
+
+
+KINEMATICS_RIG = os.path.join(HERE, "..", "..", "tests", "e2e", "kinematics_rig.json")
+
+
+def test_real_frames(rigsim):
+    rig = rigsim(KINEMATICS_RIG)
+    answer = real(rig, "frames")
+    assert [f["name"] for f in answer["frames"]] == ["table", "turn", "x"]
+    assert [t["name"] for t in answer["tools"]] == ["tip"]
+    assert real(rig, "frames", "tip")["world"]["position_mm"] == pytest.approx([0.5, 0, 50], abs=1e-9)
+    result = run_launcher("--control", rig.control.url, "--format", "table", "frames")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].split()[:3] == ["name", "parent", "joint"]
+    assert lines[3].split() == ["x", "turn", "prismatic", "stage/0", "=", "0.5000", "0.5000", "0.0000",
+                                "30.0000", "0.0000", "0.0000", "0.0000"]
+    assert lines[4].split()[:6] == ["tip", "x", "tool", "0.5000", "0.0000", "50.0000"]
+    assert lines[-1] == "collisions: none"
+    result = run_launcher("--control", rig.control.url, "frames", "nope")
+    assert result.returncode == 1 and result.stderr == 'rigsimctl: 404: no frame named "nope"\n'
