@@ -77,8 +77,11 @@ TEST_CASE("control: the tip's pose follows the MCS stages a client moves over th
     const auto all = http(api, "GET", "/api/frames");
     REQUIRE(all.status == 200);
     CHECK(all.body.find("\"name\":\"table\"") != std::string::npos);
-    CHECK(all.body.find(R"("joint":{"channel":0,"device":"stage","position":0.5,"type":"prismatic"})")
-          != std::string::npos);
+    const auto x = http(api, "GET", "/api/frames/x");
+    REQUIRE(x.status == 200);
+    CHECK(x.body.rfind(R"({"joint":{"channel":0,"device":"stage","position":)", 0) == 0);
+    CHECK(std::strtod(x.body.c_str() + x.body.find("\"position\":") + 11, nullptr) == Approx(0.5).margin(1e-9));
+    CHECK(x.body.find(R"("type":"prismatic"},"name":"x","parent":"turn",)") != std::string::npos);
     const auto tip = http(api, "GET", "/api/frames/tip");
     REQUIRE(tip.status == 200);
     check_near(triple_after(tip.body, "\"world\":{\"position_mm\":["), 0.5, 0, 50);
