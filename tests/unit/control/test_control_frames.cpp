@@ -110,7 +110,7 @@ struct Fixture {
 
 } // namespace
 
-TEST_CASE("GET /api/frames: every frame and tool point; /api/frames/{name} one; 404 and 405", "[control]")
+TEST_CASE("GET /api/frames: every frame and tool point, /api/frames/{name} one, 404 and 405", "[control]")
 {
     Fixture f;
     f.make_api(true);
@@ -139,7 +139,7 @@ TEST_CASE("GET /api/frames: every frame and tool point; /api/frames/{name} one; 
     CHECK(f.call("GET", "/api/frames/tip/x").first == 404);
 }
 
-TEST_CASE("GET /api/frames on a rig without kinematics: empty lists; any name is 404", "[control]")
+TEST_CASE("GET /api/frames on a rig without kinematics: empty lists, any name is 404", "[control]")
 {
     Fixture f;
     f.make_api(false);
