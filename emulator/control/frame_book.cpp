@@ -1,5 +1,7 @@
 #include "emulator/control/frame_book.hpp"
 
+#include <map>
+#include <string>
 #include <utility>
 
 namespace rigsim::control {
@@ -12,6 +14,36 @@ bool same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b)
 }
 
 } // namespace
+
+std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>& bindings,
+                                                 const std::vector<ControlledDevice>& devices)
+{
+    // Each device's channels, asked once which body they drive (the world's keys are the
+    // families' own: an APT bay's is 1-based, an MCS channel's 0-based).
+    std::map<std::string, JointAxis, std::less<>> by_body;
+    for (const auto& d : devices) {
+        if (!d.surface)
+            continue;
+        auto state = nlohmann::json::object();
+        d.surface->describe(state);
+        if (!state.contains("channels"))
+            continue;
+        for (const auto& ch : state["channels"]) {
+            const auto index = ch.value("index", -1);
+            JointBinding b;
+            if (index < 0 || d.surface->joint(static_cast<std::size_t>(index), b) || b.body_key.empty())
+                continue;
+            by_body.emplace(b.body_key, JointAxis{d.endpoints.name, static_cast<std::size_t>(index)});
+        }
+    }
+    std::vector<std::optional<JointAxis>> out;
+    out.reserve(bindings.size());
+    for (const auto& b : bindings) {
+        const auto it = b.body_key.empty() ? by_body.end() : by_body.find(b.body_key);
+        out.push_back(it == by_body.end() ? std::nullopt : std::optional<JointAxis>(it->second));
+    }
+    return out;
+}
 
 FrameBook::FrameBook(FrameSource source) : source_(std::move(source))
 {

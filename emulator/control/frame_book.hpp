@@ -4,6 +4,8 @@
 // may collide, and the poses last published, so that an event carries only what changed.
 
 #include "emulator/control/frames_json.hpp"
+#include "emulator/core/control_surface.hpp"
+#include "emulator/core/rig.hpp"
 #include "models/kinematics.hpp"
 
 #include <Eigen/Geometry>
@@ -21,6 +23,12 @@ struct FrameSource {
     std::vector<std::optional<JointAxis>> axes;   ///< per frame index: the channel of its joint
     std::vector<Contact> collision_pairs;         ///< the pairs checked for contact
 };
+
+/// The device and channel of each joint binding (indexed like the frames; an empty binding, a
+/// fixed frame's, gives std::nullopt): the channel of `devices` whose ControlSurface::joint()
+/// drives the same world body. A binding no channel drives also gives std::nullopt.
+std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>& bindings,
+                                                 const std::vector<ControlledDevice>& devices);
 
 class FrameBook {
 public:

@@ -47,6 +47,37 @@ private:
     WireLog log_;
 };
 
+/// Channels 0..n-1 whose joints drive the world bodies `keys` (an empty key: moves nothing).
+class Mounts : public ControlSurface {
+public:
+    Mounts(Clock& clock, std::vector<std::string> keys) : keys_(std::move(keys)), log_("m", clock.tick_hz(), nullptr) {}
+
+    void describe(json& out) const override
+    {
+        out["channels"] = json::array();
+        for (std::size_t i = 0; i < keys_.size(); ++i)
+            out["channels"].push_back(json{{"index", i}});
+    }
+    Refused joint(std::size_t index, JointBinding& out) const override
+    {
+        if (index >= keys_.size())
+            return Refusal{404, "no channel"};
+        if (keys_[index].empty())
+            return Refusal{400, "moves nothing"};
+        out.body_key = keys_[index];
+        return std::nullopt;
+    }
+    Refused patch_channel(std::size_t, const json&) override { return std::nullopt; }
+    Refused add_fault(const DeviceFault&, bool*) override { return Refusal{400, "none"}; }
+    void remove_fault(std::uint64_t) override {}
+    void power_cycle(const PowerCycle&) override {}
+    WireLog& wire_log() override { return log_; }
+
+private:
+    std::vector<std::string> keys_;
+    WireLog log_;
+};
+
 class NullDevice : public Device {
 public:
     std::unique_ptr<Session> open_session(SendFn, std::string) override { return nullptr; }
@@ -215,6 +246,29 @@ TEST_CASE("The frames event follows its cause on every stream, and none is built
     }
     stop_a();
     stop_b();
+}
+
+TEST_CASE("joint_axes: each binding's device and channel, found by the world body the channel drives", "[control]")
+{
+    Clock clock{1000};
+    Mounts mcs(clock, {"mcs/0", "mcs/1"});
+    Mounts apt(clock, {"apt/1", ""});   // an APT bay's body key counts from 1; bay 1 moves nothing
+    const std::vector<ControlledDevice> devices{
+        ControlledDevice{DeviceEndpoints{"mcs", "mcs", "MCS-2D", "", ""}, &mcs, nullptr},
+        ControlledDevice{DeviceEndpoints{"apt", "apt", "BBD202", "", ""}, &apt, nullptr},
+        ControlledDevice{DeviceEndpoints{"bare", "mcs", "MCS-1D", "", ""}, nullptr, nullptr}};
+    std::vector<JointBinding> bindings(4);
+    bindings[1].body_key = "apt/1";
+    bindings[2].body_key = "mcs/1";
+    bindings[3].body_key = "ghost/0";
+    const auto axes = control::joint_axes(bindings, devices);
+    REQUIRE(axes.size() == 4);
+    CHECK_FALSE(axes[0]);
+    REQUIRE(axes[1]);
+    CHECK((axes[1]->device == "apt" && axes[1]->channel == 0));
+    REQUIRE(axes[2]);
+    CHECK((axes[2]->device == "mcs" && axes[2]->channel == 1));
+    CHECK_FALSE(axes[3]);
 }
 
 } // namespace test_control_frames
