@@ -3,6 +3,7 @@
 // the power cycle, the wire log and the events.
 
 #include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/stage_file.hpp"
 #include "emulator/apt/wire_decode.hpp"
 #include "emulator/core/event_bus.hpp"
 #include "emulator/core/state_store.hpp"
@@ -36,11 +37,17 @@ const char* unit_name(UnitKind kind)
     return "motor";
 }
 
-/// SI units (m or rad) per stage count: the catalogue's counts per mm (per degree for a
-/// rotation stage).
+/// SI units (m or rad) per stage count: the stage's counts per mm (per degree for a rotation
+/// stage or a goniometer).
 double si_per_count(const StageModel& stage)
 {
-    return stage.rotary ? kPi / 180.0 / stage.counts_per_mm : 1e-3 / stage.counts_per_mm;
+    return stage.angular() ? kPi / 180.0 / stage.counts_per_mm : 1e-3 / stage.counts_per_mm;
+}
+
+/// The unit of a channel's SI figures.
+const char* si_unit(const StageModel& stage)
+{
+    return stage.angular() ? "rad" : "m";
 }
 
 std::string hex32(std::uint32_t v)
@@ -132,8 +139,9 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
     const double x = axis.position_counts();
     const auto& l = ch.limit_switch;
     const bool soft = ((l.mode & 0x7f) == 2 || (l.mode & 0x7f) == 3) && l.cw_soft > l.ccw_soft;
-    const bool at_forward = !stage.rotary && (x >= axis.travel_max_counts() - 0.5 || ch.switch_pressed() > 0);
-    const bool at_reverse = !stage.rotary && (x <= axis.travel_min_counts() + 0.5 || ch.switch_pressed() < 0);
+    const bool rotary = stage.kind == StageKind::Rotary;
+    const bool at_forward = !rotary && (x >= axis.travel_max_counts() - 0.5 || ch.switch_pressed() > 0);
+    const bool at_reverse = !rotary && (x <= axis.travel_min_counts() + 0.5 || ch.switch_pressed() < 0);
     nlohmann::json limits{
         {"switch_params",
          {{"cw_hard_limit", l.cw_hard}, {"ccw_hard_limit", l.ccw_hard}, {"cw_soft_limit", l.cw_soft},
@@ -145,11 +153,11 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
         {"switch_pressed", {{"forward", at_forward}, {"reverse", at_reverse}}}};
     return {{"index", bay},
             {"unit", unit_name(model_.kind)},
-            {"kind", stage.rotary ? "rotary" : "linear"},
-            {"stage", std::string(stage.name)},
+            {"kind", kind_name(stage.kind)},
+            {"stage", stage.name},
             {"address", address},
             {"position_si", x * k},
-            {"si_unit", stage.rotary ? "rad" : "m"},
+            {"si_unit", si_unit(stage)},
             {"position_protocol", ch.position()},
             {"protocol_unit", "counts"},
             {"encoder", ch.encoder()},
@@ -193,14 +201,19 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
     for (const auto& [key, value] : body.items()) {
         if (key == "position_si") {
             if (!value.is_number())
-                return bad("position_si must be a number (" + std::string(ch.stage().rotary ? "rad" : "m") + ")");
+                return bad("position_si must be a number (" + std::string(si_unit(ch.stage())) + ")");
             const double x = value.get<double>() / k;
             // A rotation stage has no end stops: its bound is what the position counter holds.
             if (!std::isfinite(x) || std::abs(x) > 2147483647.0)
                 return bad("position_si " + value.dump() + " is beyond what the position counter can hold");
-            if (!ch.stage().rotary && (x < axis.travel_min_counts() - 0.5 || x > axis.travel_max_counts() + 0.5))
-                return bad("position_si " + value.dump() + " m is outside the travel of the " + std::string(ch.stage().name)
+            const bool outside = x < axis.travel_min_counts() - 0.5 || x > axis.travel_max_counts() + 0.5;
+            if (ch.stage().kind == StageKind::Linear && outside)
+                return bad("position_si " + value.dump() + " m is outside the travel of the " + ch.stage().name
                            + " (0 to " + std::to_string(axis.travel_max_counts() * k) + " m)");
+            if (ch.stage().kind == StageKind::Goniometer && outside)
+                return bad("position_si " + value.dump() + " rad is outside the angle range of the goniometer "
+                           + ch.stage().name + " (" + std::to_string(axis.travel_min_counts() * k) + " to "
+                           + std::to_string(axis.travel_max_counts() * k) + " rad)");
         } else if (key == "referenced" || key == "enabled") {
             if (!value.is_boolean())
                 return bad(key + " must be true or false");

@@ -100,8 +100,7 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
     if (model_.kind == UnitKind::Motor)
         for (std::size_t bay = 0; bay < bays; ++bay)
             channels_.push_back(std::make_unique<MotorChannel>(
-                model_, *find_stage(model_.rack ? config_of(config).bays[bay] : config_of(config).stage), world,
-                key(bay)));
+                model_, model_.rack ? config_of(config).bays[bay] : config_of(config).stage, world, key(bay)));
     for (std::size_t bay = 0; bay < bays; ++bay) {
         modules_.push_back(make_module(bay));
         connect_events(bay);

@@ -1,10 +1,12 @@
 #pragma once
 // APT controllers and stages that a rig may name (manual 2.2 serial prefixes, 7.1 scaling).
-// Every field has a default; the catalogue (catalogue.cpp) sets each model's fields by name.
+// Every field has a default; the catalogue (catalogue.cpp) sets each controller's fields by
+// name; the stages are files (config/stages/*.json, shipped_stages.hpp).
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace rigsim::apt {
@@ -59,38 +61,57 @@ struct ControllerModel {
     bool rich_fault_reports = false;
 };
 
-/// A stage (actuator) the controller drives.
+/// What a stage's carriage does: move along a line (unit mm), turn without end (unit degree), or
+/// tilt through a limited angle range, with end stops and limit switches like a linear stage
+/// (a goniometer; unit degree).
+enum class StageKind { Linear, Rotary, Goniometer };
+
+/// Which ends of a linear stage's or a goniometer's travel have a limit switch.
+enum class LimitSwitches { Both, Forward, Reverse, None };
+
+/// A stage (actuator) the controller drives: a shipped stage file (config/stages/*.json) or a
+/// rig's inline stage object, read by stage_file.cpp (docs/config.md, "APT stages"). Its unit is
+/// the mm for a linear stage and the degree for a rotary stage or a goniometer: the fields named
+/// per mm hold per-degree values there.
 struct StageModel {
-    std::string_view name;          ///< e.g. "MTS50-Z8"
+    std::string name;               ///< e.g. "MTS50-Z8"; empty for an unnamed inline stage
+    StageKind kind = StageKind::Linear;
     MotorKind motor = MotorKind::DcServo;
-    double travel_mm = 0;
-    double counts_per_mm = 0;           ///< encoder counts (DC servo) or microsteps (stepper)
+    double travel_mm = 0;           ///< linear: from 0 at the reverse end stop to the forward one
+    /// Goniometer: the angles of the reverse and forward end stops (angle_range_deg).
+    double angle_min_deg = 0;
+    double angle_max_deg = 0;
+    double counts_per_mm = 0;           ///< encoder counts (DC servo, brushless) or microsteps (stepper) per unit
     double max_velocity_mm_s = 0;       ///< power-up VELPARAMS
     double acceleration_mm_s2 = 0;
     double home_velocity_mm_s = 0;
-    double home_offset_mm = 0;          ///< back-off distance from the limit switch
+    double home_offset_mm = 0;          ///< back-off distance from the limit (home) switch
     /// Velocity/acceleration scaling of the stage itself when the manual gives it per mm
     /// (7.1, MLS203 with BBDxxx); 0: derived from the controller's per-count factors.
     double velocity_per_mm_s = 0;
     double acceleration_per_mm_s2 = 0;
-    /// A rotation stage turns without end: no travel limits, a home switch once per turn
-    /// (at 0 of the physical angle). Its unit is the degree where a linear stage's is the mm.
-    bool rotary = false;
+    /// Linear stages and goniometers: the ends with a limit switch (power-up LIMSWITCHPARAMS).
+    /// A rotation stage has none: a home switch once per turn (at 0 of the physical angle).
+    LimitSwitches limit_switches = LimitSwitches::Both;
+    /// Power-up HOMEPARAMS: homing runs forward (to the forward limit switch; a rotation stage to
+    /// the next home switch forward) rather than in reverse. A brushless channel always homes
+    /// forward (p. 37).
+    bool home_forward = false;
     /// MOT_GET_PMDSTAGEAXISPARAMS (p. 75): stage ID (named for MLS203 X/Y only), part number
     /// (empty: the name), and the design's maximum velocity and acceleration in PMD units
     /// (0: the power-up VELPARAMS).
     std::uint16_t pmd_stage_id = 0;
-    std::string_view pmd_part_number = {};
+    std::string pmd_part_number;
     std::int32_t pmd_max_velocity = 0;
     std::int32_t pmd_max_acceleration = 0;
+
+    /// Degrees rather than mm: a rotary stage or a goniometer.
+    bool angular() const { return kind != StageKind::Linear; }
 };
 
 /// The controller with this name, or nullptr.
 const ControllerModel* find_controller(std::string_view name);
-/// The stage with this name, or nullptr.
-const StageModel* find_stage(std::string_view name);
 /// Names for error messages ("TDC001, KDC101").
 std::string_view controller_names();
-std::string_view stage_names();
 
 } // namespace rigsim::apt

@@ -1,6 +1,8 @@
 #include "emulator/apt/config.hpp"
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/shipped_stages.hpp"
+#include "emulator/apt/stage_file.hpp"
 #include "emulator/core/config_reader.hpp"
 
 #include <nlohmann/json.hpp>
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <string_view>
@@ -132,17 +135,70 @@ Keys object_keys(const ConfigReader& r, const json& value, const std::string& po
     return Keys(r, value, pointer);
 }
 
-/// A stage of the catalogue whose motor suits `controller` (a single unit's "stage", or one of
-/// a rack's "bays").
-std::string load_stage(const ConfigReader& r, const json& v, const std::string& pointer,
-                       const ControllerModel& controller, const std::string& model)
+/// The shipped stage a motor controller drives when its "apt" object names none.
+constexpr std::string_view kDefaultStage = "MTS50-Z8";
+
+/// The power-up velocity figures of the stage object `stage` at `pointer` come out on
+/// `controller` as APT units (7.1) its 32-bit words hold, and not as 0.
+void check_apt_units(const ConfigReader& r, const std::string& pointer, const StageModel& stage,
+                     const ControllerModel& controller, const std::string& model)
 {
-    auto stage = r.get_string(v, pointer);
-    const auto* found = find_stage(stage);
-    if (!found)
-        r.fail(pointer, "unknown stage " + quote(stage) + " (expected one of " + std::string(stage_names()) + ")");
-    if (found->motor != controller.motor)
-        r.fail(pointer, "stage " + quote(stage) + " has another kind of motor than a " + model);
+    const bool angular = stage.angular();
+    const struct {
+        std::string_view key;
+        double value;
+        double stage_scale;   ///< per unit; 0: the controller's per count
+        double per_count;
+    } figures[]{
+        {angular ? "max_velocity_deg_s" : "max_velocity_mm_s", stage.max_velocity_mm_s, stage.velocity_per_mm_s,
+         controller.velocity_per_count_s},
+        {angular ? "acceleration_deg_s2" : "acceleration_mm_s2", stage.acceleration_mm_s2,
+         stage.acceleration_per_mm_s2, controller.acceleration_per_count_s2},
+        {angular ? "home_velocity_deg_s" : "home_velocity_mm_s", stage.home_velocity_mm_s, stage.velocity_per_mm_s,
+         controller.velocity_per_count_s},
+    };
+    for (const auto& f : figures) {
+        // As MotorChannel scales them (rounded to the nearest unit).
+        const double units = f.stage_scale > 0 ? f.value * f.stage_scale : f.value * stage.counts_per_mm * f.per_count;
+        const double word = std::round(units);
+        if (!(word >= 1) || word > 2'147'483'647.0) {
+            char shown[32];
+            std::snprintf(shown, sizeof shown, "%.15g", word);
+            r.fail(pointer_to(pointer, f.key), "gives " + std::string(shown) + " APT units on a " + model
+                                                   + " (7.1 scaling): expected 1..2147483647");
+        }
+    }
+}
+
+/// A single unit's "stage" or one of a rack's "bays": a shipped stage's name, or a stage object
+/// (stage_file.hpp); either with the motor `controller` drives.
+StageModel load_stage(const ConfigReader& r, const json& v, const std::string& pointer,
+                      const ControllerModel& controller, const std::string& model)
+{
+    if (v.is_string()) {
+        const auto& name = v.get_ref<const std::string&>();
+        const auto* found = find_stage(name);
+        if (!found)
+            r.fail(pointer, "unknown stage " + quote(name) + " (expected one of " + stage_names()
+                                + ", or a stage object)");
+        if (found->motor != controller.motor)
+            r.fail(pointer, "stage " + quote(name) + " has another kind of motor than a " + model);
+        return *found;
+    }
+    if (!v.is_object())
+        r.fail(pointer, "expected the name of a shipped stage or a stage object, got " + describe(v));
+    // A shipped name on another description would make two stages of one name.
+    if (const auto* name = ConfigReader::find(v, "name"); name && name->is_string()) {
+        const auto& text = name->get_ref<const std::string&>();
+        if (find_stage(text))
+            r.fail(pointer_to(pointer, "name"),
+                   quote(text) + " names the shipped stage " + text + ": use the name alone or another name");
+    }
+    auto stage = read_stage(r, v, pointer);
+    if (stage.motor != controller.motor)
+        r.fail(pointer_to(pointer, "motor"), "expected " + quote(motor_name(controller.motor)) + " (the motor a "
+                                                 + model + " drives), got " + quote(motor_name(stage.motor)));
+    check_apt_units(r, pointer, stage, controller, model);
     return stage;
 }
 
@@ -164,9 +220,9 @@ void load_motor(const ConfigReader& r, const json& a, const std::string& apt_poi
             apt.bays.push_back(load_stage(r, bays[i], pointer_to(bays_pointer, i), controller, model));
     } else if (r.find(a, "bays")) {
         r.fail(pointer_to(apt_pointer, "bays"), "only rack controllers have bays; " + model + " names one \"stage\"");
-    } else if (!r.find(a, "stage") && find_stage(apt.stage)->motor != controller.motor) {
+    } else if (!r.find(a, "stage") && apt.stage.motor != controller.motor) {
         r.fail(pointer_to(apt_pointer, "stage"),
-               "required key missing (the default " + apt.stage + " is not a stage for a " + model + ")");
+               "required key missing (the default " + apt.stage.name + " is not a stage for a " + model + ")");
     }
 }
 
@@ -286,6 +342,14 @@ bool carries_gauges(const DeviceConfig& d)
 }
 
 } // namespace
+
+StageModel default_stage()
+{
+    const auto* stage = find_stage(kDefaultStage);
+    if (!stage)
+        throw ConfigError("config/stages/" + std::string(kDefaultStage) + ".json: the default stage is not shipped");
+    return *stage;
+}
 
 void load_device_section(const ConfigReader& reader, const json& device, const std::string& pointer,
                          DeviceConfig& config)

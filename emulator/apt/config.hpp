@@ -3,6 +3,7 @@
 // number): its structs with every default, its loader and the rig-wide check (docs/config.md).
 // Plain data: the device's modules map it onto their models.
 
+#include "emulator/apt/catalogue.hpp"
 #include "emulator/core/rig_config.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -56,13 +57,17 @@ struct StrainGaugeConfig {
     int zero_time_ms = 2000;      ///< PZ_SET_ZERO takes this long: 0..60000
 };
 
+/// The stage of a motor controller whose "apt" object names none: the shipped MTS50-Z8.
+StageModel default_stage();
+
 /// An APT controller (Thorlabs). Its model's unit kind (catalogue.hpp) decides which keys it
 /// has: a motor controller a stage (a motor rack one per bay), a solenoid controller
 /// "solenoid", a piezo controller "actuator" (a piezo rack "hardware_max_voltage_v" and a bay
 /// object per bay), a strain gauge reader "gauge"; the others keep their defaults.
 struct AptConfig {
-    std::string stage = "MTS50-Z8";   ///< a stage of the catalogue (emulator/apt/catalogue.cpp)
-    std::vector<std::string> bays;    ///< motor racks: the stage in bay 0, 1, ...
+    /// A single unit's stage: a shipped stage (config/stages, by name) or the rig's stage object.
+    StageModel stage = default_stage();
+    std::vector<StageModel> bays;     ///< motor racks: the stage in bay 0, 1, ...
     std::uint32_t serial_number = 0;  ///< 8 digits with the model's prefix; 0 = prefix × 10^6 + 1
     SolenoidConfig solenoid;          ///< solenoid controllers
     PiezoActuatorConfig actuator;     ///< TPZ001, KPZ101

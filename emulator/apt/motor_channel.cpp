@@ -18,13 +18,30 @@ models::AxisConfig axis_config(const ControllerModel& controller, const StageMod
     models::AxisConfig c;
     // DC servo and brushless motors stall at an end stop; a stepper loses its microsteps.
     c.drive = controller.motor == MotorKind::Stepper ? models::Drive::Stepper : models::Drive::Servo;
-    c.rotary = stage.rotary;
-    c.travel_min_counts = stage.rotary ? -kRotaryTravelCounts : 0.0;
-    c.travel_max_counts = stage.rotary ? kRotaryTravelCounts : stage.travel_mm * stage.counts_per_mm;
-    c.counts_per_turn = 360.0 * stage.counts_per_mm;
+    const double cpu = stage.counts_per_mm;
+    // The axis counts the physical position: from the reverse end stop of a linear stage, from
+    // 0° of a rotation stage or a goniometer (whose end stops sit at its angle range).
+    switch (stage.kind) {
+    case StageKind::Linear:
+        c.travel_min_counts = 0.0;
+        c.travel_max_counts = stage.travel_mm * cpu;
+        break;
+    case StageKind::Rotary:
+        c.rotary = true;
+        c.travel_min_counts = -kRotaryTravelCounts;
+        c.travel_max_counts = kRotaryTravelCounts;
+        break;
+    case StageKind::Goniometer:
+        c.travel_min_counts = stage.angle_min_deg * cpu;
+        c.travel_max_counts = stage.angle_max_deg * cpu;
+        break;
+    }
+    c.counts_per_turn = 360.0 * cpu;
     // Power-up: the stage stands mid-travel (a rotation stage half a turn from its home
     // switch); the counters read 0 there (not homed).
-    c.start_position_counts = stage.travel_mm * stage.counts_per_mm / 2;
+    c.start_position_counts = stage.kind == StageKind::Rotary
+                                  ? 180.0 * cpu
+                                  : c.travel_min_counts + (c.travel_max_counts - c.travel_min_counts) / 2;
     return c;
 }
 
@@ -55,7 +72,17 @@ void MotorChannel::set_power_up_params()
     home_params = HomeParams{};
     home_params.velocity = static_cast<std::int32_t>(std::lround(stage_.home_velocity_mm_s * cpm * velocity_factor()));
     home_params.offset = static_cast<std::int32_t>(std::lround(stage_.home_offset_mm * cpm));
+    if (stage_.home_forward) {
+        home_params.direction = 1;
+        home_params.limit_switch = 4;
+    }
     limit_switch = LimitSwitchParams{};
+    // 1: no switch at that end (p. 39); a rotation stage's home switch is not a limit.
+    const auto fitted = stage_.limit_switches;
+    if (fitted == LimitSwitches::Reverse || fitted == LimitSwitches::None)
+        limit_switch.cw_hard = 1;
+    if (fitted == LimitSwitches::Forward || fitted == LimitSwitches::None)
+        limit_switch.ccw_hard = 1;
     backlash = 0;
     profile_mode = 0;
     jerk = 0;
@@ -156,20 +183,26 @@ double MotorChannel::counts_per_s2(std::int32_t apt_acceleration) const
     return std::abs(static_cast<double>(apt_acceleration)) / acceleration_factor();
 }
 
+double MotorChannel::reverse_end_counts() const
+{
+    // A goniometer's axis counts from 0°, its stage counts from its reverse end stop.
+    return stage_.kind == StageKind::Goniometer ? axis_.travel_min_counts() : 0.0;
+}
+
 std::int32_t MotorChannel::min_position() const
 {
-    return static_cast<std::int32_t>(std::lround(axis_.limit_min_counts()));
+    return static_cast<std::int32_t>(std::lround(axis_.limit_min_counts() - reverse_end_counts()));
 }
 
 std::int32_t MotorChannel::max_position() const
 {
-    return static_cast<std::int32_t>(std::lround(axis_.limit_max_counts()));
+    return static_cast<std::int32_t>(std::lround(axis_.limit_max_counts() - reverse_end_counts()));
 }
 
 void MotorChannel::narrow_travel(std::int32_t min_position, std::int32_t max_position)
 {
-    const double lo = std::max(axis_.limit_min_counts(), static_cast<double>(min_position));
-    const double hi = std::min(axis_.limit_max_counts(), static_cast<double>(max_position));
+    const double lo = std::max(axis_.limit_min_counts(), min_position + reverse_end_counts());
+    const double hi = std::min(axis_.limit_max_counts(), max_position + reverse_end_counts());
     if (lo < hi)
         axis_.set_limits(lo, hi);
 }
@@ -220,9 +253,9 @@ std::uint32_t MotorChannel::status_bits() const
         bits |= status::kMotionError;   // the position loop cannot hold without its encoder
     const double x = axis_.position_counts();
     const int pressed = axis_.switch_pressed();
-    if (!stage_.rotary && (x <= axis_.travel_min_counts() + 0.5 || pressed < 0) && (limit_switch.ccw_hard & 0x7f) != 1)
+    if (stage_.kind != StageKind::Rotary && (x <= axis_.travel_min_counts() + 0.5 || pressed < 0) && (limit_switch.ccw_hard & 0x7f) != 1)
         bits |= status::kReverseHardLimit;
-    if (!stage_.rotary && (x >= axis_.travel_max_counts() - 0.5 || pressed > 0) && (limit_switch.cw_hard & 0x7f) != 1)
+    if (stage_.kind != StageKind::Rotary && (x >= axis_.travel_max_counts() - 0.5 || pressed > 0) && (limit_switch.cw_hard & 0x7f) != 1)
         bits |= status::kForwardHardLimit;
     if (soft_limits_active()) {
         if (position() >= limit_switch.cw_soft)
@@ -364,7 +397,7 @@ void MotorChannel::home()
                             || home_params.direction == 1;
     homed_ = false;
     homing_forward_ = to_forward;
-    start_profile(stage_.rotary ? axis_.next_home_switch_counts(to_forward) : axis_.run_target_counts(to_forward),
+    start_profile(stage_.kind == StageKind::Rotary ? axis_.next_home_switch_counts(to_forward) : axis_.run_target_counts(to_forward),
                   counts_per_s(home_params.velocity), counts_per_s2(velocity.acceleration), Motion::HomingToLimit);
 }
 
@@ -464,7 +497,7 @@ void MotorChannel::conclude()
         events_.push_back(MotorEvent::Stopped);
         return;
     case Motion::HomingToLimit: {
-        if (!stage_.rotary && !switch_stops(homing_forward_, true)) {
+        if (stage_.kind != StageKind::Rotary && !switch_stops(homing_forward_, true)) {
             // A stepper ran on into the end stop: no switch, no home (a DC motor stalled).
             motion_ = Motion::Idle;
             events_.push_back(MotorEvent::Stopped);

@@ -133,7 +133,8 @@ public:
     bool homed() const { return homed_; }
     /// The homed status bit, as if homing had (or had not) been done.
     void set_homed(bool homed) { homed_ = homed; }
-    /// The carriage to `counts` of the stage (from its reverse end), at rest; the counters follow.
+    /// The carriage to `counts` of the axis (from a linear stage's reverse end, from 0° of a
+    /// rotation stage or goniometer), at rest; the counters follow.
     void place(double counts);
     /// A limit switch reads pressed (+1 forward, -1 reverse, 0 none): its status bit is set, a
     /// move toward it stops at once as the switch would stop it.
@@ -157,6 +158,9 @@ public:
 private:
     enum class Motion { Idle, Moving, Jogging, HomingToLimit, HomingBackOff, Stopping };
 
+    /// The axis position (counts) of the stage's reverse end, from which the stage's own
+    /// counts run (PMDSTAGEAXISPARAMS): 0 but for a goniometer, whose axis counts from 0°.
+    double reverse_end_counts() const;
     /// APT velocity units per count/s and acceleration units per count/s² (7.1).
     double velocity_factor() const;
     double acceleration_factor() const;
@@ -181,7 +185,7 @@ private:
     void sync_jam();
 
     const ControllerModel& controller_;
-    const StageModel& stage_;
+    const StageModel stage_;
     models::Axis& axis_;
     bool enabled_ = true;
     bool homed_ = false;

@@ -14,6 +14,7 @@
 #include "models/clock.hpp"
 #include "models/world.hpp"
 #include "emulator/apt/config.hpp"
+#include "emulator/apt/shipped_stages.hpp"
 #include "emulator/core/state_store.hpp"
 #include "tests/support/hex.hpp"
 
@@ -31,25 +32,26 @@ namespace rigsim::test {
 using namespace rigsim::apt;
 
 
-/// A single-unit controller (T-Cube/K-Cube) driving `stage`.
+/// A single-unit controller (T-Cube/K-Cube) driving the shipped stage `stage`.
 inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
 {
     DeviceConfig c;
     c.name = "cube";
     c.protocol = "apt";
     c.model = model;
-    config_of(c).stage = stage;
+    config_of(c).stage = *find_stage(stage);
     return c;
 }
 
-/// A card-slot controller (BBD203, BSC203) with these stages in bays 0, 1, ...
+/// A card-slot controller (BBD203, BSC203) with these shipped stages in bays 0, 1, ...
 inline DeviceConfig apt_rack(const std::string& model, std::vector<std::string> bays)
 {
     DeviceConfig c;
     c.name = "rack";
     c.protocol = "apt";
     c.model = model;
-    config_of(c).bays = std::move(bays);
+    for (const auto& stage : bays)
+        config_of(c).bays.push_back(*find_stage(stage));
     return c;
 }
 

@@ -23,6 +23,7 @@
 #include "apt_harness.hpp"
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/shipped_stages.hpp"
 #include "emulator/apt/config.hpp"
 #include "emulator/core/config_reader.hpp"
 
@@ -82,11 +83,12 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
     if (stages.empty())
         FAIL(where << ": '@ " << spec << "' names no stage");
     if (model->rack) {
-        rigsim::apt::config_of(c).bays = stages;
+        for (const auto& stage : stages)
+            rigsim::apt::config_of(c).bays.push_back(*rigsim::apt::find_stage(stage));
     } else {
         if (stages.size() != 1)
             FAIL(where << ": a single unit drives one stage, not " << stages.size());
-        rigsim::apt::config_of(c).stage = stages.front();
+        rigsim::apt::config_of(c).stage = *rigsim::apt::find_stage(stages.front());
     }
     return c;
 }

@@ -1,5 +1,7 @@
-// The catalogue's models keep their values: a few controllers and stages pinned field by field.
+// The catalogue's models keep their values: a few controllers and shipped stages (config/stages)
+// pinned field by field.
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/shipped_stages.hpp"
 #include "emulator/apt/messages.hpp"
 
 #include <catch2/catch.hpp>
@@ -77,7 +79,7 @@ TEST_CASE("catalogue: MTS50-Z8, DRV014, PRM1-Z8 and MLS203-Y keep their values",
     CHECK(mts->acceleration_mm_s2 == 1.5);
     CHECK(mts->home_velocity_mm_s == 1.0);
     CHECK(mts->home_offset_mm == 0.3);
-    CHECK_FALSE(mts->rotary);
+    CHECK(mts->kind == StageKind::Linear);
     CHECK(mts->pmd_part_number.empty());
 
     const auto* drv = find_stage("DRV014");
@@ -91,11 +93,11 @@ TEST_CASE("catalogue: MTS50-Z8, DRV014, PRM1-Z8 and MLS203-Y keep their values",
 
     const auto* prm = find_stage("PRM1-Z8");
     REQUIRE(prm);
-    CHECK(prm->travel_mm == 360.0);
+    CHECK(prm->travel_mm == 0.0);   // endless
     CHECK(prm->counts_per_mm == 1'919.6418);
     CHECK(prm->home_velocity_mm_s == 10.0);
     CHECK(prm->home_offset_mm == 4.0);
-    CHECK(prm->rotary);
+    CHECK(prm->kind == StageKind::Rotary);
 
     const auto* mls = find_stage("MLS203-Y");
     REQUIRE(mls);

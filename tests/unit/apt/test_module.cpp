@@ -1,6 +1,7 @@
 // APT Module (emulator/apt/module.hpp), what every module kind shares: the model's MessageSet
 // check in dispatch, and the stored form of the SETs an EEPROMPARAMS message saves.
 #include "emulator/apt/motor_module.hpp"
+#include "emulator/apt/shipped_stages.hpp"
 #include "models/world.hpp"
 #include "tests/support/hex.hpp"
 

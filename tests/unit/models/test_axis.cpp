@@ -4,6 +4,7 @@
 #include "models/axis.hpp"
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/shipped_stages.hpp"
 #include "emulator/apt/motor_channel.hpp"
 
 #include <catch2/catch.hpp>
