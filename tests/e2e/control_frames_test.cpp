@@ -89,7 +89,7 @@ TEST_CASE("control: the tip's pose follows the MCS stages a client moves over th
     CHECK(tip.body.find("\"tool\":true") != std::string::npos);
     const auto missing = http(api, "GET", "/api/frames/nope");
     CHECK(missing.status == 404);
-    CHECK(missing.body == R"({"error":"no frame named \"nope\""})");
+    CHECK(missing.body == R"({"error":"no frame named \"nope\""})" "\n");
 
     TcpClient events(control);
     events.send("GET /api/events?type=frames HTTP/1.1\r\nHost: localhost\r\n\r\n");
@@ -123,7 +123,7 @@ TEST_CASE("control: a rig without kinematics has no frames", "[e2e][control][fra
     TcpClient api(control_endpoint(daemon));
     const auto all = http(api, "GET", "/api/frames");
     CHECK(all.status == 200);
-    CHECK(all.body == R"({"collisions":[],"frames":[],"tools":[]})");
+    CHECK(all.body == R"({"collisions":[],"frames":[],"tools":[]})" "\n");
     CHECK(http(api, "GET", "/api/frames/table").status == 404);
 }
 
