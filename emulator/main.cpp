@@ -384,6 +384,11 @@ int run(const rigsim::RigConfig& config, const Options& opts)
         log->info("rig running: {} device(s), tick {} Hz, time scale {}{}", rig->endpoints().size(),
                   config.tick_hz, opts.rig.time_scale, opts.rig.paused ? ", clock paused" : "");
         io.run();
+    } catch (const rigsim::ConfigError& e) {
+        // Found once the devices exist (a frame's joint on a channel that cannot drive it).
+        log->critical("{}", e.what());
+        std::cerr << e.what() << "\n";
+        status = kExitUsage;
     } catch (const std::exception& e) {
         log->critical("{}", e.what());
         std::cerr << "rigsimd: " << e.what() << "\n";
@@ -422,6 +427,7 @@ int main(int argc, char** argv)
         if (opts.check_config) {
             config = rigsim::load_rig_config(*opts.check_config);
             rigsim::resolve_pty_paths(config, opts.rig.pty_dir, *opts.check_config);
+            rigsim::check_rig_devices(config);
             std::cout << *opts.check_config << ": valid\n";
             return 0;
         }

@@ -126,11 +126,10 @@ private:
     };
     /// Checks of add_frame and add_tool; throws std::invalid_argument.
     void check_new_frame(const std::string& name, std::size_t parent, const Eigen::Isometry3d& offset) const;
-
-    std::vector<Frame> frames_;
     /// offset · joint(q) of a frame at its q.
     static Eigen::Isometry3d local_pose(const Frame& f);
 
+    std::vector<Frame> frames_;
     std::vector<unsigned char> dirty_;                         ///< recomputed by the last update()
     std::map<std::string, std::size_t, std::less<>> by_name_;
     std::size_t computed_ = 0;                                 ///< frames [0, computed_) have a pose

@@ -3,6 +3,7 @@
 // the power cycle, the wire log and the events.
 
 #include "emulator/apt/apt_device.hpp"
+#include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/stage_file.hpp"
 #include "emulator/apt/wire_decode.hpp"
 #include "emulator/core/event_bus.hpp"
@@ -168,6 +169,41 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
             {"enabled", ch.enabled()},
             {"status", status_json(bits)},
             {"limits", std::move(limits)}};
+}
+
+Refused AptDevice::joint(std::size_t index, JointBinding& out) const
+{
+    if (index >= modules_.size())
+        return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
+                                + (modules_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(modules_.size() - 1))};
+    if (index >= channels_.size()) {   // a kind without a motor
+        if (const auto* piezo = dynamic_cast<const PiezoModule*>(modules_[index].get())) {
+            piezo->joint(out);
+            return std::nullopt;
+        }
+        const char* what = model_.kind == UnitKind::Solenoid ? "a solenoid controller" : "a strain gauge reader";
+        return bad("channel " + std::to_string(index) + " of the " + config_.model + " (" + what + ") moves nothing");
+    }
+    const StageModel& stage = channels_[index]->stage();
+    // The axis is the world's; its carriage position, not the counters (lost steps do not move it).
+    const models::Axis* axis = &channels_[index]->axis();
+    const double counts_per_unit = stage.counts_per_mm;   // per degree on a rotary stage or goniometer
+    switch (stage.kind) {
+    case StageKind::Linear:
+        out.kind = JointBinding::Kind::Linear;
+        break;
+    case StageKind::Rotary:
+        out.kind = JointBinding::Kind::Rotary;
+        break;
+    case StageKind::Goniometer:
+        out.kind = JointBinding::Kind::Goniometer;
+        break;
+    }
+    out.body_key = axis->key();
+    out.position = [axis, counts_per_unit] { return axis->position_counts() / counts_per_unit; };
+    out.velocity = [axis, counts_per_unit] { return axis->velocity_counts_per_s() / counts_per_unit; };
+    out.set_obstacles = nullptr;
+    return std::nullopt;
 }
 
 void AptDevice::describe(nlohmann::json& out) const

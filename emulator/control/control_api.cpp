@@ -95,7 +95,9 @@ HttpReply not_allowed(std::string_view method, std::string_view path, const char
 } // namespace
 
 ControlApi::ControlApi(Rig& rig)
-    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events())
+    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events(),
+                 FrameSource{rig.kinematics(), joint_axes(rig.joint_bindings(), rig.controlled()),
+                             rig.collision_pairs()})
 {
 }
 

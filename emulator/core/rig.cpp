@@ -1,6 +1,7 @@
 #include "emulator/core/rig.hpp"
 
 #include "emulator/core/rig_families.hpp"
+#include "emulator/core/rig_kinematics.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -58,6 +59,29 @@ std::unique_ptr<Device> make_device(const DeviceConfig& config, models::World& w
     return family->make(config, DeviceContext{world, std::move(log), store, &events});
 }
 
+/// The device of an entry (Rig::Entry) or the entry itself (a device).
+Device& device_of(const std::unique_ptr<Device>& d)
+{
+    return *d;
+}
+template <class Entry>
+Device& device_of(const std::unique_ptr<Entry>& e)
+{
+    return *e->device;
+}
+
+/// Finds the control surface of a device of `config` by name among `devices` (config order).
+template <class Devices>
+SurfaceOf surfaces_of(const RigConfig& config, const Devices& devices)
+{
+    return [&config, &devices](std::string_view name) -> ControlSurface* {
+        for (std::size_t i = 0; i < config.devices.size(); ++i)
+            if (config.devices[i].name == name)
+                return device_of(devices[i]).control();
+        return nullptr;
+    };
+}
+
 } // namespace
 
 boost::asio::ip::address client_address(const boost::asio::ip::address& bound)
@@ -95,31 +119,10 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     tcp_budget_.max_total = options.max_connections;
     tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {
-        auto log = make_logger(dc.name, options.log_levels);
         auto e = std::make_unique<Entry>();
-        e->device = make_device(dc, world_, log, *store_, events_);
+        e->device = make_device(dc, world_, make_logger(dc.name, options.log_levels), *store_, events_);
         e->link = std::make_unique<Link>(*e->device, clock_);
         e->paced = std::make_unique<PacedDevice>(*e->link, ticker_);
-        const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
-        try {
-            e->tcp = std::make_unique<TcpEndpoint>(io, *e->paced, options.bind, port, log, tcp_budget_);
-        } catch (const std::exception& ex) {
-            throw std::runtime_error("device \"" + dc.name + "\": cannot listen on tcp "
-                                     + tcp_address_text(options.bind, port) + ": " + ex.what());
-        }
-        const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
-        try {
-            e->pty = std::make_unique<PtyEndpoint>(io, *e->paced, pty_path, log, watcher_);
-        } catch (const std::exception& ex) {
-            throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
-        }
-
-        const auto ep = e->tcp->local_endpoint();
-        endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
-                                             tcp_address_text(client_address(ep.address()), ep.port()),
-                                             e->pty->symlink_path()});
-        log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
-                  e->pty->device_path());
         entries_.push_back(std::move(e));
     }
     // Bodies that read other bodies (a strain gauge on a piezo) find them once all exist, so
@@ -128,6 +131,54 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     // Then the devices power up (a piezo driver's saved closed loop needs its linked gauge),
     // the ones whose state others read first (a gauge reader's saved hub output).
     power_up_in_phases(entries_, [](auto& e) -> Device& { return *e->device; });
+    // The frames' joints read the devices' channels; a channel that cannot drive its joint is
+    // a config error, found before any endpoint opens.
+    if (config.kinematics) {
+        auto built = build_kinematics(*config.kinematics, surfaces_of(config, entries_));
+        kinematics_ = std::move(built.kinematics);
+        joint_bindings_ = std::move(built.bindings);
+        collision_pairs_ = config.kinematics->collisions;
+    }
+
+    for (std::size_t i = 0; i < config.devices.size(); ++i) {
+        const auto& dc = config.devices[i];
+        auto& e = *entries_[i];
+        auto log = make_logger(dc.name, options.log_levels);
+        const std::uint16_t port = options.ephemeral_ports ? 0 : dc.tcp_port;
+        try {
+            e.tcp = std::make_unique<TcpEndpoint>(io, *e.paced, options.bind, port, log, tcp_budget_);
+        } catch (const std::exception& ex) {
+            throw std::runtime_error("device \"" + dc.name + "\": cannot listen on tcp "
+                                     + tcp_address_text(options.bind, port) + ": " + ex.what());
+        }
+        const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
+        try {
+            e.pty = std::make_unique<PtyEndpoint>(io, *e.paced, pty_path, log, watcher_);
+        } catch (const std::exception& ex) {
+            throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
+        }
+
+        const auto ep = e.tcp->local_endpoint();
+        endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
+                                             tcp_address_text(client_address(ep.address()), ep.port()),
+                                             e.pty->symlink_path()});
+        log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
+                  e.pty->device_path());
+    }
+}
+
+void check_rig_devices(const RigConfig& config)
+{
+    if (!config.kinematics)
+        return;
+    Clock clock(config.tick_hz);
+    models::World world(clock);
+    StateStore store;
+    EventBus events;
+    std::vector<std::unique_ptr<Device>> devices;
+    for (const auto& dc : config.devices)   // loggers without sinks, not the daemon's
+        devices.push_back(make_device(dc, world, std::make_shared<spdlog::logger>(dc.name), store, events));
+    build_kinematics(*config.kinematics, surfaces_of(config, devices));
 }
 
 Rig::~Rig()

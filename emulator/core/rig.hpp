@@ -3,6 +3,7 @@
 
 #include "emulator/core/atomic_file.hpp"
 #include "models/clock.hpp"
+#include "emulator/core/control_surface.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/event_bus.hpp"
 #include "emulator/core/link.hpp"
@@ -13,6 +14,7 @@
 #include "emulator/transport/inotify_watcher.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
+#include "models/kinematics.hpp"
 #include "models/world.hpp"
 
 #include <boost/asio/io_context.hpp>
@@ -20,6 +22,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rigsim {
@@ -75,6 +78,14 @@ public:
     std::vector<ControlledDevice> controlled();
     /// Something moves: the world changes by itself at some later tick.
     bool busy() const { return world_.next_change(clock_.now()) != kNever; }
+    /// The rig's frames (rig JSON "kinematics", docs/config.md), or nullptr when it has none.
+    models::Kinematics* kinematics() { return kinematics_.get(); }
+    /// What drives each frame's joint, indexed like the frames of kinematics() (an empty
+    /// binding for a fixed frame or a tool); empty when the rig has no frames.
+    const std::vector<JointBinding>& joint_bindings() const { return joint_bindings_; }
+    /// The pairs of frames (indices of kinematics()) whose boxes are checked for contact
+    /// ("collisions" of the rig JSON, "auto" resolved); empty when the rig has no frames.
+    const std::vector<std::pair<std::size_t, std::size_t>>& collision_pairs() const { return collision_pairs_; }
 
 private:
     struct Entry;
@@ -91,7 +102,16 @@ private:
     TcpConnectionBudget tcp_budget_;
     std::vector<std::unique_ptr<Entry>> entries_;
     std::vector<DeviceEndpoints> endpoints_;
+    /// After the devices: the joints read their channels.
+    std::unique_ptr<models::Kinematics> kinematics_;
+    std::vector<JointBinding> joint_bindings_;
+    std::vector<std::pair<std::size_t, std::size_t>> collision_pairs_;
 };
+
+/// What --check-config checks beyond the loader when the rig has frames: every device built in
+/// a world of its own (no endpoints, no state file, nothing served) and every joint bound to its
+/// channel (emulator/core/rig_kinematics.hpp). Throws ConfigError.
+void check_rig_devices(const RigConfig& config);
 
 /// The address a client on this machine connects to for a socket bound to `bound`: loopback
 /// for a wildcard address (0.0.0.0, ::), `bound` otherwise.

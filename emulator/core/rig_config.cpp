@@ -30,7 +30,7 @@ constexpr std::size_t kMaxConfigBytes = 4 << 20;
 
 // The keys each object may hold; anything else is an error. A device also holds the section
 // of each family, under the family's name.
-constexpr std::array<std::string_view, 4> kRigKeys{"tick_hz", "devices", "control", "clock"};
+constexpr std::array<std::string_view, 5> kRigKeys{"tick_hz", "devices", "control", "clock", "kinematics"};
 constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
@@ -192,6 +192,8 @@ public:
         }
         if (const auto* c = find(root, "clock"))
             rig.clock = load_clock(*c);
+        if (const auto* k = find(root, "kinematics"))
+            rig.kinematics = load_kinematics_config(*this, source_name_, *k, rig.devices);
         return rig;
     }
 

@@ -5,6 +5,8 @@
 // The loader rejects unknown keys, wrong types, out-of-range values and collisions, naming
 // the JSON pointer (docs/config.md).
 
+#include "emulator/core/kinematics_config.hpp"
+
 #include <any>
 #include <optional>
 #include <cstdint>
@@ -66,6 +68,7 @@ struct RigConfig {
     ClockStart clock;
     std::vector<DeviceConfig> devices;
     std::optional<ControlConfig> control;   ///< the control API; absent = off unless --control
+    std::optional<KinematicsConfig> kinematics;   ///< the frames; absent = none
 };
 
 /// A config error: `what()` is the whole message, naming the JSON pointer.

@@ -63,6 +63,9 @@ public:
     Refused add_fault(const DeviceFault& f, bool* kept) override;
     void remove_fault(std::uint64_t id) override;
     void power_cycle(const PowerCycle& how) override;
+    /// A positioner as a joint: linear channels in mm, rotary and goniometer channels in
+    /// degrees, read from the physical position; end effectors move nothing (400).
+    Refused joint(std::size_t index, JointBinding& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Send what the controller has to say by itself to every connection.
     void flush_outbox();

@@ -75,6 +75,31 @@ TEST_CASE("cli: --check-config rejects a bad rig naming the JSON pointer", "[e2e
         CHECK(r.err.find("broken.json") != std::string::npos);
     }
 
+    SECTION("a frame's joint its channel cannot drive: found on the devices, before anything is served")
+    {
+        TempDir dir;
+        const std::string file = dir.file("frames.json");
+        write_file(file, R"({"devices": [{"name": "stack", "protocol": "mcs", "mcs": {"channels": [{}]}}],
+            "kinematics": {"frames": [{"name": "table"},
+                {"name": "x", "parent": "table", "axis": {"device": "stack", "channel": 0},
+                 "joint": {"type": "revolute", "axis": [0, 0, 1]}}]}})");
+        const std::string message =
+            file + ": /kinematics/frames/1/joint/type: a revolute joint on a linear stage (stack channel 0)\n";
+        const auto r = run_rigsimd({"--check-config", file});
+        INFO("stderr: " << r.err);
+        REQUIRE(r.exited);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err == message);
+        CHECK(r.out.empty());
+        const auto run = run_rigsimd({"--config", file, "--pty-dir", dir.path(), "--ephemeral-ports"});
+        INFO("stderr: " << run.err);
+        REQUIRE(run.exited);
+        CHECK(run.exit_code == 2);
+        CHECK(run.err.size() >= message.size());
+        CHECK(run.err.substr(run.err.size() - message.size()) == message);
+        CHECK_FALSE(path_exists(dir.file("stack")));   // no pty was opened
+    }
+
     SECTION("missing file")
     {
         TempDir dir;

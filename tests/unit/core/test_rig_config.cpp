@@ -230,7 +230,7 @@ TEST_CASE("rig config: unknown keys are errors at the object holding them", "[un
     SECTION("top level")
     {
         rig["tickhz"] = 1000;
-        CHECK(error_of(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices, control, clock)");
+        CHECK(error_of(rig) == "rig.json: /: unknown key \"tickhz\" (allowed: tick_hz, devices, control, clock, kinematics)");
     }
     SECTION("device")
     {

@@ -1,0 +1,127 @@
+#include "emulator/core/rig_kinematics.hpp"
+
+#include "emulator/core/config_reader.hpp"
+
+#include <Eigen/Geometry>
+
+#include <string>
+
+namespace rigsim {
+
+namespace {
+
+const char* kind_name(JointBinding::Kind kind)
+{
+    switch (kind) {
+    case JointBinding::Kind::Linear:
+        return "linear";
+    case JointBinding::Kind::Rotary:
+        return "rotary";
+    case JointBinding::Kind::Goniometer:
+        return "goniometer";
+    }
+    return "linear";
+}
+
+/// Whether a stage of `kind` can drive a joint of `joint`.
+bool suits(JointBinding::Kind kind, JointKind joint)
+{
+    switch (kind) {
+    case JointBinding::Kind::Linear:
+        return joint == JointKind::Prismatic;
+    case JointBinding::Kind::Rotary:
+        return joint == JointKind::Revolute;
+    case JointBinding::Kind::Goniometer:
+        return joint == JointKind::Goniometer || joint == JointKind::Revolute;
+    }
+    return false;
+}
+
+models::JointType joint_type(JointKind kind)
+{
+    switch (kind) {
+    case JointKind::Fixed:
+        return models::JointType::Fixed;
+    case JointKind::Prismatic:
+        return models::JointType::Prismatic;
+    case JointKind::Revolute:
+        return models::JointType::Revolute;
+    case JointKind::Goniometer:
+        return models::JointType::Goniometer;
+    }
+    return models::JointType::Fixed;
+}
+
+Eigen::Vector3d vector_of(const Vector3& v)
+{
+    return {v[0], v[1], v[2]};
+}
+
+Eigen::Isometry3d offset_of(const FrameConfig& f)
+{
+    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+    offset.translation() = vector_of(f.translation_mm);
+    if (f.quaternion) {
+        const auto& q = *f.quaternion;
+        offset.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    } else if (f.rpy_deg) {
+        const auto& r = *f.rpy_deg;
+        offset.linear() = models::quaternion_from_rpy_deg(r[0], r[1], r[2]).toRotationMatrix();
+    }
+    return offset;
+}
+
+/// The binding of frame `f`'s axis; throws ConfigError at the frame's pointer.
+JointBinding bind(const KinematicsConfig& config, const FrameConfig& f, const SurfaceOf& surface_of)
+{
+    const auto& axis = *f.axis;
+    const auto axis_pointer = pointer_to(f.pointer, "axis");
+    const auto what = axis.device + " channel " + std::to_string(axis.channel);
+    JointBinding b;
+    Refused refused;
+    if (auto* surface = surface_of(axis.device))
+        refused = surface->joint(axis.channel, b);
+    else
+        refused = Refusal{400, "this device has no axis to mount"};
+    if (refused)
+        fail(config.source, refused->status == 404 ? pointer_to(axis_pointer, "channel") : axis_pointer,
+             "device " + quote(axis.device) + ": " + refused->message);
+    if (!suits(b.kind, f.joint))
+        fail(config.source, pointer_to(pointer_to(f.pointer, "joint"), "type"),
+             std::string("a ") + joint_kind_name(f.joint) + " joint on a " + kind_name(b.kind) + " stage (" + what + ")");
+    return b;
+}
+
+} // namespace
+
+RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of)
+{
+    RigKinematics out;
+    const auto& frames = config.frames;
+    out.kinematics = std::make_unique<models::Kinematics>(frames.at(0).name);
+    out.bindings.resize(frames.size());
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+        const auto& f = frames[i];
+        if (f.tool) {
+            out.kinematics->add_tool(f.name, f.parent, offset_of(f));
+            continue;
+        }
+        models::Joint joint;
+        joint.type = joint_type(f.joint);
+        joint.axis = vector_of(f.joint_axis);
+        joint.point_mm = vector_of(f.joint_point_mm);
+        models::JointReader reader;
+        if (f.axis) {
+            out.bindings[i] = bind(config, f, surface_of);
+            reader = out.bindings[i].position;
+        }
+        out.kinematics->add_frame(f.name, f.parent, offset_of(f), joint, std::move(reader));
+    }
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        if (const auto& b = frames[i].box_mm)
+            out.kinematics->set_box(i, Eigen::AlignedBox3d(vector_of(b->min), vector_of(b->max)));
+    out.kinematics->update();
+    return out;
+}
+
+} // namespace rigsim

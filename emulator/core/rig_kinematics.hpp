@@ -1,0 +1,34 @@
+#pragma once
+// The rig's frames (rig JSON "kinematics") built into models::Kinematics, each joint bound to
+// its device's channel through ControlSurface::joint(). The checks that need the devices run
+// here: the channel exists and moves something, and the joint suits the stage (a linear stage
+// drives a prismatic joint, a rotary one a revolute joint, a goniometer a goniometer or revolute
+// joint). Errors name the frame's JSON pointer, as the loader's do.
+
+#include "emulator/core/control_surface.hpp"
+#include "emulator/core/kinematics_config.hpp"
+#include "models/kinematics.hpp"
+
+#include <functional>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace rigsim {
+
+/// The frames of a rig and what drives their joints.
+struct RigKinematics {
+    std::unique_ptr<models::Kinematics> kinematics;
+    /// Indexed like the frames of `kinematics`; an empty binding for a fixed frame or a tool.
+    std::vector<JointBinding> bindings;
+};
+
+/// The control surface of the device named `name` (nullptr: a device without one).
+using SurfaceOf = std::function<ControlSurface*(std::string_view name)>;
+
+/// Build the frames of `config` (poses computed once), binding every moving joint to its
+/// channel; throws ConfigError naming the frame's pointer when the device refuses the channel
+/// or the joint does not suit the stage.
+RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of);
+
+} // namespace rigsim
