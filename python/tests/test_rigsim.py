@@ -245,12 +245,12 @@ def test_pose_follows_a_stage_moved_over_tcp(rigsim):
         stream.close()
     assert event["type"] == "frames" and event["after"] == {"type": "move_ended", "device": "stage"}
     assert [f["name"] for f in event["frames"]] == ["x", "tip"]
-    tip = rig.pose("tip")
-    assert tip.position_mm == pytest.approx((-1, 0, 50), abs=1e-9)
+    tip = rig.pose("tip")   # the counter started at 0 where the stage powered up (0.5 mm): -0.5 mm
+    assert tip.position_mm == pytest.approx((-0.5, 0, 50), abs=1e-9)
     assert tip.parent == "x" and tip.tool is True and tip.joint is None
     assert tip.parent_relative.position_mm == pytest.approx((0, 0, 20))
     assert tip.quaternion == pytest.approx((1, 0, 0, 0)) and tip.rpy_deg == pytest.approx((0, 0, 0))
-    assert rig.pose("x").joint == {"type": "prismatic", "device": "stage", "channel": 0, "position": pytest.approx(-1)}
+    assert rig.pose("x").joint == {"type": "prismatic", "device": "stage", "channel": 0, "position": pytest.approx(-0.5)}
     with pytest.raises(ControlError) as e:
         rig.pose("nope")
     assert e.value.status == 404

@@ -97,7 +97,8 @@ TEST_CASE("control: the tip's pose follows the MCS stages a client moves over th
         if (*line == ": rigsim event stream\n")
             break;
 
-    // x to 2 mm and the rotation stage to 90 degrees, over the pty; the clock runs them out.
+    // x 2 mm on (the unreferenced counter starts at 0 where the stage powered up: physically to
+    // 2.5 mm) and the rotation stage to 90 degrees, over the pty; the clock runs them out.
     PtyClient mcs(daemon.endpoint("stage").pty);
     REQUIRE(mcs.request(":MPA0,2000000,0\n") == ":E0,0\n");
     REQUIRE(http(api, "POST", "/api/clock", R"({"run_until_idle": true, "max_ms": 60000})").status == 200);
@@ -105,14 +106,14 @@ TEST_CASE("control: the tip's pose follows the MCS stages a client moves over th
     CHECK(moved.find(R"("after":{"device":"stage","type":"move_ended"})") != std::string::npos);
     CHECK(moved.find("\"name\":\"table\"") == std::string::npos);   // the table did not move
     CHECK(moved.find("\"name\":\"turn\"") == std::string::npos);
-    check_near(triple_after(moved, "\"world\":{\"position_mm\":[", moved.find("\"name\":\"tip\"")), 2, 0, 50);
+    check_near(triple_after(moved, "\"world\":{\"position_mm\":[", moved.find("\"name\":\"tip\"")), 2.5, 0, 50);
 
     REQUIRE(mcs.request(":MAA1,90000000,0,0\n") == ":E1,0\n");
     REQUIRE(http(api, "POST", "/api/clock", R"({"run_until_idle": true, "max_ms": 60000})").status == 200);
     const auto turned = next_event(events, "frames");
     CHECK(turned.find("\"name\":\"turn\"") != std::string::npos);
     const auto now = http(api, "GET", "/api/frames/tip");
-    check_near(triple_after(now.body, "\"world\":{\"position_mm\":["), 0, 2, 50);
+    check_near(triple_after(now.body, "\"world\":{\"position_mm\":["), 0, 2.5, 50);
     const auto at = now.body.find("\"world\":");
     check_near(triple_after(now.body, "\"rpy_deg\":[", at), 0, 0, 90);
 }
