@@ -95,7 +95,9 @@ HttpReply not_allowed(std::string_view method, std::string_view path, const char
 } // namespace
 
 ControlApi::ControlApi(Rig& rig)
-    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events())
+    : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events(),
+                 FrameSource{rig.kinematics(), joint_axes(rig.joint_bindings(), rig.controlled()),
+                             rig.collision_pairs()})
 {
 }
 
@@ -105,10 +107,18 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
 }
 
 ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
-                       EventBus* events)
+                       EventBus* events, FrameSource frames)
     : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices)), events_(events),
-      faults_(clock_, devices_)
+      faults_(clock_, devices_), frames_(std::move(frames))
 {
+    if (events_ && !frames_.empty())
+        events_->set_follow_up([this](const Event& e) { follow_up(e); });
+}
+
+ControlApi::~ControlApi()
+{
+    if (events_ && !frames_.empty())
+        events_->set_follow_up({});
 }
 
 HttpReply ControlApi::handle(std::string_view method, std::string_view target, std::string_view body)
@@ -146,6 +156,8 @@ HttpReply ControlApi::route(std::string_view method, std::string_view target, st
         return device_route(method, parts, target, body);
     if (p(1) == "faults" && parts.size() <= 3)
         return fault_route(method, parts, body);
+    if (p(1) == "frames" && parts.size() <= 3)
+        return frames_route(method, parts, path);
     return error(404, "no route " + dump(json(std::string(path))));
 }
 
@@ -416,6 +428,34 @@ HttpReply ControlApi::get_events(std::string_view target)
         return [bus, handle] { bus->unsubscribe(handle); };
     };
     return reply;
+}
+
+HttpReply ControlApi::frames_route(std::string_view method, const std::vector<std::string>& parts,
+                                   std::string_view path)
+{
+    if (method != "GET")
+        return not_allowed(method, path, "GET");
+    ticker_.sync();
+    if (parts.size() == 2)
+        return ok(frames_.all());
+    if (auto frame = frames_.one(parts[2]))
+        return ok(*frame);
+    throw BadRequest{404, "no frame named " + dump(json(parts[2]))};
+}
+
+void ControlApi::follow_up(const Event& e)
+{
+    // A motion's end (a piezo's LUT run too), a stage placed by PATCH, a reset: the moments a
+    // frame's pose settles. Events during a motion are left out: one event per move, not per tick.
+    if (e.type != "move_ended" && e.type != "lut_ended" && e.type != "channel_set" && e.type != "reset")
+        return;
+    auto changed = frames_.changed();
+    if (changed.empty())
+        return;
+    json cause{{"type", e.type}};
+    if (!e.device.empty())
+        cause["device"] = e.device;
+    publish("", "frames", json{{"frames", std::move(changed)}, {"after", std::move(cause)}});
 }
 
 namespace {

@@ -4,6 +4,7 @@
 // only carries requests here.
 
 #include "emulator/control/fault_book.hpp"
+#include "emulator/control/frame_book.hpp"
 #include "emulator/control/http_server.hpp"
 #include "emulator/core/event_bus.hpp"
 #include "emulator/core/rig.hpp"
@@ -29,9 +30,11 @@ public:
     explicit ControlApi(Rig& rig);
     /// The routes over a clock, its ticker, "something moves" and a device list (tests).
     ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<DeviceEndpoints> devices);
-    /// The routes over a clock, its ticker, "something moves", devices and their event stream (tests).
+    /// The routes over a clock, its ticker, "something moves", devices, their event stream and
+    /// the rig's frames (tests).
     ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
-               EventBus* events);
+               EventBus* events, FrameSource frames = {});
+    ~ControlApi();
     ControlApi(const ControlApi&) = delete;
     ControlApi& operator=(const ControlApi&) = delete;
 
@@ -54,6 +57,11 @@ private:
     HttpReply fault_route(std::string_view method, const std::vector<std::string>& parts, std::string_view body);
     HttpReply post_reset(std::string_view body);
     HttpReply get_events(std::string_view target);
+    /// GET /api/frames, GET /api/frames/{name} (docs/control-api.md "Frames").
+    HttpReply frames_route(std::string_view method, const std::vector<std::string>& parts, std::string_view path);
+    /// After an event on the stream: a "frames" event when a motion's end, a PATCH or a reset
+    /// moved frames.
+    void follow_up(const Event& e);
     /// The device named `name`; throws BadRequest 404.
     ControlledDevice& device(const std::string& name);
     ControlSurface& surface(ControlledDevice& d);
@@ -65,6 +73,7 @@ private:
     std::vector<ControlledDevice> devices_;
     EventBus* events_;
     FaultBook faults_;   ///< after devices_, which it refers to
+    FrameBook frames_;
 };
 
 } // namespace rigsim::control

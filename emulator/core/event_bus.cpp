@@ -37,6 +37,8 @@ void EventBus::publish(std::string_view device, std::string_view type, double ti
         targets.push_back(s);
     for (const auto& s : targets)
         s(e);
+    if (follow_up_)
+        follow_up_(e);
 }
 
 } // namespace rigsim

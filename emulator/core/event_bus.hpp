@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace rigsim {
 
@@ -36,7 +37,13 @@ public:
     /// subscriber. `time_ms` is clock time.
     void publish(std::string_view device, std::string_view type, double time_ms, const nlohmann::json& data);
 
+    /// Called with each event once every subscriber has it (only while active()); it may
+    /// publish events of its own, which then follow that one on every stream. It is not a
+    /// subscriber: it does not make the bus active(). An empty function removes it.
+    void set_follow_up(Subscriber f) { follow_up_ = std::move(f); }
+
 private:
+    Subscriber follow_up_;
     std::map<std::uint64_t, Subscriber> subscribers_;
     std::uint64_t next_handle_ = 1;
     std::uint64_t seq_ = 0;

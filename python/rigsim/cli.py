@@ -94,6 +94,51 @@ def _log_rows(answer):
     return rows
 
 
+def _numbers(values, digits):
+    return [f"{v:.{digits}f}" for v in values]
+
+
+def _joint_cell(frame):
+    if frame.get("tool"):
+        return "tool"
+    joint = frame.get("joint")
+    if not joint:
+        return "fixed"
+    return f"{joint['type']} {joint['device']}/{joint['channel']} = {joint['position']:.4f}"
+
+
+def _frames_table(answer):
+    """One row per frame and tool point: its joint and its world placement; then the contacts."""
+    rows = []
+    for frame in answer.get("frames", []) + answer.get("tools", []):
+        world = frame["world"]
+        x, y, z = _numbers(world["position_mm"], 4)
+        roll, pitch, yaw = _numbers(world["rpy_deg"], 4)
+        rows.append({"name": frame["name"], "parent": frame.get("parent"), "joint": _joint_cell(frame),
+                     "x": x, "y": y, "z": z, "roll": roll, "pitch": pitch, "yaw": yaw})
+    out = table(rows, [("name", "name"), ("parent", "parent"), ("joint", "joint"), ("x", "x_mm"),
+                       ("y", "y_mm"), ("z", "z_mm"), ("roll", "roll_deg"), ("pitch", "pitch_deg"),
+                       ("yaw", "yaw_deg")])
+    contacts = [" - ".join(c["frames"]) for c in answer.get("collisions", [])]
+    return out + "\n\ncollisions: " + (", ".join(contacts) if contacts else "none")
+
+
+def _frame_table(frame):
+    """One frame: its world and parent-relative placements, position, quaternion and angles."""
+    rows = []
+    for ref, key in (("world", "world"), ("parent", "parent_relative")):
+        placement = frame[key]
+        row = {"ref": ref}
+        row.update(zip(("x", "y", "z"), _numbers(placement["position_mm"], 4)))
+        row.update(zip(("qw", "qx", "qy", "qz"), _numbers(placement["quaternion"], 6)))
+        row.update(zip(("roll", "pitch", "yaw"), _numbers(placement["rpy_deg"], 4)))
+        rows.append(row)
+    head = f"{frame['name']} (parent {frame.get('parent') or '-'}, {_joint_cell(frame)})"
+    return head + "\n" + table(rows, [("ref", "relative to"), ("x", "x_mm"), ("y", "y_mm"), ("z", "z_mm"),
+                                      ("qw", "qw"), ("qx", "qx"), ("qy", "qy"), ("qz", "qz"),
+                                      ("roll", "roll_deg"), ("pitch", "pitch_deg"), ("yaw", "yaw_deg")])
+
+
 def render_table(kind, answer):
     """A short table for the answers that have one, else None (JSON is printed)."""
     if kind == "rig":
@@ -111,6 +156,10 @@ def render_table(kind, answer):
         return table(answer, [("id", "id"), ("device", "device"), ("channel", "ch"),
                               ("kind", "kind"), ("active", "active"), ("since_ms", "since_ms"),
                               ("params", "params")])
+    if kind == "frames":
+        return _frames_table(answer)
+    if kind == "frame":
+        return _frame_table(answer)
     if kind == "log":
         return table(_log_rows(answer), [("seq", "seq"), ("time_ms", "time_ms"), ("dir", "dir"),
                                          ("what", "what"), ("notes", "notes")])
@@ -171,12 +220,18 @@ def cmd_fault(client, args, out):
         emit(args, "removed", client.clear_faults(), out)
 
 
+def cmd_frames(client, args, out):
+    if args.name is None:
+        emit(args, "frames", client.frames(), out)
+    else:
+        emit(args, "frame", client.frame(args.name), out)
+
+
 def cmd_events(client, args, out):
-    devices = None
-    if args.device:
-        devices = [n for d in args.device for n in d.split(",") if n]
+    def names(option):
+        return [n for d in option for n in d.split(",") if n] if option else None
     count = 0
-    stream = client.events(devices, timeout=args.timeout)
+    stream = client.events(names(args.device), timeout=args.timeout, type=names(args.type))
     try:
         for event in stream:
             out.write(json.dumps(event, separators=(",", ":")) + "\n")
@@ -228,7 +283,7 @@ def build_parser():
     parser = argparse.ArgumentParser(
         prog="rigsimctl", parents=[_common(suppress=False)],
         description="Drive a running rigsimd through its control API: the rig, the clock, "
-                    "device state, faults, events, reset and wire logs.",
+                    "device state, frames, faults, events, reset and wire logs.",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     subs = parser.add_subparsers(dest="command", metavar="COMMAND")
     subs.required = True
@@ -283,10 +338,16 @@ def build_parser():
     actions.add_parser("clear", parents=[common], help="DELETE /api/faults: remove every fault",
                        description="DELETE /api/faults: remove every fault")
 
+    p = _sub(subs, "frames", cmd_frames, "GET /api/frames[/NAME]: every frame and tool point of "
+             "the rig's kinematics (world and parent-relative placement), or one", common)
+    p.add_argument("name", metavar="NAME", nargs="?", default=None, help="only this frame or tool point")
+
     p = _sub(subs, "events", cmd_events, "GET /api/events: print each event as a JSON line "
              "until Ctrl-C", common)
     p.add_argument("--device", action="append", metavar="NAME",
                    help="only this device's events (repeat, or a,b)")
+    p.add_argument("--type", action="append", metavar="TYPE",
+                   help="only events of this type (repeat, or a,b: frames,move_ended)")
     p.add_argument("--count", type=int, default=None, help="stop after N events")
     p.add_argument("--timeout", type=float, default=None,
                    help="stop when no event came for S seconds")

@@ -39,6 +39,42 @@ the LUT index being output (None when no LUT runs)."""
 TRACE_PAGE = 16384   # the most samples one trace request answers (the ring's capacity)
 
 
+Placement = collections.namedtuple("Placement", "position_mm quaternion rpy_deg")
+Placement.__doc__ = """Where a frame is (docs/control-api.md#frames-get-apiframes): its origin in mm,
+its orientation as a unit quaternion (w, x, y, z) with w >= 0, and as roll, pitch, yaw in degrees
+(R = Rz(yaw) Ry(pitch) Rx(roll)). Each a tuple of floats."""
+
+
+def _placement(doc):
+    return Placement(tuple(doc["position_mm"]), tuple(doc["quaternion"]), tuple(doc["rpy_deg"]))
+
+
+class Pose(collections.namedtuple("Pose", "name parent tool joint world parent_relative")):
+    """One frame or tool point of the rig's kinematics, as GET /api/frames/{name} gives it:
+    `world` and `parent_relative` are Placements; `joint` is None for a fixed frame, else a
+    dict {type, device, channel, position} (position in mm or degrees). position_mm,
+    quaternion and rpy_deg are the world placement's."""
+
+    __slots__ = ()
+
+    @classmethod
+    def from_json(cls, doc):
+        return cls(doc["name"], doc.get("parent"), bool(doc.get("tool")), doc.get("joint"),
+                   _placement(doc["world"]), _placement(doc["parent_relative"]))
+
+    @property
+    def position_mm(self):
+        return self.world.position_mm
+
+    @property
+    def quaternion(self):
+        return self.world.quaternion
+
+    @property
+    def rpy_deg(self):
+        return self.world.rpy_deg
+
+
 class ControlClient:
     """The routes of the control API at `url` ("http://127.0.0.1:PORT")."""
 
@@ -141,6 +177,21 @@ class ControlClient:
         """DELETE /api/devices/{name}/log."""
         return self.request("DELETE", f"/api/devices/{_quote(name)}/log")
 
+    # ---- frames ----
+
+    def frames(self):
+        """GET /api/frames: {"frames": [...], "tools": [...], "collisions": [...]} as the route
+        gives it (empty lists when the rig has no kinematics)."""
+        return self.request("GET", "/api/frames")
+
+    def frame(self, name):
+        """GET /api/frames/{name}: one frame or tool point as the route gives it (404: none)."""
+        return self.request("GET", f"/api/frames/{_quote(name)}")
+
+    def pose(self, name):
+        """The frame or tool point `name` as a Pose (world and parent-relative placements)."""
+        return Pose.from_json(self.frame(name))
+
     # ---- faults ----
 
     def inject(self, device, kind, channel=None, **params):
@@ -173,17 +224,20 @@ class ControlClient:
         """POST /api/reset: every device back to power-up, faults removed, wire logs cleared."""
         return self.request("POST", "/api/reset", {} if keep_saved else {"keep_saved": False})
 
-    def events(self, device=None, timeout=None):
+    def events(self, device=None, timeout=None, type=None):
         """GET /api/events: an iterator of the events as dicts (the `data` object, with "type"
         and "seq" filled from the `event:` and `id:` lines when the data lacks them).
 
-        `device` is a name or a list of names (the server filters). The iterator ends when no
-        event arrives for `timeout` seconds (None: it waits for ever); close() it (or leave the
-        for loop) to drop the connection. Opening raises ControlError on an error answer."""
-        path = "/api/events"
-        if device is not None:
-            names = [device] if isinstance(device, str) else list(device)
-            path += "?device=" + ",".join(_quote(n) for n in names)
+        `device` and `type` are each a name or a list of names (the server filters: type="frames"
+        gives only the frames events). The iterator ends when no event arrives for `timeout`
+        seconds (None: it waits for ever); close() it (or leave the for loop) to drop the
+        connection. Opening raises ControlError on an error answer."""
+        query = []
+        for key, value in (("device", device), ("type", type)):
+            if value is not None:
+                names = [value] if isinstance(value, str) else list(value)
+                query.append(key + "=" + ",".join(_quote(n) for n in names))
+        path = "/api/events" + ("?" + "&".join(query) if query else "")
         req = urllib.request.Request(self.url + path, headers={"Accept": "text/event-stream"})
         try:
             answer = urllib.request.urlopen(req, timeout=self.timeout_s)

@@ -203,9 +203,19 @@ class Rigsim:
         """DELETE /api/devices/{name}/log."""
         return self.control.clear_log(name)
 
-    def events(self, device=None, timeout=None):
-        """GET /api/events: an iterator of event dicts; ends after `timeout` s without one."""
-        return self.control.events(device, timeout)
+    def events(self, device=None, timeout=None, type=None):
+        """GET /api/events[?device=&type=]: an iterator of event dicts; ends after `timeout` s
+        without one."""
+        return self.control.events(device, timeout, type)
+
+    def frames(self):
+        """GET /api/frames: every frame and tool point of the rig's kinematics, and the contacts."""
+        return self.control.frames()
+
+    def pose(self, name):
+        """GET /api/frames/{name} as a rigsim.control.Pose: position_mm, quaternion (w, x, y, z)
+        and rpy_deg in the world, and the same relative to its parent (pose.parent_relative)."""
+        return self.control.pose(name)
 
     # ---- internals ----
 

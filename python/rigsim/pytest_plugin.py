@@ -5,6 +5,11 @@
         rig.pause()
         ...
 
+    def test_sample_follows(rigsim):
+        rig = rigsim("my-rig.json")         # a rig with "kinematics"
+        ...                                  # clients move the stages
+        assert rig.pose("sample").position_mm == pytest.approx((10, 0, 90), abs=1e-6)
+
     def test_fast(rigsim_session):
         rig = rigsim_session("my-rig.json")  # one daemon per rig for the whole session,
         ...                                  # reset() before each test that asks for it
@@ -14,6 +19,9 @@ daemons when the session ends. When a test fails, the report gets each daemon's 
 session daemon: the part written during the test) and the wire log of every device the test
 used (called endpoint(), state(), set(), inject() or log() on). rigsimd is found by
 --rigsimd PATH, the `rigsimd` ini key, $RIGSIMD, or PATH, in that order.
+
+A rig's frames and tool points are read through the Rigsim: rig.pose(name) (world and
+parent-relative placement), rig.frames() (all of them).
 
 Enable it with `-p rigsim.pytest_plugin` or `pytest_plugins = ["rigsim.pytest_plugin"]` in a
 conftest.py (an installed package registers it by entry point).

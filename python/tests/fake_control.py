@@ -16,6 +16,39 @@ def _channel(index, kind="linear"):
             "referenced": False, "status": {"code": 0, "name": "stopped"}, "limits": {}}
 
 
+def _placement(position_mm, quaternion, rpy_deg):
+    return {"position_mm": position_mm, "quaternion": quaternion, "rpy_deg": rpy_deg}
+
+
+_IDENTITY = _placement([0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+_YAW_90 = [0.7071067811865476, 0.0, 0.0, 0.7071067811865476]
+
+
+def _frames():
+    """A table, a rotation stage turned 90 degrees (apt0/0) 50 mm up, an x stage on it (mcs0/0)
+    at 2 mm, and a sample 40 mm above the x carriage."""
+    return {
+        "frames": [
+            {"name": "table", "parent": None, "tool": False, "joint": None,
+             "world": _IDENTITY, "parent_relative": _IDENTITY},
+            {"name": "rot", "parent": "table", "tool": False,
+             "joint": {"type": "revolute", "device": "apt0", "channel": 0, "position": 90.0},
+             "world": _placement([0.0, 0.0, 50.0], _YAW_90, [0.0, 0.0, 90.0]),
+             "parent_relative": _placement([0.0, 0.0, 50.0], _YAW_90, [0.0, 0.0, 90.0])},
+            {"name": "x", "parent": "rot", "tool": False,
+             "joint": {"type": "prismatic", "device": "mcs0", "channel": 0, "position": 2.0},
+             "world": _placement([0.0, 2.0, 50.0], _YAW_90, [0.0, 0.0, 90.0]),
+             "parent_relative": _placement([2.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0])},
+        ],
+        "tools": [
+            {"name": "sample", "parent": "x", "tool": True, "joint": None,
+             "world": _placement([0.0, 2.0, 90.0], _YAW_90, [0.0, 0.0, 90.0]),
+             "parent_relative": _placement([0.0, 0.0, 40.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0])},
+        ],
+        "collisions": [{"frames": ["x", "rot"]}],
+    }
+
+
 class FakeControl:
     """Start with `with FakeControl() as fake:`; `fake.url` is the API's URL."""
 
@@ -45,6 +78,7 @@ class FakeControl:
                      for name in self.devices}
         self.faults = {}
         self.next_fault_id = 1
+        self.frames = _frames()
         self.server = ThreadingHTTPServer(("127.0.0.1", 0), _handler(self))
         self.server.daemon_threads = True
         self.url = f"http://127.0.0.1:{self.server.server_address[1]}"
@@ -83,6 +117,13 @@ class FakeControl:
             return self.route_device(method, parts[1:], query, body)
         if parts[:1] == ["faults"]:
             return self.route_faults(method, parts[1:], body)
+        if parts[:1] == ["frames"] and len(parts) <= 2 and method == "GET":
+            if len(parts) == 1:
+                return 200, self.frames
+            for frame in self.frames["frames"] + self.frames["tools"]:
+                if frame["name"] == parts[1]:
+                    return 200, frame
+            return 404, {"error": f"no frame named \"{parts[1]}\""}
         if parts == ["reset"] and method == "POST":
             self.faults.clear()
             for name in self.logs:
@@ -196,6 +237,7 @@ def _handler(fake):
 
         def stream(self, query):
             wanted = set(",".join(query.get("device", [])).split(",")) - {""}
+            types = set(",".join(query.get("type", [])).split(",")) - {""}
             self.send_response(200)
             self.send_header("Content-Type", "text/event-stream")
             self.end_headers()
@@ -213,6 +255,8 @@ def _handler(fake):
                         sent = len(fake.events)
                     for e in pending:
                         if wanted and e.get("device") not in wanted:
+                            continue
+                        if types and e["type"] not in types:
                             continue
                         self.wfile.write(f"event: {e['type']}\nid: {e['seq']}\ndata: {json.dumps(e)}\n\n".encode())
                     self.wfile.flush()

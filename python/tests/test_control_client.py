@@ -150,3 +150,58 @@ def test_events_over_chunked_transfer_encoding_split_anywhere():
     listener.close()
     assert events == [{"seq": 7, "type": "move_started", "device": "a"},
                       {"device": "a", "outcome": "reached", "type": "move_ended", "seq": 8}]
+
+
+# ---- frames ----
+
+def test_frames_is_the_route_answer(rig, fake):
+    frames = rig.frames()
+    assert [f["name"] for f in frames["frames"]] == ["table", "rot", "x"]
+    assert [t["name"] for t in frames["tools"]] == ["sample"]
+    assert frames["collisions"] == [{"frames": ["x", "rot"]}]
+    assert fake.requests[-1] == ("GET", "/api/frames", {})
+
+
+def test_pose_gives_world_and_parent_relative_placements(rig, fake):
+    pose = rig.pose("sample")
+    assert fake.requests[-1] == ("GET", "/api/frames/sample", {})
+    assert (pose.name, pose.parent, pose.tool, pose.joint) == ("sample", "x", True, None)
+    assert pose.position_mm == (0.0, 2.0, 90.0)
+    assert pose.quaternion == pytest.approx((0.5 ** 0.5, 0.0, 0.0, 0.5 ** 0.5))
+    assert pose.rpy_deg == (0.0, 0.0, 90.0)
+    assert pose.world.position_mm == pose.position_mm
+    assert pose.parent_relative.position_mm == (0.0, 0.0, 40.0)
+    assert pose.parent_relative.quaternion == (1.0, 0.0, 0.0, 0.0)
+    joint = rig.pose("x").joint
+    assert (joint["type"], joint["device"], joint["channel"], joint["position"]) == ("prismatic", "mcs0", 0, 2.0)
+
+
+def test_pose_of_an_unknown_frame_raises_404(rig):
+    with pytest.raises(ControlError) as e:
+        rig.pose("nope")
+    assert e.value.status == 404 and e.value.message == 'no frame named "nope"'
+
+
+def test_a_pose_name_is_quoted_in_the_path(fake):
+    with pytest.raises(ControlError):
+        ControlClient(fake.url).pose("a b/c")
+    assert fake.requests[-1][1] == "/api/frames/a%20b%2Fc"
+
+
+def test_events_filtered_by_type(rig, fake):
+    def later():
+        time.sleep(0.1)
+        fake.publish("move_ended", "mcs0", channel=0, outcome="completed")
+        fake.publish("frames", None, frames=[{"name": "x"}])
+    threading.Thread(target=later, daemon=True).start()
+    stream = rig.events(type="frames", timeout=5)
+    got = next(stream)
+    stream.close()
+    assert got["type"] == "frames" and got["frames"] == [{"name": "x"}]
+    assert fake.requests[-1][1] == "/api/events?type=frames"
+
+
+def test_events_filtered_by_device_and_types(fake):
+    stream = ControlClient(fake.url).events(device=["mcs0", "apt0"], type=["frames", "move_ended"], timeout=0.2)
+    assert list(stream) == []
+    assert fake.requests[-1][1] == "/api/events?device=mcs0,apt0&type=frames,move_ended"

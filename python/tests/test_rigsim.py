@@ -228,3 +228,29 @@ def test_events_from_the_real_daemon(rigsim):
         assert [e["seq"] for e in seen] == sorted(e["seq"] for e in seen)
     finally:
         stream.close()
+
+
+def test_pose_follows_a_stage_moved_over_tcp(rigsim):
+    """Rigsim.pose() on the real daemon: the tip 20 mm above an MCS stage moved by a client."""
+    rig = rigsim(os.path.join(os.path.dirname(__file__), "..", "..", "tests", "e2e", "kinematics_rig.json"))
+    rig.pause()
+    assert rig.pose("tip").position_mm == pytest.approx((0.5, 0, 50), abs=1e-9)
+    stream = rig.events(type="frames", timeout=5)
+    try:
+        with socket.create_connection(rig.endpoint("stage").address, timeout=5) as s:
+            assert mcs_ask(s, ":MPA0,-1000000,0") == ":E0,0"
+            rig.run_until_idle(60_000)
+        event = next(stream)
+    finally:
+        stream.close()
+    assert event["type"] == "frames" and event["after"] == {"type": "move_ended", "device": "stage"}
+    assert [f["name"] for f in event["frames"]] == ["x", "tip"]
+    tip = rig.pose("tip")   # the counter started at 0 where the stage powered up (0.5 mm): -0.5 mm
+    assert tip.position_mm == pytest.approx((-0.5, 0, 50), abs=1e-9)
+    assert tip.parent == "x" and tip.tool is True and tip.joint is None
+    assert tip.parent_relative.position_mm == pytest.approx((0, 0, 20))
+    assert tip.quaternion == pytest.approx((1, 0, 0, 0)) and tip.rpy_deg == pytest.approx((0, 0, 0))
+    assert rig.pose("x").joint == {"type": "prismatic", "device": "stage", "channel": 0, "position": pytest.approx(-0.5)}
+    with pytest.raises(ControlError) as e:
+        rig.pose("nope")
+    assert e.value.status == 404

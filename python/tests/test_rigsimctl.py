@@ -175,6 +175,59 @@ def test_log(fake):
     assert fake.requests[-1][:2] == ("DELETE", "/api/devices/mcs0/log")
 
 
+def test_frames(fake):
+    answer = ctl_json(fake.url, "frames")
+    assert [f["name"] for f in answer["frames"]] == ["table", "rot", "x"]
+    assert fake.requests[-1][1] == "/api/frames"
+    assert ctl_json(fake.url, "frames", "sample")["parent_relative"]["position_mm"] == [0.0, 0.0, 40.0]
+    assert fake.requests[-1][1] == "/api/frames/sample"
+
+
+def test_frames_table(fake):
+    status, text = ctl(fake.url, "--format", "table", "frames")
+    assert status == 0
+    lines = text.splitlines()
+    assert lines[0].split() == ["name", "parent", "joint", "x_mm", "y_mm", "z_mm", "roll_deg", "pitch_deg",
+                                "yaw_deg"]
+    assert lines[1].split() == ["table", "-", "fixed", "0.0000", "0.0000", "0.0000", "0.0000", "0.0000", "0.0000"]
+    assert lines[2].split() == ["rot", "table", "revolute", "apt0/0", "=", "90.0000", "0.0000", "0.0000",
+                                "50.0000", "0.0000", "0.0000", "90.0000"]
+    assert lines[3].split()[:6] == ["x", "rot", "prismatic", "mcs0/0", "=", "2.0000"]
+    assert lines[4].split() == ["sample", "x", "tool", "0.0000", "2.0000", "90.0000", "0.0000", "0.0000",
+                                "90.0000"]
+    assert lines[-1] == "collisions: x - rot"
+
+
+def test_frame_table(fake):
+    status, text = ctl(fake.url, "frames", "x", "--format", "table")
+    assert status == 0
+    lines = text.splitlines()
+    assert lines[0] == "x (parent rot, prismatic mcs0/0 = 2.0000)"
+    assert lines[1].split() == ["relative", "to", "x_mm", "y_mm", "z_mm", "qw", "qx", "qy", "qz", "roll_deg",
+                                "pitch_deg", "yaw_deg"]
+    assert lines[2].split() == ["world", "0.0000", "2.0000", "50.0000", "0.707107", "0.000000", "0.000000",
+                                "0.707107", "0.0000", "0.0000", "90.0000"]
+    assert lines[3].split() == ["parent", "2.0000", "0.0000", "0.0000", "1.000000", "0.000000", "0.000000",
+                                "0.000000", "0.0000", "0.0000", "0.0000"]
+
+
+def test_frames_unknown_shows_the_server_error(fake, capsys):
+    assert ctl(fake.url, "frames", "nope")[0] == 1
+    assert capsys.readouterr().err.strip() == 'rigsimctl: 404: no frame named "nope"'
+
+
+def test_events_by_type(fake):
+    def later():
+        time.sleep(0.1)
+        fake.publish("move_ended", "mcs0", channel=0, outcome="completed")
+        fake.publish("frames", None, frames=[])
+    threading.Thread(target=later, daemon=True).start()
+    status, text = ctl(fake.url, "events", "--type", "frames", "--count", "1")
+    assert status == 0
+    assert [json.loads(line)["type"] for line in text.splitlines()] == ["frames"]
+    assert fake.requests[-1][1] == "/api/events?type=frames"
+
+
 def test_unknown_device_shows_the_server_error(fake, capsys):
     assert ctl(fake.url, "state", "nope")[0] == 1
     assert capsys.readouterr().err.strip() == 'rigsimctl: 404: no device "nope"'
@@ -250,7 +303,7 @@ def test_the_launcher_finds_the_package_in_the_install_layout(fake, tmp_path):
 
 @pytest.mark.parametrize("argv", [[], ["rig"], ["state"], ["set"], ["clock"], ["clock", "step"],
                                   ["clock", "run-until-idle"], ["fault"], ["fault", "add"],
-                                  ["fault", "rm"], ["events"], ["reset"], ["log"]])
+                                  ["fault", "rm"], ["frames"], ["events"], ["reset"], ["log"]])
 def test_help_per_sub_command(argv):
     result = run_launcher(*argv, "--help")
     assert result.returncode == 0, result.stderr
@@ -322,3 +375,24 @@ def test_real_reset_and_events(rigsim):
     rig = rigsim()
     assert "mcs0" in real(rig, "reset")["reset"]
     real(rig, "events", "--timeout", "0.3")
+
+
+KINEMATICS_RIG = os.path.join(HERE, "..", "..", "tests", "e2e", "kinematics_rig.json")
+
+
+def test_real_frames(rigsim):
+    rig = rigsim(KINEMATICS_RIG)
+    answer = real(rig, "frames")
+    assert [f["name"] for f in answer["frames"]] == ["table", "turn", "x"]
+    assert [t["name"] for t in answer["tools"]] == ["tip"]
+    assert real(rig, "frames", "tip")["world"]["position_mm"] == pytest.approx([0.5, 0, 50], abs=1e-9)
+    result = run_launcher("--control", rig.control.url, "--format", "table", "frames")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].split()[:3] == ["name", "parent", "joint"]
+    assert lines[3].split() == ["x", "turn", "prismatic", "stage/0", "=", "0.5000", "0.5000", "0.0000",
+                                "30.0000", "0.0000", "0.0000", "0.0000"]
+    assert lines[4].split()[:6] == ["tip", "x", "tool", "0.5000", "0.0000", "50.0000"]
+    assert lines[-1] == "collisions: none"
+    result = run_launcher("--control", rig.control.url, "frames", "nope")
+    assert result.returncode == 1 and result.stderr == 'rigsimctl: 404: no frame named "nope"\n'
