@@ -29,7 +29,10 @@ TEST_CASE("cli: --check-config accepts valid rigs", "[e2e][cli]")
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/rotary_stage.json"),
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/gripper.json"),
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/open_loop_bench.json"),
-                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/apt_stages.json"));
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/apt_stages.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/xyz_on_rotation.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/fibre_alignment.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/goniometer_pair.json"));
     const auto r = run_rigsimd({"--check-config", file});
     INFO(file << "\nstdout: " << r.out << "\nstderr: " << r.err);
     REQUIRE(r.exited);
