@@ -200,6 +200,9 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     CHECK(counts_per_degree == Approx(1919.64).margin(0.01));
     CHECK(channel.axis().position_counts() != 0.0);
     CHECK(rot.position() == channel.axis().position_counts() / counts_per_degree);
+    // Independent of the conversion: a rotation stage powers up half a turn from its home
+    // switch (180°); the goniometer stage below powers up mid-range (0° of [-10°, 10°]).
+    CHECK(rot.position() == Approx(180).margin(1e-9));
     rot.set_obstacles(rot.position() - 10, std::nullopt);
     CHECK(channel.axis().obstacle_min_counts() == Approx(channel.axis().position_counts() - 10 * counts_per_degree));
     rot.set_obstacles(std::nullopt, std::nullopt);
@@ -216,6 +219,7 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     CHECK(gonio.kind == JointBinding::Kind::Goniometer);
     CHECK(gonio.body_key == "apt_gonio/1");
     CHECK(gonio.position() == apt_gonio.channel(0).axis().position_counts() / 34304);
+    CHECK(gonio.position() == Approx(0).margin(1e-9));
 }
 
 TEST_CASE("rig kinematics: moving channels on the stepped clock moves the frames", "[device][kinematics]")
