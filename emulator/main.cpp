@@ -436,6 +436,12 @@ int main(int argc, char** argv)
     } catch (const rigsim::ConfigError& e) {
         std::cerr << e.what() << "\n";
         return kExitUsage;
+    } catch (const std::exception& e) {
+        // A check the loader missed, refused deeper down (a model's precondition): still the
+        // config's fault, reported as one rather than as a crash.
+        const auto& source = opts.check_config ? *opts.check_config : opts.config ? *opts.config : std::string("rig");
+        std::cerr << source << ": invalid rig: " << e.what() << "\n";
+        return kExitUsage;
     }
     if (opts.tick_hz)
         config.tick_hz = *opts.tick_hz;

@@ -261,7 +261,7 @@ void read_pmd(const ConfigReader& r, const StageReader& k, StageModel& s)
         s.pmd_stage_id = static_cast<std::uint16_t>(r.get_int(*v, k.at("pmd_stage_id"), 0, 65'535));
     if (const auto* v = k.find("pmd_part_number")) {
         s.pmd_part_number = r.get_string(*v, k.at("pmd_part_number"), "a string of 1..16 characters");
-        if (s.pmd_part_number.size() > kMaxPartNumberLength)
+        if (s.pmd_part_number.empty() || s.pmd_part_number.size() > kMaxPartNumberLength)
             k.fail("pmd_part_number", "expected a string of 1..16 characters, got " + describe(*v));
     }
     if (const auto* v = k.find("pmd_max_velocity"))
@@ -307,7 +307,7 @@ StageModel read_stage(const ConfigReader& r, const json& object, const std::stri
     if (const auto* v = k.find("name")) {
         const auto expected = "a name of 1.." + std::to_string(kMaxNameLength) + " characters";
         s.name = r.get_string(*v, k.at("name"), expected);
-        if (s.name.size() > kMaxNameLength)
+        if (s.name.empty() || s.name.size() > kMaxNameLength)
             k.fail("name", "expected " + expected + ", got " + describe(*v));
     }
     if (const auto* v = k.find("about")) {

@@ -111,14 +111,19 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
     : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices)), events_(events),
       faults_(clock_, devices_), frames_(std::move(frames))
 {
-    if (events_ && !frames_.empty())
+    if (events_ && !frames_.empty()) {
         events_->set_follow_up([this](const Event& e) { follow_up(e); });
+        // The first stream's "frames" events are the changes from the poses when it started.
+        events_->set_on_active([this] { frames_.rebase(); });
+    }
 }
 
 ControlApi::~ControlApi()
 {
-    if (events_ && !frames_.empty())
+    if (events_ && !frames_.empty()) {
         events_->set_follow_up({});
+        events_->set_on_active({});
+    }
 }
 
 HttpReply ControlApi::handle(std::string_view method, std::string_view target, std::string_view body)

@@ -47,6 +47,13 @@ std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>
 
 FrameBook::FrameBook(FrameSource source) : source_(std::move(source))
 {
+    rebase();
+}
+
+void FrameBook::rebase()
+{
+    published_world_.clear();
+    published_local_.clear();
     if (empty())
         return;
     auto& k = *source_.kinematics;

@@ -34,6 +34,9 @@ class FrameBook {
 public:
     /// Reads every joint once: the poses now are the baseline of changed().
     explicit FrameBook(FrameSource source);
+    /// The poses now become the baseline of changed() (a stream starts: what moved while no one
+    /// listened was never published, and is not a change for the new stream).
+    void rebase();
 
     bool empty() const { return source_.kinematics == nullptr; }
     /// GET /api/frames at the clock's now.

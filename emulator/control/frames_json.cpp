@@ -43,7 +43,10 @@ json placement_json(const Eigen::Isometry3d& pose)
 {
     Eigen::Quaterniond q(pose.rotation());
     q.normalize();
-    if (q.w() < 0)   // q and -q are one rotation: the one with w >= 0 is shown
+    // q and -q are one rotation: the one with w > 0 is shown; at w == 0 (a half turn) the one
+    // whose first non-zero of x, y, z is positive.
+    const double lead = q.w() != 0 ? q.w() : q.x() != 0 ? q.x() : q.y() != 0 ? q.y() : q.z();
+    if (lead < 0)
         q.coeffs() = -q.coeffs();
     return json{{"position_mm", triple(pose.translation())},
                 {"quaternion", json::array({clean(q.w()), clean(q.x()), clean(q.y()), clean(q.z())})},

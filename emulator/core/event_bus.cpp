@@ -8,6 +8,8 @@ namespace rigsim {
 
 std::uint64_t EventBus::subscribe(Subscriber s)
 {
+    if (subscribers_.empty() && on_active_)
+        on_active_();
     const auto h = next_handle_++;
     subscribers_.emplace(h, std::move(s));
     return h;

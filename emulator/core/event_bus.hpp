@@ -42,8 +42,14 @@ public:
     /// subscriber: it does not make the bus active(). An empty function removes it.
     void set_follow_up(Subscriber f) { follow_up_ = std::move(f); }
 
+    /// Called when subscribe() makes the bus active(), before the subscriber is added: state
+    /// kept to publish differences (the frames' poses) goes stale while no one listens, since
+    /// publish() then sends nothing, and is taken afresh here. An empty function removes it.
+    void set_on_active(std::function<void()> f) { on_active_ = std::move(f); }
+
 private:
     Subscriber follow_up_;
+    std::function<void()> on_active_;
     std::map<std::uint64_t, Subscriber> subscribers_;
     std::uint64_t next_handle_ = 1;
     std::uint64_t seq_ = 0;

@@ -19,6 +19,9 @@ using nlohmann::json;
 constexpr std::size_t kMaxNameLength = 64;
 /// A unit quaternion's norm may be off by this much (rounding in the file).
 constexpr double kQuaternionTolerance = 1e-6;
+/// Lengths (offsets, joint points, box corners) are at most 1 km in magnitude, so that poses
+/// stay finite however the frames are chained.
+constexpr long kMaxLengthMm = 1000000;
 
 constexpr std::array<std::string_view, 3> kKinematicsKeys{"frames", "tools", "collisions"};
 constexpr std::array<std::string_view, 6> kFrameKeys{"name", "parent", "offset", "axis", "joint", "box_mm"};
@@ -143,7 +146,11 @@ private:
         if (!ok)
             r_.fail(pointer, "expected a frame name of 1.." + std::to_string(kMaxNameLength) +
                                  " characters [A-Za-z0-9_.-], got " + describe(v));
-        return v.get<std::string>();
+        const auto& s = v.get_ref<const std::string&>();
+        if (s.find_first_not_of('.') == std::string::npos)
+            r_.fail(pointer, "a frame name made only of dots is no URL path segment (/api/frames/<name>), got " +
+                                 describe(v));
+        return s;
     }
 
     double load_number(const json& v, const std::string& pointer) const
@@ -166,13 +173,29 @@ private:
         return out;
     }
 
-    /// A direction: any non-zero length, made unit.
+    /// N lengths in mm, each at most kMaxLengthMm in magnitude.
+    template <std::size_t N>
+    std::array<double, N> load_lengths(const json& v, const std::string& pointer) const
+    {
+        const auto out = load_numbers<N>(v, pointer);
+        for (std::size_t i = 0; i < N; ++i)
+            if (!(std::abs(out[i]) <= kMaxLengthMm))
+                r_.fail(pointer_to(pointer, i), "expected a number of at most " + std::to_string(kMaxLengthMm) +
+                                                    " mm in magnitude, got " + dump(json(out[i])));
+        return out;
+    }
+
+    /// A direction: any non-zero length, made unit. Scaled by its largest component first, so
+    /// that neither a huge nor a tiny vector overflows or underflows the norm.
     Vector3 load_direction(const json& v, const std::string& pointer) const
     {
         auto d = load_numbers<3>(v, pointer);
-        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (!(norm > 1e-12) || !std::isfinite(norm))
+        const double largest = std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])});
+        if (!(largest > 0))
             r_.fail(pointer, "expected a non-zero vector, got " + vector_text(d.data(), 3));
+        for (auto& x : d)
+            x /= largest;
+        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         for (auto& x : d)
             x /= norm;
         return d;
@@ -182,7 +205,7 @@ private:
     {
         r_.check_keys(v, pointer, kOffsetKeys);
         if (const auto* t = ConfigReader::find(v, "translation_mm"))
-            f.translation_mm = load_numbers<3>(*t, pointer_to(pointer, "translation_mm"));
+            f.translation_mm = load_lengths<3>(*t, pointer_to(pointer, "translation_mm"));
         const auto* rpy = ConfigReader::find(v, "rpy_deg");
         const auto* q = ConfigReader::find(v, "quaternion");
         if (rpy && q)
@@ -235,11 +258,11 @@ private:
             case JointKind::Revolute:
                 r_.check_keys(*joint, joint_pointer, kRevoluteJointKeys);
                 if (const auto* p = ConfigReader::find(*joint, "point_mm"))
-                    f.joint_point_mm = load_numbers<3>(*p, pointer_to(joint_pointer, "point_mm"));
+                    f.joint_point_mm = load_lengths<3>(*p, pointer_to(joint_pointer, "point_mm"));
                 break;
             case JointKind::Goniometer:
                 r_.check_keys(*joint, joint_pointer, kGoniometerJointKeys);
-                f.joint_point_mm = load_numbers<3>(r_.require(*joint, joint_pointer, "centre_mm"),
+                f.joint_point_mm = load_lengths<3>(r_.require(*joint, joint_pointer, "centre_mm"),
                                                    pointer_to(joint_pointer, "centre_mm"));
                 break;
             }
@@ -284,8 +307,8 @@ private:
     {
         r_.check_keys(v, pointer, kBoxKeys);
         FrameBoxConfig b;
-        b.min = load_numbers<3>(r_.require(v, pointer, "min"), pointer_to(pointer, "min"));
-        b.max = load_numbers<3>(r_.require(v, pointer, "max"), pointer_to(pointer, "max"));
+        b.min = load_lengths<3>(r_.require(v, pointer, "min"), pointer_to(pointer, "min"));
+        b.max = load_lengths<3>(r_.require(v, pointer, "max"), pointer_to(pointer, "max"));
         for (std::size_t i = 0; i < 3; ++i)
             if (b.min[i] > b.max[i])
                 r_.fail(pointer, "expected min <= max in every coordinate, got min " + vector_text(b.min.data(), 3) +

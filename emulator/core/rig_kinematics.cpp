@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 namespace rigsim {
@@ -95,6 +96,18 @@ JointBinding bind(const KinematicsConfig& config, const FrameConfig& f, const Su
     return b;
 }
 
+/// Runs `add`, a models::Kinematics call for frame `f`; the std::invalid_argument it throws on a
+/// frame the loader let through becomes a ConfigError at the frame's pointer.
+template <typename Add>
+void at_frame(const KinematicsConfig& config, const FrameConfig& f, Add&& add)
+{
+    try {
+        add();
+    } catch (const std::invalid_argument& e) {
+        fail(config.source, f.pointer, e.what());
+    }
+}
+
 } // namespace
 
 RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of)
@@ -106,7 +119,7 @@ RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& 
     for (std::size_t i = 1; i < frames.size(); ++i) {
         const auto& f = frames[i];
         if (f.tool) {
-            out.kinematics->add_tool(f.name, f.parent, offset_of(f));
+            at_frame(config, f, [&] { out.kinematics->add_tool(f.name, f.parent, offset_of(f)); });
             continue;
         }
         models::Joint joint;
@@ -118,11 +131,13 @@ RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& 
             out.bindings[i] = bind(config, f, surface_of);
             reader = out.bindings[i].position;
         }
-        out.kinematics->add_frame(f.name, f.parent, offset_of(f), joint, std::move(reader));
+        at_frame(config, f, [&] { out.kinematics->add_frame(f.name, f.parent, offset_of(f), joint, std::move(reader)); });
     }
     for (std::size_t i = 0; i < frames.size(); ++i)
         if (const auto& b = frames[i].box_mm)
-            out.kinematics->set_box(i, Eigen::AlignedBox3d(vector_of(b->min), vector_of(b->max)));
+            at_frame(config, frames[i], [&] {
+                out.kinematics->set_box(i, Eigen::AlignedBox3d(vector_of(b->min), vector_of(b->max)));
+            });
     out.kinematics->update();
     return out;
 }

@@ -33,8 +33,8 @@ struct RigKinematics {
 using SurfaceOf = std::function<ControlSurface*(std::string_view name)>;
 
 /// Build the frames of `config` (poses computed once), binding every moving joint to its
-/// channel; throws ConfigError naming the frame's pointer when the device refuses the channel
-/// or the joint does not suit the stage.
+/// channel; throws ConfigError naming the frame's pointer when the device refuses the channel,
+/// the joint does not suit the stage, or models::Kinematics refuses the frame.
 RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of);
 
 /// The collision watch of the rig's frames, a body of `world` under "rig/collisions" watching

@@ -32,6 +32,15 @@ namespace rigsim::test {
 using namespace rigsim::apt;
 
 
+/// The shipped stage `name`; FAILs the test naming it when there is none.
+inline const StageModel& shipped_stage(const std::string& name)
+{
+    const auto* stage = find_stage(name);
+    if (!stage)
+        FAIL("no shipped stage named \"" << name << "\"");
+    return *stage;
+}
+
 /// A single-unit controller (T-Cube/K-Cube) driving the shipped stage `stage`.
 inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
 {
@@ -39,7 +48,7 @@ inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
     c.name = "cube";
     c.protocol = "apt";
     c.model = model;
-    config_of(c).stage = *find_stage(stage);
+    config_of(c).stage = shipped_stage(stage);
     return c;
 }
 
@@ -51,7 +60,7 @@ inline DeviceConfig apt_rack(const std::string& model, std::vector<std::string> 
     c.protocol = "apt";
     c.model = model;
     for (const auto& stage : bays)
-        config_of(c).bays.push_back(*find_stage(stage));
+        config_of(c).bays.push_back(shipped_stage(stage));
     return c;
 }
 

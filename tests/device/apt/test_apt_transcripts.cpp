@@ -82,6 +82,9 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
         stages.push_back(stage);
     if (stages.empty())
         FAIL(where << ": '@ " << spec << "' names no stage");
+    for (const auto& stage : stages)
+        if (!rigsim::apt::find_stage(stage))
+            FAIL(where << ": '@ " << spec << "': no shipped stage named \"" << stage << "\"");
     if (model->rack) {
         for (const auto& stage : stages)
             rigsim::apt::config_of(c).bays.push_back(*rigsim::apt::find_stage(stage));

@@ -130,6 +130,21 @@ TEST_CASE("apt stage: each refusal names the pointer inside the stage object", "
              "in degrees)");
 }
 
+TEST_CASE("apt stage: an empty name or pmd_part_number is refused", "[unit][apt][config][stages]")
+{
+    auto unnamed = stepper_stage();
+    unnamed["name"] = "";
+    CHECK(error_of(rig_of("TST001", {{"stage", unnamed}}))
+          == "rig.json: /devices/0/apt/stage/name: expected a name of 1..64 characters, got \"\"");
+    auto brushless = stepper_stage();
+    brushless["motor"] = "brushless";
+    brushless["pmd_part_number"] = "LAB 8";
+    CHECK(error_of(rig_of("BBD203", {{"bays", {brushless}}})) == "(no error)");
+    brushless["pmd_part_number"] = "";
+    CHECK(error_of(rig_of("BBD203", {{"bays", {brushless}}}))
+          == "rig.json: /devices/0/apt/bays/0/pmd_part_number: expected a string of 1..16 characters, got \"\"");
+}
+
 TEST_CASE("apt stage: units, ranges, switches and the controller's APT units", "[unit][apt][config][stages]")
 {
     auto mm_key = gonio_stage();

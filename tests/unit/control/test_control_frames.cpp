@@ -248,6 +248,36 @@ TEST_CASE("The frames event follows its cause on every stream, and none is built
     stop_b();
 }
 
+TEST_CASE("The frames event: a new stream compares with the poses when it started, not a stale publication",
+          "[control]")
+{
+    Fixture f;
+    f.make_api(true);
+    auto first = f.api->handle("GET", "/api/events?type=frames", "");
+    std::string a;
+    auto stop_a = first.stream([&](std::string_view s) { a.append(s); });
+    f.stage.position_m = 0.002;
+    f.bus.publish("dev", "move_ended", 1, json{{"channel", 0}});
+    REQUIRE(Fixture::frames_events(a).size() == 1);   // published: x at 2 mm
+    stop_a();
+
+    // While no one listens the stage goes back to 0: nothing is published.
+    f.stage.position_m = 0;
+    f.bus.publish("dev", "move_ended", 2, json{{"channel", 0}});
+
+    // A new stream; the stage moves to 2 mm again: a change from where it was when the stream began.
+    auto second = f.api->handle("GET", "/api/events?type=frames", "");
+    std::string b;
+    auto stop_b = second.stream([&](std::string_view s) { b.append(s); });
+    f.stage.position_m = 0.002;
+    f.bus.publish("dev", "move_ended", 3, json{{"channel", 0}});
+    const auto events = Fixture::frames_events(b);
+    REQUIRE(events.size() == 1);
+    CHECK(events[0]["frames"][0]["name"] == "x");
+    CHECK(events[0]["frames"][0]["joint"]["position"] == 2.0);
+    stop_b();
+}
+
 TEST_CASE("joint_axes: each binding's device and channel, found by the world body the channel drives", "[control]")
 {
     Clock clock{1000};

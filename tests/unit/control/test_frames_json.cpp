@@ -164,6 +164,26 @@ TEST_CASE("frames_json: a rotation shown with w >= 0 (270 degrees reads as -90),
     CHECK(no_frames_json() == json{{"frames", json::array()}, {"tools", json::array()}, {"collisions", json::array()}});
 }
 
+TEST_CASE("frames_json: a half turn (w == 0) shown with the first non-zero of x, y, z positive", "[unit][control]")
+{
+    // Half a turn about (-1, 2, 0)/sqrt(5): R = 2 n n^T - I, exact and symmetric, so w is 0 exactly.
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    Eigen::Matrix3d r;
+    r << -0.6, -0.8, 0, -0.8, 0.6, 0, 0, 0, -1;
+    pose.linear() = r;
+    const auto q = placement_json(pose)["quaternion"];
+    CHECK(q[0].get<double>() == 0.0);
+    CHECK_FALSE(std::signbit(q[0].get<double>()));
+    check_quaternion(q, 0, 1 / std::sqrt(5.0), -2 / std::sqrt(5.0), 0);
+    CHECK(q[1].get<double>() > 0);
+    // About (0, -1, 1)/sqrt(2): x is 0, y leads.
+    r << -1, 0, 0, 0, 0, -1, 0, -1, 0;
+    pose.linear() = r;
+    const auto q2 = placement_json(pose)["quaternion"];
+    check_quaternion(q2, 0, 0, std::sqrt(0.5), -std::sqrt(0.5));
+    CHECK(q2[2].get<double>() > 0);
+}
+
 TEST_CASE("frames_json: a moving joint whose channel is not known names none", "[unit][control]")
 {
     Tree t;

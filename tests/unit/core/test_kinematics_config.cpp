@@ -264,6 +264,75 @@ TEST_CASE("kinematics config: zero-length joint axes, bad quaternions, rpy with 
     CHECK(error_of(k) == "rig.json: /kinematics/frames/1/offset: rpy_deg and quaternion both give the rotation: keep one");
 }
 
+TEST_CASE("kinematics config: a joint axis of any non-zero length, huge or tiny, is made unit", "[unit][config]")
+{
+    auto k = kinematics();
+    frame(k, "x")["joint"]["axis"] = json::array({1e200, 1e200, 0});
+    auto c = load(k);
+    REQUIRE(c.frames[2].name == "x");
+    CHECK(c.frames[2].joint_axis[0] == Approx(std::sqrt(0.5)));
+    CHECK(c.frames[2].joint_axis[1] == Approx(std::sqrt(0.5)));
+    CHECK(c.frames[2].joint_axis[2] == 0.0);
+    k = kinematics();
+    frame(k, "x")["joint"]["axis"] = json::array({1e-13, 0, 0});
+    c = load(k);
+    CHECK(c.frames[2].joint_axis == rigsim::Vector3{1, 0, 0});
+    k = kinematics();
+    frame(k, "x")["joint"]["axis"] = json::array({0, -5e-324, 0});
+    c = load(k);
+    CHECK(c.frames[2].joint_axis == rigsim::Vector3{0, -1, 0});
+}
+
+TEST_CASE("kinematics config: lengths are at most 1 km in magnitude", "[unit][config]")
+{
+    auto k = kinematics();
+    frame(k, "rot")["offset"]["translation_mm"] = json::array({1e308, 0, 0});
+    CHECK(error_of(k) == "rig.json: /kinematics/frames/1/offset/translation_mm/0: expected a number of at most 1000000 "
+                         "mm in magnitude, got 1e+308");
+    k = kinematics();
+    frame(k, "rot")["joint"]["point_mm"] = json::array({0, -1000000.5, 0});
+    CHECK(error_of(k) == "rig.json: /kinematics/frames/1/joint/point_mm/1: expected a number of at most 1000000 "
+                         "mm in magnitude, got -1000000.5");
+    k = kinematics();
+    frame(k, "gonio")["joint"]["centre_mm"] = json::array({0, 0, 2e6});
+    CHECK(error_of(k) == "rig.json: /kinematics/frames/2/joint/centre_mm/2: expected a number of at most 1000000 "
+                         "mm in magnitude, got 2000000.0");
+    k = kinematics();
+    frame(k, "x")["box_mm"]["max"] = json::array({10, 10, 1e7});
+    CHECK(error_of(k) == "rig.json: /kinematics/frames/3/box_mm/max/2: expected a number of at most 1000000 "
+                         "mm in magnitude, got 10000000.0");
+    k = kinematics();
+    frame(k, "x")["box_mm"]["min"] = json::array({-1e9, -10, 0});
+    CHECK(error_of(k) == "rig.json: /kinematics/frames/3/box_mm/min/0: expected a number of at most 1000000 "
+                         "mm in magnitude, got -1000000000.0");
+    k = kinematics();
+    k["tools"][0]["offset"]["translation_mm"] = json::array({0, 0, 1e6 + 1});
+    CHECK(error_of(k) == "rig.json: /kinematics/tools/0/offset/translation_mm/2: expected a number of at most 1000000 "
+                         "mm in magnitude, got 1000001.0");
+    // 1 km itself is allowed.
+    k = kinematics();
+    frame(k, "rot")["offset"]["translation_mm"] = json::array({-1e6, 1e6, 0});
+    CHECK(load(k).frames[1].translation_mm == rigsim::Vector3{-1e6, 1e6, 0});
+}
+
+TEST_CASE("kinematics config: a name made only of dots is refused", "[unit][config]")
+{
+    for (const char* dots : {".", "..", "..."}) {
+        auto k = kinematics();
+        frame(k, "x")["name"] = dots;
+        CHECK(error_of(k) == "rig.json: /kinematics/frames/3/name: a frame name made only of dots is no URL path "
+                             "segment (/api/frames/<name>), got \"" + std::string(dots) + "\"");
+        k = kinematics();
+        k["tools"][0]["name"] = dots;
+        CHECK(error_of(k) == "rig.json: /kinematics/tools/0/name: a frame name made only of dots is no URL path "
+                             "segment (/api/frames/<name>), got \"" + std::string(dots) + "\"");
+    }
+    // Dots among other characters are fine.
+    auto k = kinematics();
+    k["tools"][0]["name"] = "..tip.";
+    CHECK(load(k).frames.back().name == "..tip.");
+}
+
 TEST_CASE("kinematics config: an axis needs a moving joint and a moving joint an axis", "[unit][config]")
 {
     auto k = kinematics();
