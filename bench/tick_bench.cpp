@@ -25,7 +25,7 @@ double thread_cpu_s()
     return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
 }
 
-} // namespace
+}  // namespace
 
 Chosen parse_command_line(int argc, char** argv, const char* program, const char* usage,
                           const std::vector<IntFlag>& flags, const std::vector<std::string>& variants)
