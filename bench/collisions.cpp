@@ -16,14 +16,11 @@
 #include "models/collision_watch.hpp"
 #include "models/kinematics.hpp"
 #include "models/world.hpp"
+#include "tick_bench.hpp"
 
-#include <time.h>
-
-#include <algorithm>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,29 +32,18 @@ using namespace rigsim;
 using namespace rigsim::models;
 
 enum class Variant { Bare, Still, One, All };
-constexpr Variant kVariants[] = {Variant::Bare, Variant::Still, Variant::One, Variant::All};
+const std::vector<std::string> kVariantNames = {"bare", "still", "one", "all"};
 
 const char* name(Variant v)
 {
-    switch (v) {
-    case Variant::Bare:
-        return "bare";
-    case Variant::Still:
-        return "still";
-    case Variant::One:
-        return "one";
-    case Variant::All:
-        return "all";
-    }
-    return "?";
+    return kVariantNames[static_cast<std::size_t>(v)].c_str();
 }
 
-double thread_cpu_ns()
-{
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e9 + static_cast<double>(t.tv_nsec);
-}
+constexpr const char* kUsage =
+    "usage: rigsim_bench_collisions [--stages N] [--ticks N] [--blocks N]\n"
+    "  --stages N   stages side by side, each a box, every two a pair (default 20)\n"
+    "  --ticks N    ticks per block and variant (default 5000)\n"
+    "  --blocks N   alternating blocks per variant (default 5)\n";
 
 /// One world: the stages, and the watch unless bare.
 struct Rig {
@@ -114,56 +100,41 @@ int run(int argc, char** argv)
     int stages = 20;
     std::int64_t ticks = 5000;
     int blocks = 5;
-    for (int i = 1; i < argc; ++i) {
-        const bool has_value = i + 1 < argc;
-        if (!std::strcmp(argv[i], "--stages") && has_value)
-            stages = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--ticks") && has_value)
-            ticks = std::atoll(argv[++i]);
-        else if (!std::strcmp(argv[i], "--blocks") && has_value)
-            blocks = std::atoi(argv[++i]);
-        else {
-            std::fprintf(stderr, "usage: rigsim_bench_collisions [--stages N] [--ticks N] [--blocks N]\n");
-            return 2;
-        }
-    }
-    if (stages < 2 || ticks < 1 || blocks < 1) {
-        std::fprintf(stderr, "rigsim_bench_collisions: --stages >= 2, --ticks and --blocks >= 1\n");
-        return 2;
-    }
+    rigsim::bench::parse_command_line(argc, argv, "rigsim_bench_collisions", kUsage,
+                                      {{"--stages", 2, 100'000, [&](long n) { stages = static_cast<int>(n); }},
+                                       {"--ticks", 1, 100'000'000, [&](long n) { ticks = n; }},
+                                       {"--blocks", 1, 1000, [&](long n) { blocks = static_cast<int>(n); }}},
+                                      {});
     std::vector<std::unique_ptr<Rig>> rigs;
-    for (const Variant v : kVariants)
-        rigs.push_back(std::make_unique<Rig>(stages, v));
-    std::vector<std::vector<double>> ns_per_tick(std::size(kVariants));
-    for (int b = 0; b < blocks; ++b)
-        for (std::size_t k = 0; k < rigs.size(); ++k) {
-            const double t0 = thread_cpu_ns();
-            run_ticks(*rigs[k], ticks);
-            ns_per_tick[k].push_back((thread_cpu_ns() - t0) / static_cast<double>(ticks));
-        }
+    std::vector<std::function<void()>> block;
+    for (std::size_t k = 0; k < kVariantNames.size(); ++k) {
+        rigs.push_back(std::make_unique<Rig>(stages, static_cast<Variant>(k)));
+        block.push_back([r = rigs.back().get(), ticks] { run_ticks(*r, ticks); });
+    }
+    const std::vector<rigsim::bench::BlockTimes> cpu = rigsim::bench::run_alternating(blocks, block);
     int status = 0;
     const auto pairs = static_cast<std::uint64_t>(stages) * static_cast<std::uint64_t>(stages - 1) / 2;
     std::printf("%d stages, %llu pairs, %d blocks of %lld ticks\n", stages, static_cast<unsigned long long>(pairs),
                 blocks, static_cast<long long>(ticks));
     double bare = 0;
     for (std::size_t k = 0; k < rigs.size(); ++k) {
-        auto& v = ns_per_tick[k];
-        std::sort(v.begin(), v.end());
-        const double median = v[v.size() / 2];
-        if (kVariants[k] == Variant::Bare)
+        const auto variant = static_cast<Variant>(k);
+        const double median = cpu[k].median() / static_cast<double>(ticks) * 1e9;   // ns per tick
+        const double min = cpu[k].min() / static_cast<double>(ticks) * 1e9;
+        if (variant == Variant::Bare)
             bare = median;
         const Rig& r = *rigs[k];
-        const std::uint64_t expected = kVariants[k] == Variant::Bare    ? 0
-                                       : kVariants[k] == Variant::Still ? 1
-                                                                        : 1 + static_cast<std::uint64_t>(ticks) * blocks;
+        const std::uint64_t expected = variant == Variant::Bare    ? 0
+                                       : variant == Variant::Still ? 1
+                                                                   : 1 + static_cast<std::uint64_t>(ticks) * blocks;
         const std::uint64_t checks = r.watch ? r.watch->checks() : 0;
         if (checks != expected) {
-            std::fprintf(stderr, "%s: %llu checks, expected %llu\n", name(kVariants[k]),
+            std::fprintf(stderr, "%s: %llu checks, expected %llu\n", name(variant),
                          static_cast<unsigned long long>(checks), static_cast<unsigned long long>(expected));
             status = 1;
         }
         std::printf("%-6s median %9.3f us/tick  min %9.3f  over bare %9.3f us = %6.2f %% of the 1 ms tick\n",
-                    name(kVariants[k]), median / 1e3, v.front() / 1e3, (median - bare) / 1e3,
+                    name(variant), median / 1e3, min / 1e3, (median - bare) / 1e3,
                     (median - bare) / 1e4);
     }
     return status;

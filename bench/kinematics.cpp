@@ -15,15 +15,12 @@
  * 2 on bad flags. See bench/README.md.
  */
 #include "models/kinematics.hpp"
+#include "tick_bench.hpp"
 
-#include <time.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,25 +38,14 @@ constexpr std::int64_t kProfileTicks = 4000;   ///< one out-and-back move: 4 s a
 struct Options {
     std::int64_t ticks = 20000;   ///< ticks per block
     int blocks = 10;
-    std::string only;             ///< run one variant alone (callgrind)
 };
 
 enum class Variant { Bare, Still, One, All };
-constexpr Variant kVariants[] = {Variant::Bare, Variant::Still, Variant::One, Variant::All};
+const std::vector<std::string> kVariantNames = {"bare", "still", "one", "all"};
 
 const char* name(Variant v)
 {
-    switch (v) {
-    case Variant::Bare:
-        return "bare";
-    case Variant::Still:
-        return "still";
-    case Variant::One:
-        return "one";
-    case Variant::All:
-        return "all";
-    }
-    return "?";
+    return kVariantNames[static_cast<std::size_t>(v)].c_str();
 }
 
 /// Frames update() recomputes per tick in each variant.
@@ -203,82 +189,34 @@ bool poses_match(Setup& s)
     return true;
 }
 
-double thread_cpu_s()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + ts.tv_nsec * 1e-9;
-}
-
-[[noreturn]] void usage(const char* why)
-{
-    if (why)
-        std::fprintf(stderr, "rigsim_bench_kinematics: %s\n", why);
-    std::fprintf(why ? stderr : stdout,
-                 "usage: rigsim_bench_kinematics [--ticks N] [--blocks N] [--only bare|still|one|all]\n"
-                 "  --ticks N    ticks per block and variant (default 20000)\n"
-                 "  --blocks N   alternating blocks per variant (default 10)\n"
-                 "  --only V     run one variant only (for callgrind)\n");
-    std::exit(why ? 2 : 0);
-}
-
-long number(const char* flag, const char* value, long lo, long hi)
-{
-    char* end = nullptr;
-    const long n = std::strtol(value, &end, 10);
-    if (!*value || *end || n < lo || n > hi)
-        usage((std::string(flag) + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi)).c_str());
-    return n;
-}
-
-Options parse(int argc, char** argv)
-{
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string flag = argv[i];
-        if (flag == "-h" || flag == "--help")
-            usage(nullptr);
-        if (i + 1 >= argc)
-            usage(("missing value or unknown flag: " + flag).c_str());
-        const char* v = argv[++i];
-        bool known_variant = false;
-        for (Variant variant : kVariants)
-            known_variant = known_variant || !std::strcmp(v, name(variant));
-        if (flag == "--ticks")
-            o.ticks = number("--ticks", v, 1, 100'000'000);
-        else if (flag == "--blocks")
-            o.blocks = static_cast<int>(number("--blocks", v, 1, 1000));
-        else if (flag == "--only" && known_variant)
-            o.only = v;
-        else
-            usage(("unknown flag or value: " + flag + " " + v).c_str());
-    }
-    return o;
-}
+constexpr const char* kUsage =
+    "usage: rigsim_bench_kinematics [--ticks N] [--blocks N] [--only bare|still|one|all]\n"
+    "  --ticks N    ticks per block and variant (default 20000)\n"
+    "  --blocks N   alternating blocks per variant (default 10)\n"
+    "  --only V     run one variant only (for callgrind)\n";
 
 } // namespace kinematics_bench
 
 int main(int argc, char** argv)
 {
     using namespace kinematics_bench;
-    const Options o = parse(argc, argv);
+    using namespace rigsim::bench;
+    Options o;
     std::vector<Variant> variants;
-    for (Variant v : kVariants)
-        if (o.only.empty() || o.only == name(v))
-            variants.push_back(v);
+    for (std::size_t i : parse_command_line(argc, argv, "rigsim_bench_kinematics", kUsage,
+                                            {{"--ticks", 1, 100'000'000, [&](long n) { o.ticks = n; }},
+                                             {"--blocks", 1, 1000, [&](long n) { o.blocks = static_cast<int>(n); }}},
+                                            kVariantNames))
+        variants.push_back(static_cast<Variant>(i));
 
     std::vector<std::unique_ptr<Setup>> setups;
+    std::vector<std::function<void()>> blocks;
     for (Variant v : variants) {
         setups.push_back(std::make_unique<Setup>(v));
         setups.back()->kinematics.update();   // the first update computes every frame
+        blocks.push_back([s = setups.back().get(), &o] { run_ticks(*s, o.ticks); });
     }
-    std::vector<std::vector<double>> cpu(variants.size());   // s per block
-    for (int b = 0; b < o.blocks; ++b)
-        for (std::size_t i = 0; i < variants.size(); ++i) {
-            const double before = thread_cpu_s();
-            run_ticks(*setups[i], o.ticks);
-            cpu[i].push_back(thread_cpu_s() - before);
-        }
+    const std::vector<BlockTimes> cpu = run_alternating(o.blocks, blocks);
 
     int rc = 0;
     for (auto& s : setups) {
@@ -299,21 +237,20 @@ int main(int argc, char** argv)
                 "%d blocks of %lld ticks per variant\n",
                 kChains, kDepth, kChains, setups.front()->kinematics.size(), kChains, o.blocks,
                 static_cast<long long>(o.ticks));
-    std::printf("  %-7s %12s %14s %14s %12s %14s\n", "variant", "recomputed", "ns/tick (med)", "ns/tick (min)",
-                "- bare (ns)", "% of 1 ms tick");
+    const Table table({{"variant", 7}, {"recomputed", 12}, {"ns/tick (med)", 14}, {"ns/tick (min)", 14},
+                       {"- bare (ns)", 12}, {"% of 1 ms tick", 14}});
+    table.header();
     double bare_ns = -1;
     for (std::size_t i = 0; i < variants.size(); ++i) {
-        std::vector<double> c = cpu[i];
-        std::sort(c.begin(), c.end());
-        const double med_ns = c[c.size() / 2] / static_cast<double>(o.ticks) * 1e9;
-        const double min_ns = c.front() / static_cast<double>(o.ticks) * 1e9;
+        const double med_ns = cpu[i].median() / static_cast<double>(o.ticks) * 1e9;
+        const double min_ns = cpu[i].min() / static_cast<double>(o.ticks) * 1e9;
         if (variants[i] == Variant::Bare)
             bare_ns = med_ns;
         const std::string over = bare_ns < 0 || variants[i] == Variant::Bare
                                      ? std::string("-")
                                      : std::to_string(std::lround(med_ns - bare_ns));
-        std::printf("  %-7s %12zu %14.1f %14.1f %12s %14.3f\n", name(variants[i]), expected_recomputed(variants[i]),
-                    med_ns, min_ns, over.c_str(), med_ns / 1e6 * 100);
+        table.row({name(variants[i]), std::to_string(expected_recomputed(variants[i])), fixed(med_ns, 1),
+                   fixed(min_ns, 1), over, fixed(med_ns / 1e6 * 100, 3)});
     }
     std::printf("  (CPU of this thread per tick, median and minimum over the blocks; recomputed: frames per tick)\n");
     return rc;

@@ -22,18 +22,16 @@
 #include "emulator/apt/config.hpp"
 #include "models/clock.hpp"
 #include "models/world.hpp"
+#include "tick_bench.hpp"
 
 #include <spdlog/logger.h>
 #include <spdlog/sinks/null_sink.h>
-
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -47,25 +45,15 @@ using rigsim::Ticks;
 struct Options {
     double seconds = 20;   ///< simulated seconds per block
     int blocks = 5;
-    std::string only;      ///< run one variant alone (callgrind)
+    bool only = false;     ///< one variant alone (callgrind): no output report
 };
 
 enum class Variant { Clock, Idle, Running, Skip };
-constexpr Variant kVariants[] = {Variant::Clock, Variant::Idle, Variant::Running, Variant::Skip};
+const std::vector<std::string> kVariantNames = {"clock", "idle", "running", "skip"};
 
 const char* name(Variant v)
 {
-    switch (v) {
-    case Variant::Clock:
-        return "clock";
-    case Variant::Idle:
-        return "idle";
-    case Variant::Running:
-        return "running";
-    case Variant::Skip:
-        return "skip";
-    }
-    return "?";
+    return kVariantNames[static_cast<std::size_t>(v)].c_str();
 }
 
 /// Due every tick, does nothing: the bare clock, and what keeps the clock visiting every tick.
@@ -79,47 +67,22 @@ private:
     std::int64_t ticks_ = 0;
 };
 
-double thread_cpu_s()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + ts.tv_nsec * 1e-9;
-}
+constexpr const char* kUsage =
+    "usage: rigsim_bench_lut_rig [--seconds S] [--blocks N] [--only clock|idle|running|skip]\n"
+    "  --seconds S   simulated seconds per block and variant (default 20)\n"
+    "  --blocks N    alternating blocks per variant (default 5)\n"
+    "  --only V      run one variant only (for callgrind)\n";
 
-[[noreturn]] void usage(const char* why)
-{
-    if (why)
-        std::fprintf(stderr, "rigsim_bench_lut_rig: %s\n", why);
-    std::fprintf(why ? stderr : stdout,
-                 "usage: rigsim_bench_lut_rig [--seconds S] [--blocks N] [--only clock|idle|running|skip]\n"
-                 "  --seconds S   simulated seconds per block and variant (default 20)\n"
-                 "  --blocks N    alternating blocks per variant (default 5)\n"
-                 "  --only V      run one variant only (for callgrind)\n");
-    std::exit(why ? 2 : 0);
-}
-
-Options parse(int argc, char** argv)
+Options parse(int argc, char** argv, std::vector<Variant>& variants)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string flag = argv[i];
-        if (flag == "-h" || flag == "--help")
-            usage(nullptr);
-        if (i + 1 >= argc)
-            usage(("missing value or unknown flag: " + flag).c_str());
-        const std::string v = argv[++i];
-        char* end = nullptr;
-        const long n = std::strtol(v.c_str(), &end, 10);
-        const bool number = !v.empty() && !*end;
-        if (flag == "--seconds" && number && n >= 1 && n <= 100000)
-            o.seconds = static_cast<double>(n);
-        else if (flag == "--blocks" && number && n >= 1 && n <= 1000)
-            o.blocks = static_cast<int>(n);
-        else if (flag == "--only" && (v == "clock" || v == "idle" || v == "running" || v == "skip"))
-            o.only = v;
-        else
-            usage(("unknown flag or value: " + flag + " " + v).c_str());
-    }
+    for (std::size_t i : rigsim::bench::parse_command_line(
+             argc, argv, "rigsim_bench_lut_rig", kUsage,
+             {{"--seconds", 1, 100000, [&](long n) { o.seconds = static_cast<double>(n); }},
+              {"--blocks", 1, 1000, [&](long n) { o.blocks = static_cast<int>(n); }}},
+             kVariantNames))
+        variants.push_back(static_cast<Variant>(i));
+    o.only = variants.size() == 1;
     return o;
 }
 
@@ -306,23 +269,18 @@ bool report_rendering()
 
 int main(int argc, char** argv)
 {
-    const Options o = parse(argc, argv);
-    const Ticks ticks = static_cast<Ticks>(o.seconds * Clock::kDefaultTickHz);
+    using rigsim::bench::fixed;
     std::vector<Variant> variants;
-    for (Variant v : kVariants)
-        if (o.only.empty() || o.only == name(v))
-            variants.push_back(v);
+    const Options o = parse(argc, argv, variants);
+    const Ticks ticks = static_cast<Ticks>(o.seconds * Clock::kDefaultTickHz);
 
     std::vector<std::unique_ptr<Rig>> rigs;
-    for (Variant v : variants)
+    std::vector<std::function<void()>> blocks;
+    for (Variant v : variants) {
         rigs.push_back(std::make_unique<Rig>(v));
-    std::vector<std::vector<double>> cpu(variants.size());   // s per block
-    for (int b = 0; b < o.blocks; ++b)
-        for (std::size_t i = 0; i < variants.size(); ++i) {
-            const double before = thread_cpu_s();
-            rigs[i]->clock.advance(ticks);
-            cpu[i].push_back(thread_cpu_s() - before);
-        }
+        blocks.push_back([r = rigs.back().get(), ticks] { r->clock.advance(ticks); });
+    }
+    const std::vector<rigsim::bench::BlockTimes> cpu = rigsim::bench::run_alternating(o.blocks, blocks);
 
     bool ok = true;
     for (std::size_t i = 0; i < variants.size(); ++i)
@@ -332,13 +290,12 @@ int main(int argc, char** argv)
     std::printf("piezo rig: BPC303 (3 bays, 8000-sample LUT at 1000 us) + TPZ001 (513-sample LUT at 250 us), "
                 "continuous, DelayTime 1; tick 1000 Hz; %d blocks of %.0f simulated s per variant\n",
                 o.blocks, o.seconds);
-    std::printf("  %-8s %14s %14s %16s %12s %12s %10s\n", "variant", "ns/tick (med)", "ns/tick (min)",
-                "us/simulated s", "- clock", "- idle", "% of core");
+    const rigsim::bench::Table table({{"variant", 8}, {"ns/tick (med)", 14}, {"ns/tick (min)", 14},
+                                      {"us/simulated s", 16}, {"- clock", 12}, {"- idle", 12}, {"% of core", 10}});
+    table.header();
     double clock_med = -1, idle_med = -1;
     for (std::size_t i = 0; i < variants.size(); ++i) {
-        std::vector<double> c = cpu[i];
-        std::sort(c.begin(), c.end());
-        const double med = c[c.size() / 2];
+        const double med = cpu[i].median();
         if (variants[i] == Variant::Clock)
             clock_med = med;
         if (variants[i] == Variant::Idle)
@@ -346,17 +303,16 @@ int main(int argc, char** argv)
         const auto over = [&](double base) {
             return base < 0 ? std::string("-") : std::to_string(std::lround((med - base) / o.seconds * 1e6));
         };
-        std::printf("  %-8s %14.1f %14.1f %16.1f %12s %12s %10.3f\n", name(variants[i]), med / ticks * 1e9,
-                    c.front() / ticks * 1e9, med / o.seconds * 1e6,
-                    variants[i] == Variant::Clock ? "-" : over(clock_med).c_str(),
-                    variants[i] == Variant::Running ? over(idle_med).c_str() : "-", med / o.seconds * 100);
+        table.row({name(variants[i]), fixed(med / ticks * 1e9, 1), fixed(cpu[i].min() / ticks * 1e9, 1),
+                   fixed(med / o.seconds * 1e6, 1), variants[i] == Variant::Clock ? "-" : over(clock_med),
+                   variants[i] == Variant::Running ? over(idle_med) : "-", fixed(med / o.seconds * 100, 3)});
         if (variants[i] == Variant::Running && idle_med > 0 && clock_med >= 0)
             std::printf("  %-8s running/idle %.2fx, (running - clock)/(idle - clock) %.2fx\n", "", med / idle_med,
                         (med - clock_med) / std::max(idle_med - clock_med, 1e-12));
     }
     std::printf("  (CPU of this thread; '- clock', '- idle': us per simulated second above that baseline;\n"
                 "   '%% of core': the variant's CPU per simulated second at time scale 1)\n");
-    if (o.only.empty())
+    if (!o.only)
         ok = report_rendering() && ok;
     return ok ? 0 : 1;
 }

@@ -10,15 +10,13 @@
  */
 #include "models/clock.hpp"
 #include "models/lut_player.hpp"
+#include "tick_bench.hpp"
 
-#include <time.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,23 +34,14 @@ struct Options {
     int samples = 8000;
     std::uint32_t base_us = 1000;
     std::uint32_t tick_hz = 1000;
-    std::string only;       ///< run one variant alone (callgrind)
 };
 
 enum class Variant { Clock, Idle, Running };
-constexpr Variant kVariants[] = {Variant::Clock, Variant::Idle, Variant::Running};
+const std::vector<std::string> kVariantNames = {"clock", "idle", "running"};
 
 const char* name(Variant v)
 {
-    switch (v) {
-    case Variant::Clock:
-        return "clock";
-    case Variant::Idle:
-        return "idle";
-    case Variant::Running:
-        return "running";
-    }
-    return "?";
+    return kVariantNames[static_cast<std::size_t>(v)].c_str();
 }
 
 /// Reads every player each tick, as a piezo module's tick() does while a LUT runs.
@@ -73,66 +62,30 @@ private:
     std::int64_t sum_ = 0;
 };
 
-double thread_cpu_s()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + ts.tv_nsec * 1e-9;
-}
+constexpr const char* kUsage =
+    "usage: rigsim_bench_lut [--seconds S] [--blocks N] [--players N] [--samples N]\n"
+    "                        [--base-us B] [--tick-hz HZ] [--only clock|idle|running]\n"
+    "  --seconds S   simulated seconds per block and variant (default 100)\n"
+    "  --blocks N    alternating blocks per variant (default 10)\n"
+    "  --players N   LUT players read every tick (default 5)\n"
+    "  --samples N   table length and CycleLength, 1..8000 (default 8000)\n"
+    "  --base-us B   base sample interval in us, DelayTime 1 (default 1000: BPC; TPZ 250)\n"
+    "  --tick-hz HZ  clock rate (default 1000)\n"
+    "  --only V      run one variant only (for callgrind)\n";
 
-[[noreturn]] void usage(const char* why)
-{
-    if (why)
-        std::fprintf(stderr, "rigsim_bench_lut: %s\n", why);
-    std::fprintf(why ? stderr : stdout,
-                 "usage: rigsim_bench_lut [--seconds S] [--blocks N] [--players N] [--samples N]\n"
-                 "                        [--base-us B] [--tick-hz HZ] [--only clock|idle|running]\n"
-                 "  --seconds S   simulated seconds per block and variant (default 100)\n"
-                 "  --blocks N    alternating blocks per variant (default 10)\n"
-                 "  --players N   LUT players read every tick (default 5)\n"
-                 "  --samples N   table length and CycleLength, 1..8000 (default 8000)\n"
-                 "  --base-us B   base sample interval in us, DelayTime 1 (default 1000: BPC; TPZ 250)\n"
-                 "  --tick-hz HZ  clock rate (default 1000)\n"
-                 "  --only V      run one variant only (for callgrind)\n");
-    std::exit(why ? 2 : 0);
-}
-
-long number(const char* flag, const char* value, long lo, long hi)
-{
-    char* end = nullptr;
-    const long n = std::strtol(value, &end, 10);
-    if (!*value || *end || n < lo || n > hi)
-        usage((std::string(flag) + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi)).c_str());
-    return n;
-}
-
-Options parse(int argc, char** argv)
+Options parse(int argc, char** argv, std::vector<Variant>& variants)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string flag = argv[i];
-        if (flag == "-h" || flag == "--help")
-            usage(nullptr);
-        if (i + 1 >= argc)
-            usage(("missing value or unknown flag: " + flag).c_str());
-        const char* v = argv[++i];
-        if (flag == "--seconds")
-            o.seconds = static_cast<double>(number("--seconds", v, 1, 100000));
-        else if (flag == "--blocks")
-            o.blocks = static_cast<int>(number("--blocks", v, 1, 1000));
-        else if (flag == "--players")
-            o.players = static_cast<int>(number("--players", v, 1, 1000));
-        else if (flag == "--samples")
-            o.samples = static_cast<int>(number("--samples", v, 1, 8000));
-        else if (flag == "--base-us")
-            o.base_us = static_cast<std::uint32_t>(number("--base-us", v, 1, 1000000));
-        else if (flag == "--tick-hz")
-            o.tick_hz = static_cast<std::uint32_t>(number("--tick-hz", v, 1, 1000000));
-        else if (flag == "--only" && (!std::strcmp(v, "clock") || !std::strcmp(v, "idle") || !std::strcmp(v, "running")))
-            o.only = v;
-        else
-            usage(("unknown flag or value: " + flag + " " + v).c_str());
-    }
+    for (std::size_t i : rigsim::bench::parse_command_line(
+             argc, argv, "rigsim_bench_lut", kUsage,
+             {{"--seconds", 1, 100000, [&](long n) { o.seconds = static_cast<double>(n); }},
+              {"--blocks", 1, 1000, [&](long n) { o.blocks = static_cast<int>(n); }},
+              {"--players", 1, 1000, [&](long n) { o.players = static_cast<int>(n); }},
+              {"--samples", 1, 8000, [&](long n) { o.samples = static_cast<int>(n); }},
+              {"--base-us", 1, 1000000, [&](long n) { o.base_us = static_cast<std::uint32_t>(n); }},
+              {"--tick-hz", 1, 1000000, [&](long n) { o.tick_hz = static_cast<std::uint32_t>(n); }}},
+             kVariantNames))
+        variants.push_back(static_cast<Variant>(i));
     return o;
 }
 
@@ -185,23 +138,18 @@ std::int64_t expected_sum(const Options& o, const Setup& s, Ticks ticks)
 
 int main(int argc, char** argv)
 {
-    const Options o = parse(argc, argv);
-    const Ticks ticks = static_cast<Ticks>(o.seconds * o.tick_hz);
+    using rigsim::bench::BlockTimes;
     std::vector<Variant> variants;
-    for (Variant v : kVariants)
-        if (o.only.empty() || o.only == name(v))
-            variants.push_back(v);
+    const Options o = parse(argc, argv, variants);
+    const Ticks ticks = static_cast<Ticks>(o.seconds * o.tick_hz);
 
     std::vector<std::unique_ptr<Setup>> setups;
-    for (Variant v : variants)
+    std::vector<std::function<void()>> blocks;
+    for (Variant v : variants) {
         setups.push_back(std::make_unique<Setup>(o, v));
-    std::vector<std::vector<double>> cpu(variants.size());   // s per block
-    for (int b = 0; b < o.blocks; ++b)
-        for (std::size_t i = 0; i < variants.size(); ++i) {
-            const double before = thread_cpu_s();
-            setups[i]->clock.advance(ticks);
-            cpu[i].push_back(thread_cpu_s() - before);
-        }
+        blocks.push_back([s = setups.back().get(), ticks] { s->clock.advance(ticks); });
+    }
+    const std::vector<BlockTimes> cpu = rigsim::bench::run_alternating(o.blocks, blocks);
 
     for (std::size_t i = 0; i < variants.size(); ++i)
         if (variants[i] == Variant::Running &&
@@ -213,24 +161,22 @@ int main(int argc, char** argv)
     std::printf("LUT players: %d x %d samples, %u us per sample, tick %u Hz; %d blocks of %.0f simulated s "
                 "per variant\n",
                 o.players, o.samples, o.base_us, o.tick_hz, o.blocks, o.seconds);
-    std::printf("  %-9s %14s %14s %16s %12s %12s\n", "variant", "ns/tick (med)", "ns/tick (min)", "us/simulated s",
-                "- clock", "- idle");
-    std::vector<double> med(variants.size());
+    const rigsim::bench::Table table({{"variant", 9}, {"ns/tick (med)", 14}, {"ns/tick (min)", 14},
+                                      {"us/simulated s", 16}, {"- clock", 12}, {"- idle", 12}});
+    table.header();
     double clock_med = -1, idle_med = -1;
     for (std::size_t i = 0; i < variants.size(); ++i) {
-        std::vector<double> c = cpu[i];
-        std::sort(c.begin(), c.end());
-        med[i] = c[c.size() / 2];
+        const double med = cpu[i].median();
         if (variants[i] == Variant::Clock)
-            clock_med = med[i];
+            clock_med = med;
         if (variants[i] == Variant::Idle)
-            idle_med = med[i];
+            idle_med = med;
         const auto over = [&](double base) {
-            return base < 0 ? std::string("-") : std::to_string(std::lround((med[i] - base) / o.seconds * 1e6));
+            return base < 0 ? std::string("-") : std::to_string(std::lround((med - base) / o.seconds * 1e6));
         };
-        std::printf("  %-9s %14.1f %14.1f %16.1f %12s %12s\n", name(variants[i]), med[i] / ticks * 1e9,
-                    c.front() / ticks * 1e9, med[i] / o.seconds * 1e6, over(clock_med).c_str(),
-                    variants[i] == Variant::Running ? over(idle_med).c_str() : "-");
+        table.row({name(variants[i]), rigsim::bench::fixed(med / ticks * 1e9, 1),
+                   rigsim::bench::fixed(cpu[i].min() / ticks * 1e9, 1), rigsim::bench::fixed(med / o.seconds * 1e6, 1),
+                   over(clock_med), variants[i] == Variant::Running ? over(idle_med) : "-"});
     }
     std::printf("  (CPU of this thread; the last two columns: us per simulated second above each baseline)\n");
     return 0;
