@@ -52,6 +52,20 @@ std::string quote(std::string_view s)
     return dump(json(std::string(s)));
 }
 
+bool is_name(const json& value)
+{
+    if (!value.is_string())
+        return false;
+    const auto& s = value.get_ref<const std::string&>();
+    if (s.empty() || s.size() > kMaxNameLength)
+        return false;
+    for (char c : s)
+        if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.'
+              || c == '-'))
+            return false;
+    return true;
+}
+
 std::string describe(const json& value)
 {
     if (value.is_array()) {

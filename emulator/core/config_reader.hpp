@@ -28,6 +28,12 @@ std::string quote(std::string_view s);
 /// A value for "got ..." in a message: scalars as JSON, containers by kind and size.
 std::string describe(const nlohmann::json& value);
 
+/// Longest name of a device, frame or tool point.
+constexpr std::size_t kMaxNameLength = 64;
+/// Whether `value` is a name: a string of 1..kMaxNameLength characters of [A-Za-z0-9_.-] (safe in
+/// a file name, a logger name and a URL path segment).
+bool is_name(const nlohmann::json& value);
+
 /// Throw the one error format: `<source>: <pointer>: <what>`; the root shows as "/".
 [[noreturn]] void fail(std::string_view source, const std::string& pointer, const std::string& what);
 

@@ -16,7 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::size_t kMaxNameLength = 64;
 /// A unit quaternion's norm may be off by this much (rounding in the file).
 constexpr double kQuaternionTolerance = 1e-6;
 /// Lengths (offsets, joint points, box corners) are at most 1 km in magnitude, so that poses
@@ -33,12 +32,6 @@ constexpr std::array<std::string_view, 1> kFixedJointKeys{"type"};
 constexpr std::array<std::string_view, 2> kPrismaticJointKeys{"type", "axis"};
 constexpr std::array<std::string_view, 3> kRevoluteJointKeys{"type", "axis", "point_mm"};
 constexpr std::array<std::string_view, 3> kGoniometerJointKeys{"type", "axis", "centre_mm"};
-
-bool is_name_char(char c)
-{
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '.' || c == '-';
-}
 
 std::string vector_text(const double* v, std::size_t n)
 {
@@ -136,14 +129,7 @@ private:
 
     std::string load_name(const json& v, const std::string& pointer) const
     {
-        bool ok = v.is_string();
-        if (ok) {
-            const auto& s = v.get_ref<const std::string&>();
-            ok = !s.empty() && s.size() <= kMaxNameLength;
-            for (char c : s)
-                ok = ok && is_name_char(c);
-        }
-        if (!ok)
+        if (!is_name(v))
             r_.fail(pointer, "expected a frame name of 1.." + std::to_string(kMaxNameLength) +
                                  " characters [A-Za-z0-9_.-], got " + describe(v));
         const auto& s = v.get_ref<const std::string&>();

@@ -24,7 +24,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::size_t kMaxNameLength = 64;
 /// A rig file larger than this is refused (the largest example is a few kB).
 constexpr std::size_t kMaxConfigBytes = 4 << 20;
 
@@ -35,12 +34,6 @@ constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
 constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
 
-/// [A-Za-z0-9_.-]: safe in a file name and a logger name.
-bool is_name_char(char c)
-{
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '.' || c == '-';
-}
 
 /// What kind of file a non-regular st_mode is, for messages.
 std::string file_kind(mode_t mode)
@@ -269,17 +262,12 @@ private:
 
     std::string load_name(const json& v, const std::string& pointer) const
     {
-        bool ok = v.is_string();
-        if (ok) {
-            const auto& s = v.get_ref<const std::string&>();
-            ok = !s.empty() && s.size() <= kMaxNameLength;
-            for (char c : s)
-                ok = ok && is_name_char(c);
-            // The name is a file name in the pty directory: "." and ".." are that directory
-            // and its parent.
-            if (s == "." || s == "..")
-                fail(pointer, "expected a device name, got " + quote(s) + " (\".\" and \"..\" name directories)");
-        }
+        const bool ok = is_name(v);
+        // The name is a file name in the pty directory: "." and ".." are that directory
+        // and its parent.
+        if (ok && (v == "." || v == ".."))
+            fail(pointer, "expected a device name, got " + quote(v.get<std::string>()) +
+                              " (\".\" and \"..\" name directories)");
         if (!ok)
             fail(pointer, "expected a name of 1.." + std::to_string(kMaxNameLength) +
                               " characters [A-Za-z0-9_.-], got " + describe(v));
