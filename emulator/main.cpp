@@ -322,6 +322,24 @@ std::string control_url(const rigsim::control::HttpServer& server)
 }
 
 /// Runs the rig until a shutdown signal; the exit status.
+/// Tell the user where everything listens: one line per device and the control URL on stdout, and
+/// the endpoints JSON file (--endpoints-json), which `endpoints_file` then owns (removed at exit).
+void announce_endpoints(const rigsim::Rig& rig, const std::string& url, const Options& opts, spdlog::logger& log,
+                        std::optional<OwnedFile>& endpoints_file)
+{
+    for (const auto& e : rig.endpoints())
+        std::cout << e.name << " (" << e.protocol << " " << e.model << "): tcp " << e.tcp << " pty " << e.pty << "\n";
+    if (!url.empty())
+        std::cout << "control: " << url << "\n";
+    std::cout.flush();
+    if (opts.endpoints_json) {
+        for (const auto& stale : rigsim::remove_stale_temporaries(*opts.endpoints_json))
+            log.info("removed {}, left by a daemon that was killed while writing it", stale);
+        rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig.endpoints(), url));
+        endpoints_file.emplace(*opts.endpoints_json);
+    }
+}
+
 int run(const rigsim::RigConfig& config, const Options& opts)
 {
     auto log = rigsim::make_logger("rigsimd", opts.rig.log_levels);
@@ -369,18 +387,7 @@ int run(const rigsim::RigConfig& config, const Options& opts)
             url = control_url(*control);
             log->info("control API on {}", url);
         }
-        for (const auto& e : rig->endpoints())
-            std::cout << e.name << " (" << e.protocol << " " << e.model << "): tcp "
-                      << e.tcp << " pty " << e.pty << "\n";
-        if (control)
-            std::cout << "control: " << url << "\n";
-        std::cout.flush();
-        if (opts.endpoints_json) {
-            for (const auto& stale : rigsim::remove_stale_temporaries(*opts.endpoints_json))
-                log->info("removed {}, left by a daemon that was killed while writing it", stale);
-            rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig->endpoints(), url));
-            endpoints_file.emplace(*opts.endpoints_json);
-        }
+        announce_endpoints(*rig, url, opts, *log, endpoints_file);
         log->info("rig running: {} device(s), tick {} Hz, time scale {}{}", rig->endpoints().size(),
                   config.tick_hz, opts.rig.time_scale, opts.rig.paused ? ", clock paused" : "");
         io.run();
