@@ -164,6 +164,20 @@ private:
     }
 };
 
+/// `v` as the hex of its 4 little-endian bytes.
+inline std::string le32(std::int32_t v)
+{
+    std::string d;
+    put_i32(d, v);
+    return hex(d);
+}
+
+/// MOVE_STOPPED / MOVE_COMPLETED / status update: the status dword (data offset 10).
+inline std::uint32_t status_of(const std::string& frame_hex)
+{
+    return get_u32(bytes(frame_hex), 16);
+}
+
 inline std::int32_t position_of(const std::string& reply_hex)
 {
     const auto b = bytes(reply_hex);

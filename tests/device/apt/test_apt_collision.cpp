@@ -15,19 +15,6 @@ using namespace rigsim::test;
 
 namespace {
 
-std::string le32(std::int32_t v)
-{
-    std::string d;
-    put_i32(d, v);
-    return hex(d);
-}
-
-/// MOVE_STOPPED / MOVE_COMPLETED / status update: the status dword (data offset 10).
-std::uint32_t status_of(const std::string& frame_hex)
-{
-    return get_u32(bytes(frame_hex), 16);
-}
-
 models::Axis& axis_of(AptHarness& h)
 {
     auto* axis = h.world().find_as<models::Axis>("cube/1");

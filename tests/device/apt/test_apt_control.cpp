@@ -20,19 +20,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string le32(std::int32_t v)
-{
-    std::string d;
-    put_i32(d, v);
-    return hex(d);
-}
-
-/// MOVE_STOPPED / MOVE_COMPLETED / status update: the status dword (data offset 10).
-std::uint32_t status_of(const std::string& frame_hex)
-{
-    return get_u32(bytes(frame_hex), 16);
-}
-
 json describe(AptHarness& h)
 {
     json out = json::object();

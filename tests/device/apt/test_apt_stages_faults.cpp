@@ -14,19 +14,6 @@ using namespace rigsim::test;
 
 namespace {
 
-std::string le32(std::int32_t v)
-{
-    std::string d;
-    put_i32(d, v);
-    return hex(d);
-}
-
-/// MOVE_STOPPED / MOVE_COMPLETED / status update: the status dword (data offset 10).
-std::uint32_t status_of(const std::string& frame_hex)
-{
-    return get_u32(bytes(frame_hex), 16);
-}
-
 // SET_LIMSWITCHPARAMS: CW (forward) switch ignored, CCW makes on contact, no soft limits.
 constexpr const char* kIgnoreForwardSwitch = "23 04 10 00 D0 01 01 00 01 00 02 00 00 00 00 00 00 00 00 00 01 00";
 
