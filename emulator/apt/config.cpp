@@ -361,7 +361,15 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
                                                       std::string(controller_names()) + "), got " +
                                                       (named ? quote(config.model) : std::string("nothing")));
     const auto& a = reader.require(device, pointer, "apt");
-    config.section = load_apt(reader, a, pointer_to(pointer, "apt"), *controller, config.model);
+    auto apt = load_apt(reader, a, pointer_to(pointer, "apt"), *controller, config.model);
+    if (config.firmware.empty())
+        config.firmware = firmware_name(apt.firmware);
+    const auto firmware = find_firmware(config.firmware);
+    if (!firmware)
+        reader.fail(pointer_to(pointer, "firmware"), "unknown APT firmware generation " + quote(config.firmware) +
+                                                         " (expected " + std::string(firmware_names()) + ")");
+    apt.firmware = *firmware;
+    config.section = std::move(apt);
 }
 
 void validate_rig(const ConfigReader& reader, const RigConfig& rig)

@@ -4,6 +4,7 @@
 // Plain data: the device's modules map it onto their models.
 
 #include "emulator/apt/catalogue.hpp"
+#include "emulator/apt/firmware.hpp"
 #include "emulator/core/rig_config.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -65,6 +66,8 @@ StageModel default_stage();
 /// "solenoid", a piezo controller "actuator" (a piezo rack "hardware_max_voltage_v" and a bay
 /// object per bay), a strain gauge reader "gauge"; the others keep their defaults.
 struct AptConfig {
+    /// The firmware generation (the device's "firmware"; the manual's by default).
+    Firmware firmware = Firmware::Issue3;
     /// A single unit's stage: a shipped stage (config/stages, by name) or the rig's stage object.
     StageModel stage = default_stage();
     std::vector<StageModel> bays;     ///< motor racks: the stage in bay 0, 1, ...

@@ -230,6 +230,7 @@ HttpReply ControlApi::get_device(const ControlledDevice& d)
     json state{{"name", d.endpoints.name},
                {"protocol", d.endpoints.protocol},
                {"model", d.endpoints.model},
+               {"firmware", d.endpoints.firmware},
                {"endpoints", {{"tcp", d.endpoints.tcp}, {"pty", d.endpoints.pty}}}};
     if (d.surface)
         d.surface->describe(state);
@@ -489,7 +490,8 @@ HttpReply ControlApi::get_rig()
     auto devices = json::array();
     for (const auto& d : devices_) {
         const auto& e = d.endpoints;
-        json entry{{"name", e.name}, {"protocol", e.protocol}, {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}};
+        json entry{{"name", e.name}, {"protocol", e.protocol}, {"model", e.model},
+                   {"firmware", e.firmware}, {"tcp", e.tcp}, {"pty", e.pty}};
         if (d.surface) {
             auto state = json::object();
             d.surface->describe(state);

@@ -162,7 +162,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         const auto ep = e.tcp->local_endpoint();
         endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
                                              tcp_address_text(client_address(ep.address()), ep.port()),
-                                             e.pty->symlink_path()});
+                                             e.pty->symlink_path(), dc.firmware});
         log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
                   e.pty->device_path());
     }

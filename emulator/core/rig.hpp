@@ -47,6 +47,7 @@ struct DeviceEndpoints {
     std::string model;
     std::string tcp;   ///< "127.0.0.1:40100", "[::1]:40100" (where a local client connects)
     std::string pty;   ///< symlink path
+    std::string firmware;   ///< the firmware generation the device follows (DeviceConfig::firmware)
 };
 
 /// A device as the control API steers it.

@@ -32,7 +32,8 @@ constexpr std::size_t kMaxConfigBytes = 4 << 20;
 constexpr std::array<std::string_view, 5> kRigKeys{"tick_hz", "devices", "control", "clock", "kinematics"};
 constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
-constexpr std::array<std::string_view, 6> kDeviceKeys{"name", "protocol", "model", "tcp_port", "pty", "faithful_timing"};
+constexpr std::array<std::string_view, 7> kDeviceKeys{"name",     "protocol", "model",          "firmware",
+                                                      "tcp_port", "pty",      "faithful_timing"};
 
 
 /// What kind of file a non-regular st_mode is, for messages.
@@ -223,6 +224,8 @@ private:
         d.protocol = family.name;
         if (const auto* m = find(v, "model"))
             d.model = get_string(*m, pointer_to(pointer, "model"));
+        if (const auto* f = find(v, "firmware"))
+            d.firmware = get_string(*f, pointer_to(pointer, "firmware"));
         if (const auto* p = find(v, "tcp_port")) {
             const auto port_pointer = pointer_to(pointer, "tcp_port");
             d.tcp_port = static_cast<std::uint16_t>(get_int(*p, port_pointer, 0, 65535));

@@ -23,6 +23,10 @@ struct DeviceConfig {
     std::string name;                 ///< unique; names the pty symlink and the logger
     std::string protocol;             ///< the family's name: "mcs", "apt"
     std::string model;                ///< controller model (the family's default when not given)
+    /// The firmware generation whose behaviour the device follows ("firmware"): empty in the
+    /// rig text means the family's default (the manual's version); the family's loader checks
+    /// the name and sets the default, so after loading it always names a generation.
+    std::string firmware;
     std::uint16_t tcp_port = 0;       ///< 0 = ephemeral
     std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
     /// Pace the pty's output at the controller's baud rate (MCS: CB, effective after R).

@@ -157,7 +157,15 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
 {
     if (config.model.empty())
         config.model = kDefaultMcsModel;
-    config.section = McsLoader{reader}.load_mcs(reader.require(device, pointer, "mcs"), pointer_to(pointer, "mcs"));
+    auto mcs = McsLoader{reader}.load_mcs(reader.require(device, pointer, "mcs"), pointer_to(pointer, "mcs"));
+    if (config.firmware.empty())
+        config.firmware = firmware_name(mcs.firmware);
+    const auto firmware = find_firmware(config.firmware);
+    if (!firmware)
+        reader.fail(pointer_to(pointer, "firmware"), "unknown MCS firmware generation " + quote(config.firmware) +
+                                                         " (expected " + std::string(firmware_names()) + ")");
+    mcs.firmware = *firmware;
+    config.section = std::move(mcs);
 }
 
 } // namespace rigsim::mcs

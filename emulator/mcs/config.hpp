@@ -3,6 +3,7 @@
 // structs with every default, and its loader (docs/config.md).
 
 #include "emulator/core/rig_config.hpp"
+#include "emulator/mcs/firmware.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -62,6 +63,8 @@ struct McsInterfaceVersion {
 
 /// An MCS controller (SmarAct, ASCII protocol).
 struct McsConfig {
+    /// The firmware generation (the device's "firmware"; the manual's by default).
+    Firmware firmware = Firmware::V1_2_44;
     std::uint32_t system_id = 1000;                ///< GSI answer
     McsInterfaceVersion interface_version;         ///< GIV answer ("interface_version": "1.2.44")
     std::vector<McsChannelConfig> channels;        ///< 1..255 channels

@@ -61,8 +61,8 @@ struct Fixture {
     Motion motion;
     Ticker ticker{io, clock, 1.0, Ticker::Start::Paused};
     ControlApi api{clock, ticker, [this] { return clock.next_wakeup() != kNever; },
-                   {DeviceEndpoints{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/rigsim/mcs0"},
-                    DeviceEndpoints{"tdc0", "apt", "TDC001", "127.0.0.1:40101", "/tmp/rigsim/tdc0"}}};
+                   {DeviceEndpoints{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/rigsim/mcs0", "1.2.44"},
+                    DeviceEndpoints{"tdc0", "apt", "TDC001", "127.0.0.1:40101", "/tmp/rigsim/tdc0", "issue-44.1"}}};
 };
 
 } // namespace
@@ -84,9 +84,10 @@ TEST_CASE("control api: GET /api/rig lists the devices and the clock", "[unit][c
     CHECK(status == 200);
     CHECK(body["clock"] == f.call("GET", "/api/clock").second);
     REQUIRE(body["devices"].size() == 2);
-    CHECK(body["devices"][0] == json{{"name", "mcs0"}, {"protocol", "mcs"}, {"model", "MCS-3D"},
-                                     {"tcp", "127.0.0.1:40100"}, {"pty", "/tmp/rigsim/mcs0"}});
+    CHECK(body["devices"][0] == json{{"name", "mcs0"},   {"protocol", "mcs"},        {"model", "MCS-3D"},
+                                     {"firmware", "1.2.44"}, {"tcp", "127.0.0.1:40100"}, {"pty", "/tmp/rigsim/mcs0"}});
     CHECK(body["devices"][1]["name"] == "tdc0");
+    CHECK(body["devices"][1]["firmware"] == "issue-44.1");
 }
 
 TEST_CASE("control api: POST /api/clock pauses, resumes and scales", "[unit][control]")

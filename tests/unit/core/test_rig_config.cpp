@@ -50,7 +50,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, tcp_port, pty, faithful_timing, mcs, apt)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, mcs, apt)";
 
 } // namespace
 
@@ -647,6 +647,36 @@ TEST_CASE("rig config: mcs interface_version is \"<high>.<low>.<update>\", defau
             CHECK(std::string(e.what()).rfind("rig.json: /devices/0/mcs/interface_version: expected a version \"<high>.<low>.<update>\" of three numbers 0..65535, got ", 0) == 0);
         }
     }
+}
+
+TEST_CASE("rig config: a device's firmware names a generation of its family, the manual's by default", "[unit][config]")
+{
+    const auto mcs = R"({"name":"m","protocol":"mcs","mcs":{"channels":[{}]}})";
+    const auto apt = R"({"name":"k","protocol":"apt","model":"KDC101","apt":{}})";
+    auto rig = json::parse(std::string(R"({"devices":[)") + mcs + "," + apt + "]}");
+    const auto dflt = parse_rig_config(rig.dump(), "rig.json");
+    CHECK(dflt.devices[0].firmware == "1.2.44");
+    CHECK(rigsim::mcs::config_of(dflt.devices[0]).firmware == rigsim::mcs::Firmware::V1_2_44);
+    CHECK(dflt.devices[1].firmware == "issue-3");
+    CHECK(rigsim::apt::config_of(dflt.devices[1]).firmware == rigsim::apt::Firmware::Issue3);
+
+    rig["devices"][1]["firmware"] = "issue-44.1";
+    const auto later = parse_rig_config(rig.dump(), "rig.json");
+    CHECK(later.devices[1].firmware == "issue-44.1");
+    CHECK(rigsim::apt::config_of(later.devices[1]).firmware == rigsim::apt::Firmware::Issue44_1);
+
+    rig["devices"][1]["firmware"] = "1.2.44";
+    CHECK(error_of(rig) == "rig.json: /devices/1/firmware: unknown APT firmware generation \"1.2.44\" "
+                           "(expected \"issue-3\", \"issue-44.1\")");
+    rig["devices"][1]["firmware"] = "issue-3";
+    rig["devices"][0]["firmware"] = "issue-3";
+    CHECK(error_of(rig).rfind("rig.json: /devices/0/firmware: unknown MCS firmware generation \"issue-3\" (expected "
+                              "\"1.2.44\"",
+                              0) == 0);
+    rig["devices"][0]["firmware"] = "";
+    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a non-empty string, got \"\"");
+    rig["devices"][0]["firmware"] = 3;
+    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a non-empty string, got 3");
 }
 
 TEST_CASE("rig config: drift_nm_per_s is a signed channel integer, 0 by default", "[unit][config]")
