@@ -15,6 +15,7 @@
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/codec.hpp"
+#include "emulator/apt/firmware.hpp"
 #include "emulator/core/control_surface.hpp"
 #include "models/clock.hpp"
 
@@ -51,6 +52,7 @@ struct UnitIdentity {
     const ControllerModel& model;
     std::uint32_t serial;
     std::size_t built_in_bays;     ///< a rack's bays with a card (its motherboard's channel count)
+    Firmware firmware = Firmware::Issue3;   ///< the generation the unit follows (AptConfig::firmware)
 };
 
 /// HW_GET_INFO (p. 21) of a unit or motherboard (no bay) or of a rack bay's card.
