@@ -51,6 +51,7 @@ struct UnitIdentity {
     const ControllerModel& model;
     std::uint32_t serial;
     std::size_t built_in_bays;     ///< a rack's bays with a card (its motherboard's channel count)
+    std::uint16_t stage_type = 0;  ///< HW_GET_INFO's later stage type word (catalogue.hpp dc_stage_type)
 };
 
 /// HW_GET_INFO (p. 21) of a unit or motherboard (no bay) or of a rack bay's card.
