@@ -15,6 +15,7 @@
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/codec.hpp"
+#include "emulator/apt/firmware.hpp"
 #include "emulator/core/control_surface.hpp"
 #include "models/clock.hpp"
 
@@ -51,6 +52,9 @@ struct UnitIdentity {
     const ControllerModel& model;
     std::uint32_t serial;
     std::size_t built_in_bays;     ///< a rack's bays with a card (its motherboard's channel count)
+    /// The firmware generation the unit follows (the rig's "firmware"): later messages and later
+    /// behaviour only under a later generation (docs/protocol/apt.md, "Firmware generations").
+    Firmware firmware = Firmware::Issue3;
     std::uint16_t stage_type = 0;  ///< HW_GET_INFO's later stage type word (catalogue.hpp dc_stage_type)
 };
 
