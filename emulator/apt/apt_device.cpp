@@ -87,10 +87,12 @@ private:
 
 AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      StateStore* store, EventBus* events)
-    : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)), model_(*find_controller(config.model)),
+    : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)),
+      model_(*find_controller(config.model, config_of(config).firmware)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       unit_{config.model, model_, serial_, std::max(rack_bays(), static_cast<std::size_t>(model_.max_bays)),
-            config_of(config).firmware},
+            config_of(config).firmware,
+            model_.reports_stage_type ? dc_stage_type(config_of(config).stage.name) : std::uint16_t{0}},
       store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
     wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_for_log(e.bytes, out); });

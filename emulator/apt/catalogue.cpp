@@ -3,6 +3,7 @@
 #include "emulator/apt/messages.hpp"
 
 #include <array>
+#include <utility>
 
 namespace rigsim::apt {
 namespace {
@@ -266,14 +267,79 @@ constexpr std::array<ControllerModel, 14> kControllers{
     rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")),
 };
 
+// ---- The later generation ("issue-44.1"; docs/protocol/apt.md, "Firmware generations") ----
+
+// The Trinamic-driven steppers (KST101, BSC20x; also TST101, K10CR1, LTS in pyLabLib's list):
+// 2048 microsteps per full step where the manual's (TST001, BSC10x) count 128, velocity
+// 53.68 APT units per microstep/s and acceleration 53.68 × 204.94e-6 per microstep/s²
+// (AlexShkarin/pyLabLib, pylablib/devices/Thorlabs/kinesis.py, KinesisMotor._calculate_scale
+// and _get_step_scale). The DC servo cubes keep T = 2048 / 6e6 s and the brushless racks
+// 102.4 µs there: the manual's figures.
+constexpr double kTrinamicVelocity = 53.68;
+constexpr double kTrinamicAcceleration = 53.68 * 204.94e-6;
+constexpr double kTrinamicMicrosteps = 2048.0 / 128.0;
+
+constexpr bool trinamic_stepper(std::string_view name)
+{
+    return name == "KST101" || name == "BSC203";
+}
+
+/// `c` as the later generation shapes it.
+constexpr ControllerModel later(ControllerModel c)
+{
+    c.firmware = Firmware::Issue44_1;
+    c.later_info_fields = true;
+    c.reports_stage_type = c.kind == UnitKind::Motor && c.motor == MotorKind::DcServo && !c.rack;
+    if (trinamic_stepper(c.name)) {
+        c.velocity_per_count_s = kTrinamicVelocity;
+        c.acceleration_per_count_s2 = kTrinamicAcceleration;
+        c.counts_per_stage_count = kTrinamicMicrosteps;
+    }
+    return c;
+}
+
+template <std::size_t N>
+constexpr std::array<ControllerModel, N> later_all(const std::array<ControllerModel, N>& manual)
+{
+    std::array<ControllerModel, N> out{};
+    for (std::size_t i = 0; i < N; ++i)
+        out[i] = later(manual[i]);
+    return out;
+}
+
+constexpr auto kLaterControllers = later_all(kControllers);
+
+// HW_GET_INFO's stage type word of a DC servo cube (pyLabLib's KinesisMotor._autodetect_stage
+// reads data bytes 76-77 of a KDC101/TDC001; yaq-project/thorlabs-apt-protocol parsing.py
+// hw_get_info reads the same byte as "stage_info"). The "B" actuators are the same motor and
+// encoder (34,304 counts/mm) as the Z812/Z825 of that table.
+constexpr std::pair<std::string_view, std::uint16_t> kDcStageTypes[]{
+    {"PRM1-Z8", 6}, {"MTS25-Z8", 7}, {"MTS50-Z8", 8}, {"Z825B", 9}, {"Z812B", 10},
+};
+
 } // namespace
 
-const ControllerModel* find_controller(std::string_view name)
+const ControllerModel* find_controller(std::string_view name, Firmware firmware)
 {
-    for (const auto& c : kControllers)
+    const auto& table = firmware == Firmware::Issue3 ? kControllers : kLaterControllers;
+    for (const auto& c : table)
         if (c.name == name)
             return &c;
     return nullptr;
+}
+
+StageModel driven_stage(const ControllerModel& controller, StageModel stage)
+{
+    stage.counts_per_mm *= controller.counts_per_stage_count;
+    return stage;
+}
+
+std::uint16_t dc_stage_type(std::string_view name)
+{
+    for (const auto& [stage, type] : kDcStageTypes)
+        if (stage == name)
+            return type;
+    return 0;
 }
 
 std::string_view controller_names()

@@ -3,6 +3,8 @@
 // Every field has a default; the catalogue (catalogue.cpp) sets each controller's fields by
 // name; the stages are files (config/stages/*.json, shipped_stages.hpp).
 
+#include "emulator/apt/firmware.hpp"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -26,9 +28,11 @@ struct MessageSet {
     bool contains(std::uint16_t id) const { return std::find(ids, ids + count, id) != ids + count; }
 };
 
-/// An APT controller model.
+/// An APT controller model, as a firmware generation shapes it (find_controller).
 struct ControllerModel {
     std::string_view name;          ///< e.g. "TDC001"
+    /// The generation this entry follows (docs/protocol/apt.md, "Firmware generations").
+    Firmware firmware = Firmware::Issue3;
     UnitKind kind = UnitKind::Motor;
     MessageSet takes;
     /// The host's "server alive" acknowledgement of status updates: MOT_ACK_DCSTATUSUPDATE
@@ -49,6 +53,14 @@ struct ControllerModel {
     /// per count/s²).
     double velocity_per_count_s = 0;
     double acceleration_per_count_s2 = 0;
+    /// Position counts per count of the stage (stage files count the manual's 128 microsteps
+    /// per full step; a later-generation stepper counts 2048: 16).
+    double counts_per_stage_count = 1;
+    /// HW_GET_INFO carries the later issue's fields (hardware version, modification state and
+    /// the stage type word at data offset 76) rather than the manual's 64 bytes of notes.
+    bool later_info_fields = false;
+    /// HW_GET_INFO stage type word: the DC servo cubes report the stage they were set up for.
+    bool reports_stage_type = false;
     /// Card-slot (rack) system: a motherboard at 0x11 and bays at 0x21 + n (section 4).
     bool rack = false;
     int max_bays = 1;
@@ -109,8 +121,13 @@ struct StageModel {
     bool angular() const { return kind != StageKind::Linear; }
 };
 
-/// The controller with this name, or nullptr.
-const ControllerModel* find_controller(std::string_view name);
+/// The controller with this name as firmware generation `firmware` shapes it, or nullptr.
+const ControllerModel* find_controller(std::string_view name, Firmware firmware = Firmware::Issue3);
+/// `stage` as `controller` counts it: counts_per_mm × ControllerModel::counts_per_stage_count.
+StageModel driven_stage(const ControllerModel& controller, StageModel stage);
+/// HW_GET_INFO's stage type word (later issue) for the shipped stage `name` on a DC servo
+/// cube, 0 for one the public table does not name.
+std::uint16_t dc_stage_type(std::string_view name);
 /// Names for error messages ("TDC001, KDC101").
 std::string_view controller_names();
 

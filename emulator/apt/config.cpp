@@ -159,7 +159,8 @@ void check_apt_units(const ConfigReader& r, const std::string& pointer, const St
     };
     for (const auto& f : figures) {
         // As MotorChannel scales them (rounded to the nearest unit).
-        const double units = f.stage_scale > 0 ? f.value * f.stage_scale : f.value * stage.counts_per_mm * f.per_count;
+        const double units = f.stage_scale > 0 ? f.value * f.stage_scale
+                                               : f.value * driven_stage(controller, stage).counts_per_mm * f.per_count;
         const double word = std::round(units);
         if (!(word >= 1) || word > 2'147'483'647.0) {
             char shown[32];
@@ -360,14 +361,16 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
         reader.fail(pointer_to(pointer, "model"), "expected an APT controller model (" +
                                                       std::string(controller_names()) + "), got " +
                                                       (named ? quote(config.model) : std::string("nothing")));
-    const auto& a = reader.require(device, pointer, "apt");
-    auto apt = load_apt(reader, a, pointer_to(pointer, "apt"), *controller, config.model);
     if (config.firmware.empty())
-        config.firmware = firmware_name(apt.firmware);
+        config.firmware = firmware_name(Firmware::Issue3);
     const auto firmware = find_firmware(config.firmware);
     if (!firmware)
         reader.fail(pointer_to(pointer, "firmware"), "unknown APT firmware generation " + quote(config.firmware) +
                                                          " (expected " + std::string(firmware_names()) + ")");
+    // The "apt" object is checked against the controller as its generation shapes it (the
+    // scaling of the power-up velocities).
+    const auto& a = reader.require(device, pointer, "apt");
+    auto apt = load_apt(reader, a, pointer_to(pointer, "apt"), *find_controller(config.model, *firmware), config.model);
     apt.firmware = *firmware;
     config.section = std::move(apt);
 }

@@ -52,7 +52,10 @@ struct UnitIdentity {
     const ControllerModel& model;
     std::uint32_t serial;
     std::size_t built_in_bays;     ///< a rack's bays with a card (its motherboard's channel count)
-    Firmware firmware = Firmware::Issue3;   ///< the generation the unit follows (AptConfig::firmware)
+    /// The firmware generation the unit follows (the rig's "firmware"): later messages and later
+    /// behaviour only under a later generation (docs/protocol/apt.md, "Firmware generations").
+    Firmware firmware = Firmware::Issue3;
+    std::uint16_t stage_type = 0;  ///< HW_GET_INFO's later stage type word (catalogue.hpp dc_stage_type)
 };
 
 /// HW_GET_INFO (p. 21) of a unit or motherboard (no bay) or of a rack bay's card.

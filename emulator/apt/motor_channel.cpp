@@ -49,8 +49,8 @@ models::AxisConfig axis_config(const ControllerModel& controller, const StageMod
 
 MotorChannel::MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
                            const std::string& key)
-    : controller_(controller), stage_(stage),
-      axis_(world.emplace<models::Axis>(key, world.clock(), axis_config(controller, stage)))
+    : controller_(controller), stage_(driven_stage(controller, stage)),
+      axis_(world.emplace<models::Axis>(key, world.clock(), axis_config(controller, stage_)))
 {
     set_power_up_params();
     counter_offset_ = axis_.motor_position_counts();

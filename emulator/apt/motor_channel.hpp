@@ -67,7 +67,8 @@ struct LimitSwitchParams {
 
 class MotorChannel {
 public:
-    /// The channel's axis joins `world` under `key` ("<device>/<bay>").
+    /// The channel's axis joins `world` under `key` ("<device>/<bay>"). It counts `stage` as
+    /// the controller does (driven_stage: a later-generation stepper's finer microsteps).
     MotorChannel(const ControllerModel& controller, const StageModel& stage, models::World& world,
                  const std::string& key);
     ~MotorChannel();
@@ -85,6 +86,7 @@ public:
     bool enabled() const { return enabled_; }
     /// The stage's power-up velocity parameters: its design limits (PMDSTAGEAXISPARAMS).
     const VelocityParams& design_velocity() const { return design_velocity_; }
+    /// The stage as this controller counts it (driven_stage).
     const StageModel& stage() const { return stage_; }
     /// The travel the controller allows, in the stage's own counts from its reverse end
     /// (MOT_GET_PMDSTAGEAXISPARAMS Min/MaxPos, p. 75: "typically zero" and the travel).

@@ -143,7 +143,8 @@ def render_table(kind, answer):
     """A short table for the answers that have one, else None (JSON is printed)."""
     if kind == "rig":
         out = table(answer.get("devices", []), [("name", "name"), ("protocol", "protocol"),
-                                                ("model", "model"), ("tcp", "tcp"), ("pty", "pty")])
+                                                ("model", "model"), ("firmware", "firmware"),
+                                                ("tcp", "tcp"), ("pty", "pty")])
         return out + "\n\n" + _clock_table(answer.get("clock", {}))
     if kind == "clock":
         return _clock_table(answer)

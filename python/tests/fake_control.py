@@ -61,11 +61,11 @@ class FakeControl:
         self.closing = False
         self.clock = {"now_ticks": 0, "now_ms": 0.0, "tick_hz": 1000, "time_scale": 1.0, "paused": False}
         self.devices = {
-            "mcs0": {"name": "mcs0", "protocol": "mcs", "model": "MCS-3D",
+            "mcs0": {"name": "mcs0", "protocol": "mcs", "model": "MCS-3D", "firmware": "1.2.44",
                      "endpoints": {"tcp": "127.0.0.1:1", "pty": "/tmp/x/mcs0"},
                      "channels": [_channel(i) for i in range(3)], "faults": [],
                      "link": {"unplugged": False}},
-            "apt0": {"name": "apt0", "protocol": "apt", "model": "TDC001",
+            "apt0": {"name": "apt0", "protocol": "apt", "model": "TDC001", "firmware": "issue-3",
                      "endpoints": {"tcp": "127.0.0.1:2", "pty": "/tmp/x/apt0"},
                      "channels": [_channel(0)], "faults": [], "link": {"unplugged": False}},
         }
@@ -109,7 +109,7 @@ class FakeControl:
         parts = [p for p in path.split("/") if p][1:]   # drop "api"
         if parts == ["rig"] and method == "GET":
             return 200, {"clock": self.clock, "devices": [
-                {"name": d["name"], "protocol": d["protocol"], "model": d["model"],
+                {"name": d["name"], "protocol": d["protocol"], "model": d["model"], "firmware": d["firmware"],
                  "tcp": d["endpoints"]["tcp"], "pty": d["endpoints"]["pty"]} for d in self.devices.values()]}
         if parts == ["clock"]:
             return self.route_clock(method, body)

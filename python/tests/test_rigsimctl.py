@@ -56,8 +56,8 @@ def test_rig_table(fake):
     status, text = ctl(fake.url, "--format", "table", "rig")
     assert status == 0
     lines = text.splitlines()
-    assert lines[0].split() == ["name", "protocol", "model", "tcp", "pty"]
-    assert lines[1].split()[:3] == ["mcs0", "mcs", "MCS-3D"]
+    assert lines[0].split() == ["name", "protocol", "model", "firmware", "tcp", "pty"]
+    assert lines[1].split()[:4] == ["mcs0", "mcs", "MCS-3D", "1.2.44"]
     assert "now_ms" in text
 
 

@@ -7,6 +7,9 @@
 //   @ TDC001 {"serial_number":83000002}
 //                             or the model, then the device's "apt" object of the rig JSON inline
 //                             (docs/config.md; checked as the rig loader checks it).
+//   @ KST101 firmware=issue-44.1 ZST225B
+//                             either form with the device's "firmware" right after the model
+//                             (default: the manual's, "issue-3").
 //                             Required before the first step; a later '@' starts a new world with a
 //                             new device (device 1, named "transcript").
 //   @+ TSG001 {"gauge":{...}}  one more device on the same world and clock (device 2, 3, ...;
@@ -72,6 +75,16 @@ rigsim::DeviceConfig device_from(const std::string& where, const std::string& sp
         FAIL(where << ": unknown APT model '" << c.model << "'");
     std::string rest;
     std::getline(s >> std::ws, rest);
+    if (constexpr std::string_view key = "firmware="; rest.compare(0, key.size(), key) == 0) {
+        const auto end = rest.find(' ');
+        c.firmware = rest.substr(key.size(), end == std::string::npos ? std::string::npos : end - key.size());
+        const auto firmware = rigsim::apt::find_firmware(c.firmware);
+        if (!firmware)
+            FAIL(where << ": unknown APT firmware '" << c.firmware << "'");
+        rigsim::apt::config_of(c).firmware = *firmware;
+        const auto next = end == std::string::npos ? std::string::npos : rest.find_first_not_of(' ', end);
+        rest = next == std::string::npos ? std::string() : rest.substr(next);
+    }
     if (!rest.empty() && rest[0] == '{') {
         load_inline(where, rest, c);
         return c;
@@ -248,7 +261,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_status.txt", "apt_rack_bbd203.txt", "apt_bbd203_pmd.txt", "apt_stepper.txt", "apt_bad_input.txt",
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
     "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
-    "apt_piezo_bpc303.txt",
+    "apt_piezo_bpc303.txt", "apt_kdc101_issue44.txt", "apt_kst101_issue44.txt",
 };
 
 } // namespace
@@ -350,6 +363,16 @@ TEST_CASE("apt transcript: TSG001 strain gauge reader on a TPZ001, closed loop",
 TEST_CASE("apt transcript: BPC303 bays, maximum voltage, closed loop on one bay", "[device][apt][transcript][piezo]")
 {
     replay("apt_piezo_bpc303.txt");
+}
+
+TEST_CASE("apt transcript: KDC101 at firmware issue-44.1", "[device][apt][transcript][firmware]")
+{
+    replay("apt_kdc101_issue44.txt");
+}
+
+TEST_CASE("apt transcript: KST101 at firmware issue-44.1", "[device][apt][transcript][firmware]")
+{
+    replay("apt_kst101_issue44.txt");
 }
 
 } // namespace test_apt_transcripts
