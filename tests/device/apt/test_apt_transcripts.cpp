@@ -262,6 +262,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
     "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
     "apt_piezo_bpc303.txt", "apt_kdc101_issue44.txt", "apt_kst101_issue44.txt",
+    "apt_kcube_msgs_issue44.txt", "apt_kcube_msgs_issue3.txt",
 };
 
 } // namespace
@@ -373,6 +374,17 @@ TEST_CASE("apt transcript: KDC101 at firmware issue-44.1", "[device][apt][transc
 TEST_CASE("apt transcript: KST101 at firmware issue-44.1", "[device][apt][transcript][firmware]")
 {
     replay("apt_kst101_issue44.txt");
+}
+
+TEST_CASE("apt transcript: the later-issue motor messages at firmware issue-44.1", "[device][apt][transcript][firmware]")
+{
+    replay("apt_kcube_msgs_issue44.txt");
+}
+
+TEST_CASE("apt transcript: the later-issue motor messages at firmware issue-3 (ignored)",
+          "[device][apt][transcript][firmware]")
+{
+    replay("apt_kcube_msgs_issue3.txt");
 }
 
 } // namespace test_apt_transcripts
