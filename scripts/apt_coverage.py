@@ -42,9 +42,11 @@ ORDER = ["TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "TSC001", "
          "TPZ001", "KPZ101", "BPC301", "BPC303", "TSG001", "KSG101"]
 
 # The module header(s) of each kind (catalogue.hpp UnitKind; motors by MotorKind).
+# kcube_params.hpp: the motor messages of later protocol issues, which every motor module hands to its
+# KCubeParams (which model takes which: kcube_params.cpp).
 KIND_HEADERS = {
-    "DcServo": ["motor_module.hpp"], "Stepper": ["motor_module.hpp"], "Brushless": ["motor_module.hpp",
-                                                                                    "brushless_module.hpp"],
+    "DcServo": ["motor_module.hpp", "kcube_params.hpp"], "Stepper": ["motor_module.hpp", "kcube_params.hpp"],
+    "Brushless": ["motor_module.hpp", "brushless_module.hpp", "kcube_params.hpp"],
     "Solenoid": ["solenoid_module.hpp"], "Piezo": ["piezo_module.hpp"], "StrainGauge": ["strain_gauge_module.hpp"],
 }
 # What a unit sends unprompted (docs/protocol/apt.md "Unsolicited messages", "Faults"): motor units

@@ -13,7 +13,8 @@ public:
     using DcMotorModule::on;
     static constexpr bool handles(msg::Family f)
     {
-        return f == msg::Family::Motor || f == msg::Family::DcServo || f == msg::Family::Pmd;
+        return f == msg::Family::Motor || f == msg::Family::DcServo || f == msg::Family::Pmd
+               || f == msg::Family::KCubeMotor;
     }
     void handle(const msg::Message& m, Request& r) override;
 

@@ -44,6 +44,7 @@ enum class Family {
     Solenoid,    ///< SolenoidModule (TSC001, KSC101)
     Piezo,       ///< PiezoModule (TPZ001, KPZ101, BPC30x bays); StrainGaugeModule its share of the TSG001 list
     StrainGauge, ///< StrainGaugeModule (TSG001, KSG101)
+    KCubeMotor,  ///< motor messages of later protocol issues (codec_kcube.hpp): the motor modules' KCubeParams
     UnitToHost,  ///< sent by units (GETs, end-of-move messages): a unit ignores them
     Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };
@@ -1154,6 +1155,14 @@ struct Untyped {
     template <class S> static auto fields(S& s) { return std::tie(s.id, s.param1, s.param2, s.has_data, s.data); }
 };
 
+} // namespace msg
+} // namespace rigsim::apt
+
+#include "emulator/apt/codec_kcube.hpp"
+
+namespace rigsim::apt {
+namespace msg {
+
 // ---- The decoded message: a variant of the manual's chapters, each a variant of its messages ----
 //
 // One flat std::variant of all 166 messages would cost minutes of compile time and hundreds of
@@ -1241,7 +1250,7 @@ struct GroupOf<T, G, Groups...>
 
 /// Every chapter, in the order of Message's alternatives.
 using Chapters = std::tuple<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                            PiezoTrioMessage, PiezoMessage>;
+                            PiezoTrioMessage, PiezoMessage, KCubeMotorMessage>;
 
 namespace codec_detail {
 template <class T, class C> struct GroupOfIn;
@@ -1253,7 +1262,7 @@ template <class T> using GroupOf = typename codec_detail::GroupOfIn<T, Chapters>
 
 /// Every message decode() can return: a chapter's message, or an Untyped.
 struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                              PiezoTrioMessage, PiezoMessage, Untyped> {
+                              PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, Untyped> {
     Message() = default;
     /// Typed message `m`, in its chapter.
     template <class T, class G = GroupOf<T>>

@@ -309,6 +309,51 @@ constexpr MessageInfo kTable[] = {
     // last 4 bytes StatusBits; the field list and the example win).
     {RIGSIM_APT_MSG(MGMSG_PZ_REQ_TSG_READING), H, S},
     {RIGSIM_APT_MSG(MGMSG_PZ_GET_TSG_READING), 6, S},
+
+    // ---- Later protocol issues: motor messages the 2012 manual lacks (issue 14) ----
+    // After the manual's chapters, so the manual's table keeps its positions. A unit of the
+    // manual's generation ("issue-3") ignores and logs them; the "issue-44.1" generation acts on
+    // them (kcube_params.cpp, docs/protocol/apt.md "Firmware generations").
+    // Issue 16 (29 Sept 2015, p. 44; doc/APT_Communications_Protocol_Rev_16.pdf of
+    // UniNE-CHYN/thorpy): 6 bytes: chan, RestFactor, MoveFactor (words). Its example
+    // "26, 04, 06, 00, A2, 01, 01, 00, 0A, 00, 64, 00"; yaq's thorlabs_apt_protocol "<3H".
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_POWERPARAMS), 6, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_POWERPARAMS), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_POWERPARAMS), 6, M, false, kLaterIssue},
+    // Issue 16 p. 94: header-only, param1 = actuator ident ("FE, 04, 31, 00, 50, 01").
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_TSTACTUATORTYPE), H, M, false, kLaterIssue},
+    // Issue 16 p. 102-103: header-only, param1 = chan, param2 = mode bits
+    // ("00, 05, 01, 53, 50, 01"; REQ "01, 05, 01, 00, 50, 01"; GET "02 05 Chan Mode").
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_TRIGGER), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_TRIGGER), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_TRIGGER), H, M, false, kLaterIssue},
+    // 36 bytes: chan, JSMode (words), JSMaxVel, JSAccn (longs), DirSense (word), PresetPos1,
+    // PresetPos2 (longs), DispBrightness, DispTimeout, DispDimLevel (words), PresetPos3 (long),
+    // JSSensitivity, reserved (words): quantumion/thorlabs_cube kdc.py ("<HHllHllHHHlHH", after
+    // protocol issue 38) and MSLNZ/msl-equipment thorlabs/ksc.py ("<H20x3H8x"). yaq's "<HHllHll3H"
+    // (28) stops at DispDimLevel: 36 wins (two sources, the later fields named by issue 37 clients).
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEMMIPARAMS), 36, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEMMIPARAMS), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEMMIPARAMS), 36, M, false, kLaterIssue},
+    // 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity (words), 12 reserved
+    // bytes: Thorlabs' own example ("23 05 16 00 D0 01 ...", Thorlabs/Motion_Control_Examples KBD101
+    // Python example) and msl-equipment ksc.py ("<5H12x"). Clients disagree on the reserved tail
+    // (pyLabLib 10, yaq 12, quantumion 20 bytes): Thorlabs' example wins.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBETRIGIOCONFIG), 22, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBETRIGIOCONFIG), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBETRIGIOCONFIG), 22, M, false, kLaterIssue},
+    // 46 bytes: chan word, StartPosFwd, IntervalFwd, NumPulsesFwd, StartPosRev, IntervalRev,
+    // NumPulsesRev, PulseWidth, NumCycles (longs), 12 reserved bytes: Thorlabs' example
+    // ("26 05 2E 00 D0 01 ..."). pyLabLib, yaq and quantumion send the 34 bytes before the
+    // reserved tail: Thorlabs' example wins, as for TRIGIOCONFIG.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS), 46, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEPOSTRIGPARAMS), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEPOSTRIGPARAMS), 46, M, false, kLaterIssue},
+    // 28 bytes: chan, LoopMode (words), Prop, Int, Diff, PIDClip, PIDTol (longs), EncoderConst
+    // (dword): yaq's thorlabs_apt_protocol ("<HH5lL"), the only public layout found.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS), 28, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEKSTLOOPPARAMS), H, M, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS), 28, M, false, kLaterIssue},
 };
 
 #undef RIGSIM_APT_MSG

@@ -3,7 +3,8 @@
 // "Generic System Control Messages", "Motor Control Messages" (including the solenoid
 // messages, which the manual files under the motor controllers) and "Piezo Control
 // Messages" (including the TSG001 strain gauge reader's, which the manual files under the
-// piezo controllers).
+// piezo controllers); then the motor messages of later protocol issues that later clients
+// send (`later_issue`: POWERPARAMS, TRIGGER, the K-Cube blocks, TSTACTUATORTYPE).
 // The frame framer checks every header against it, as MAVLink's framer checks its
 // message-entry table: an ID the table does not know, or a data packet of another length
 // than the table's, is not a frame.
@@ -42,7 +43,7 @@ struct MessageInfo {
 /// The message with this ID, or nullptr when the table does not know it.
 const MessageInfo* find_message(std::uint16_t id);
 
-/// The whole table, in the manual's order (generic messages first).
+/// The whole table, in the manual's order (generic messages first), then the later issues' motor messages.
 struct MessageTable {
     const MessageInfo* first;
     std::size_t count;
@@ -174,6 +175,27 @@ constexpr std::uint16_t MGMSG_MOT_GET_SOL_INTERLOCKMODE = 0x04C8;
 constexpr std::uint16_t MGMSG_MOT_SET_SOL_STATE = 0x04CB;
 constexpr std::uint16_t MGMSG_MOT_REQ_SOL_STATE = 0x04CC;
 constexpr std::uint16_t MGMSG_MOT_GET_SOL_STATE = 0x04CD;
+// Later protocol issues (not in the 2012 manual): the stepper power, trigger and K-Cube
+// parameter blocks (messages.cpp names the public source of each).
+constexpr std::uint16_t MGMSG_MOT_SET_POWERPARAMS = 0x0426;
+constexpr std::uint16_t MGMSG_MOT_REQ_POWERPARAMS = 0x0427;
+constexpr std::uint16_t MGMSG_MOT_GET_POWERPARAMS = 0x0428;
+constexpr std::uint16_t MGMSG_MOT_SET_TSTACTUATORTYPE = 0x04FE;
+constexpr std::uint16_t MGMSG_MOT_SET_TRIGGER = 0x0500;
+constexpr std::uint16_t MGMSG_MOT_REQ_TRIGGER = 0x0501;
+constexpr std::uint16_t MGMSG_MOT_GET_TRIGGER = 0x0502;
+constexpr std::uint16_t MGMSG_MOT_SET_KCUBEMMIPARAMS = 0x0520;
+constexpr std::uint16_t MGMSG_MOT_REQ_KCUBEMMIPARAMS = 0x0521;
+constexpr std::uint16_t MGMSG_MOT_GET_KCUBEMMIPARAMS = 0x0522;
+constexpr std::uint16_t MGMSG_MOT_SET_KCUBETRIGIOCONFIG = 0x0523;
+constexpr std::uint16_t MGMSG_MOT_REQ_KCUBETRIGIOCONFIG = 0x0524;
+constexpr std::uint16_t MGMSG_MOT_GET_KCUBETRIGIOCONFIG = 0x0525;
+constexpr std::uint16_t MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS = 0x0526;
+constexpr std::uint16_t MGMSG_MOT_REQ_KCUBEPOSTRIGPARAMS = 0x0527;
+constexpr std::uint16_t MGMSG_MOT_GET_KCUBEPOSTRIGPARAMS = 0x0528;
+constexpr std::uint16_t MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS = 0x0529;
+constexpr std::uint16_t MGMSG_MOT_REQ_KCUBEKSTLOOPPARAMS = 0x052A;
+constexpr std::uint16_t MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS = 0x052B;
 // A MOT_ message printed in the piezo chapter (TX structure, page 125).
 constexpr std::uint16_t MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS = 0x0686;
 

@@ -13,8 +13,16 @@ constexpr std::uint16_t kChan1 = 0x01;
 
 MotorModule::MotorModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, MotorChannel& channel,
                          spdlog::logger& log, SaveToEeprom save)
-    : Module(unit, bay, address, log, std::move(save)), channel_(channel)
+    : Module(unit, bay, address, log, std::move(save)), channel_(channel), kcube_(unit.model_name, unit.firmware)
 {
+}
+
+void MotorModule::finish(const KCubeOutcome& out)
+{
+    if (!out.ignored.empty())
+        return ignore(fmt::format("{}: {}", request_->peer, out.ignored));
+    if (out.answer)
+        answer(*out.answer);
 }
 
 void MotorModule::power_down(bool restore_positions)

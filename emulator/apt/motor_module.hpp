@@ -5,6 +5,7 @@
 // unit's own GETs, the solenoid, piezo and strain gauge ones) are ignored and logged as a
 // real unit without that module does.
 
+#include "emulator/apt/kcube_params.hpp"
 #include "emulator/apt/module.hpp"
 #include "emulator/apt/motor_channel.hpp"
 
@@ -34,8 +35,11 @@ public:
     /// The status structure of this kind's update and end-of-move messages (p. 44).
     virtual msg::MotorStatus motor_status() const = 0;
 
-    bool saves(std::uint16_t id) const override { return Saved::saves(id); }
-    std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
+    bool saves(std::uint16_t id) const override { return Saved::saves(id) || kcube_.saves(id); }
+    std::optional<std::string> saved_data(const msg::Message& m) const override
+    {
+        return Saved::saves(msg::message_id(m)) ? Saved::data(m) : kcube_.saved_data(m);
+    }
     void power_down(bool restore_positions) override;
     bool enabled() const override { return channel_.enabled(); }
     void set_enabled(bool on) override { channel_.set_enabled(on); }
@@ -82,9 +86,23 @@ public:
     void on(const msg::ReqStatusUpdate& m);    ///< MGMSG_MOT_REQ_STATUSUPDATE (p. 78)
     void on(const msg::ReqStatusBits& m);      ///< MGMSG_MOT_REQ_STATUSBITS (p. 81)
 
+    /// The KCubeMotor family (later protocol issues): KCubeParams's handlers.
+    template <class T, class = decltype(std::declval<KCubeParams&>().on(std::declval<const T&>(),
+                                                                        std::declval<KCubeOutcome&>()))>
+    void on(const T& m)
+    {
+        KCubeOutcome out;
+        kcube_.on(m, out);
+        finish(out);
+    }
+    /// The last actuator MOT_SET_TSTACTUATORTYPE set, if any (it has no GET).
+    std::optional<std::uint8_t> actuator_ident() const { return kcube_.actuator_ident(); }
+
 protected:
     /// A move: false (and logged) if the channel is disabled; else remembered as the last move.
     bool may_move(std::uint16_t id, std::string_view name);
+    /// Send KCubeParams's answer, or log why it ignored the message.
+    void finish(const KCubeOutcome& out);
     msg::DcStatus dc_status() const;
     msg::MotStatus mot_status() const;
 
@@ -96,6 +114,7 @@ protected:
     msg::AvModes av_modes_{1, 0x000B};      ///< LED: ident, limit switch, moving
     msg::PotParams pot_params_{};
     msg::ButtonParams button_params_{};
+    KCubeParams kcube_;
 };
 
 /// A DC motor module (DC servo or brushless): PID parameters and the DC status update.
@@ -120,7 +139,10 @@ class DcServoModule final : public DcMotorModule {
 public:
     using DcMotorModule::DcMotorModule;
     using DcMotorModule::on;
-    static constexpr bool handles(msg::Family f) { return f == msg::Family::Motor || f == msg::Family::DcServo; }
+    static constexpr bool handles(msg::Family f)
+    {
+        return f == msg::Family::Motor || f == msg::Family::DcServo || f == msg::Family::KCubeMotor;
+    }
     void handle(const msg::Message& m, Request& r) override;
 };
 
@@ -129,7 +151,7 @@ class StepperModule final : public MotorModule {
 public:
     using MotorModule::MotorModule;
     using MotorModule::on;
-    static constexpr bool handles(msg::Family f) { return f == msg::Family::Motor; }
+    static constexpr bool handles(msg::Family f) { return f == msg::Family::Motor || f == msg::Family::KCubeMotor; }
     void handle(const msg::Message& m, Request& r) override;
     msg::MotorStatus motor_status() const override { return mot_status(); }
     std::string status_update(std::uint8_t host) const override;

@@ -167,6 +167,47 @@ Ranges ranges(const msg::TsgIoSettings& p)
             {"ForceCalib", p.force_calib, 1, 65535}};
 }
 
+// ---- Later protocol issues: motor blocks (codec_kcube.hpp; sources in messages.cpp) ----
+
+Ranges ranges(const msg::PowerParams& p)
+{
+    // Issue 16 p. 44: "in the range 1 to 100 (i.e. 1% to 100% of full power)".
+    return {{"RestFactor", p.rest_factor, 1, 100}, {"MoveFactor", p.move_factor, 1, 100}};
+}
+
+Ranges ranges(const msg::KCubeMmiParams& p)
+{
+    // quantumion/thorlabs_cube kdc.py (and the issue 37 client's checks): JSMode 1 velocity,
+    // 2 jog, 3 go to position; DirSense 0..2; DispBrightness 0..100; DispTimeout 0..480
+    // minutes; DispDimLevel 0..10.
+    return {{"JSMode", p.js_mode, 1, 3},
+            {"DirSense", p.dir_sense, 0, 2},
+            {"DispBrightness", p.disp_brightness, 0, 100},
+            {"DispTimeout", p.disp_timeout, 0, 480},
+            {"DispDimLevel", p.disp_dim_level, 0, 10}};
+}
+
+Ranges ranges(const msg::KCubeTrigIoConfig& p)
+{
+    // Polarity 1 active high, 2 active low (Kinesis' KMOT_TRIG_POLHIGH / KMOT_TRIG_POLLOW). The
+    // modes are a set, not a range: KCubeParams checks them.
+    return {{"Trig1Polarity", p.trig1_polarity, 1, 2}, {"Trig2Polarity", p.trig2_polarity, 1, 2}};
+}
+
+Ranges ranges(const msg::KCubePosTrigParams& p)
+{
+    // quantumion kdc.py: pulse width "from 1 us to 1000000 us"; counts of pulses and cycles.
+    return {{"NumPulsesFwd", p.num_pulses_fwd, 0, kMaxLong},
+            {"NumPulsesRev", p.num_pulses_rev, 0, kMaxLong},
+            {"PulseWidth", p.pulse_width, 1, 1'000'000},
+            {"NumCycles", p.num_cycles, 0, kMaxLong}};
+}
+
+Ranges ranges(const msg::KCubeKstLoopParams& p)
+{
+    return {{"LoopMode", p.loop_mode, 1, 2}};   // KMOT_KST_OPENLOOP 1, KMOT_KST_CLOSEDLOOP 2
+}
+
 std::optional<std::string> first_out_of_range(const Ranges& fields)
 {
     for (const auto& r : fields)

@@ -1,5 +1,6 @@
 #pragma once
-// The field ranges the manual gives for the SETs a motor unit acts on (page at each entry).
+// The field ranges the manual gives for the SETs a unit acts on (page at each entry), and those the
+// public sources of later protocol issues give for their motor blocks (codec_kcube.hpp).
 
 #include "emulator/apt/codec.hpp"
 

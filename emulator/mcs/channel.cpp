@@ -23,8 +23,9 @@ models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
 
 } // namespace
 
-Channel::Channel(int index, const McsChannelConfig& config, models::World& world, const std::string& key)
-    : index_(index), clock_(world.clock()),
+Channel::Channel(int index, const McsChannelConfig& config, Firmware firmware, models::World& world,
+                 const std::string& key)
+    : index_(index), firmware_(firmware), clock_(world.clock()),
       body_(world.emplace<models::StickSlipPositioner>(key, world.clock(), stick_slip_config(index, config))),
       config_(config),
       sensor_(config.sensor_type == "none" ? nullptr : sensor_type_by_symbol(config.sensor_type)),
@@ -447,13 +448,14 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
 {
     if (auto err = sensor_error())
         return err;
-    if ((direction != 0 && direction != 1) || (auto_zero != 0 && auto_zero != 1))
+    const auto search = frm_direction(firmware_, direction);
+    if (!search || (auto_zero != 0 && auto_zero != 1))
         return ErrorCode::InvalidParameter;
     if (auto err = check_move(hold_ms))
         return err;
     if (sensor_->reference == ReferenceType::None)
         return ErrorCode::CouldNotFindReferenceMark;   // appendix 4.3: "cannot be referenced"
-    begin_movement([this, direction, hold_ms, auto_zero](Ticks now) {
+    begin_movement([this, search = *search, hold_ms, auto_zero](Ticks now) {
         body_.halt();
         hold_ms_ = hold_ms;
         auto_zero_ = auto_zero == 1;
@@ -463,10 +465,11 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
         const double here = body_.position_nm();
         // End stops and range limits both turn the search around (2.3.4).
         const auto [lo, hi] = physical_limit();
-        // End-stop types ignore the direction parameter and use the safe direction (SSD).
-        const double dir = sensor_->reference == ReferenceType::EndStop ? (safe_direction_ == 0 ? 1.0 : -1.0)
-                                                                        : (direction == 0 ? 1.0 : -1.0);
-        plan_reference_search(here, dir, lo, hi);
+        // End-stop types ignore the direction parameter and use the safe direction (SSD):
+        // the end stop is their reference, so no direction aborts there.
+        const bool end_stop_type = sensor_->reference == ReferenceType::EndStop;
+        const double dir = end_stop_type ? (safe_direction_ == 0 ? 1.0 : -1.0) : (search.backward ? -1.0 : 1.0);
+        plan_reference_search(here, dir, lo, hi, search.abort_on_end_stop && !end_stop_type);
         if (body_.blocked())
             reference_found_ = false;   // a stalled stage meets "end stops" both ways at once
         motion_ = Motion::Referencing;
@@ -477,7 +480,7 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
     return std::nullopt;
 }
 
-void Channel::plan_reference_search(double here, double dir, double lo, double hi)
+void Channel::plan_reference_search(double here, double dir, double lo, double hi, bool abort_at_end)
 {
     const double step = static_cast<double>(config_.coded_mark_spacing);
     const double mark = static_cast<double>(config_.reference_position);
@@ -500,12 +503,14 @@ void Channel::plan_reference_search(double here, double dir, double lo, double h
             reference_point_ = mark + k * turn;
             reference_legs_ = {reference_point_};
             reference_found_ = true;
-        } else if (mark >= lo && mark <= hi) {
+        } else if (mark >= lo && mark <= hi && (!abort_at_end || (mark - here) * dir >= 0)) {
             if ((mark - here) * dir < 0)
                 reference_legs_.push_back(end_ahead);   // reverse at the end stop
             reference_legs_.push_back(mark);
             reference_point_ = mark;
             reference_found_ = true;
+        } else if (abort_at_end) {
+            reference_legs_ = {end_ahead};   // the mark lies behind or outside: 144 there
         } else {
             reference_legs_ = {end_ahead, end_behind};   // the mark lies outside: 144
         }
@@ -522,6 +527,9 @@ void Channel::plan_reference_search(double here, double dir, double lo, double h
         };
         if (auto m = second_mark(here, dir, end_ahead)) {
             reference_legs_ = {*m};
+        } else if (abort_at_end) {
+            reference_legs_ = {end_ahead};   // two marks do not fit before the end stop: 144
+            break;
         } else if (auto back = second_mark(end_ahead, -dir, end_behind)) {
             reference_legs_ = {end_ahead, *back};
         } else {

@@ -11,6 +11,7 @@
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/commands.hpp"
 #include "emulator/mcs/errors.hpp"
+#include "emulator/mcs/firmware.hpp"
 #include "emulator/mcs/sensor_types.hpp"
 #include "models/stick_slip.hpp"
 #include "models/world.hpp"
@@ -69,8 +70,10 @@ public:
     /// Acceleration that enabling low vibration mode switches on (2.5.1 "default settings").
     static constexpr std::int32_t kDefaultLowVibrationAcceleration = 1'000'000;
 
-    /// The channel's positioner joins `world` under `key` ("<device>/<index>").
-    Channel(int index, const McsChannelConfig& config, models::World& world, const std::string& key);
+    /// The channel's positioner joins `world` under `key` ("<device>/<index>"); `firmware`:
+    /// the generation whose commands it answers (FRM's directions, firmware.hpp).
+    Channel(int index, const McsChannelConfig& config, Firmware firmware, models::World& world,
+            const std::string& key);
     ~Channel();
     Channel(const Channel&) = delete;
     Channel& operator=(const Channel&) = delete;
@@ -105,7 +108,8 @@ public:
     std::optional<ErrorCode> move_relative(std::int64_t distance, std::int32_t hold_ms);
     std::optional<ErrorCode> move_angle_absolute(std::int64_t position_udeg, std::int32_t hold_ms);
     std::optional<ErrorCode> move_angle_relative(std::int64_t distance_udeg, std::int32_t hold_ms);
-    /// FRM (2.3.3): search the reference mark(s), or the end stop in the safe direction.
+    /// FRM (2.3.3): search the reference mark(s), or the end stop in the safe direction;
+    /// `direction` as the firmware generation reads it (frm_direction()).
     std::optional<ErrorCode> find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero);
     /// CS: status 6 for the calibration time; end-stop types end at the safe end stop.
     std::optional<ErrorCode> calibrate();
@@ -241,8 +245,9 @@ private:
     void on_body_event(Ticks now);
     void arrive(Ticks now);
     /// The legs of a reference search from physical `here` in direction `dir` (+1/-1) between
-    /// the turning points `lo` and `hi`: sets reference_legs_, reference_found_, reference_point_.
-    void plan_reference_search(double here, double dir, double lo, double hi);
+    /// the turning points `lo` and `hi` (or, `abort_at_end`, up to the first of them): sets
+    /// reference_legs_, reference_found_, reference_point_.
+    void plan_reference_search(double here, double dir, double lo, double hi, bool abort_at_end);
     /// The search's last leg has ended: the reference is known now, or 144.
     void finish_reference(Ticks now);
     void finish_movement();
@@ -261,6 +266,7 @@ private:
     void end_burst(bool limit_met);
 
     int index_;
+    Firmware firmware_;
     const Clock& clock_;
     models::StickSlipPositioner& body_;
     bool body_event_ = false;        ///< the body had an event that tick() has not handled

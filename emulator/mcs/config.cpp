@@ -157,14 +157,34 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
 {
     if (config.model.empty())
         config.model = kDefaultMcsModel;
-    auto mcs = McsLoader{reader}.load_mcs(reader.require(device, pointer, "mcs"), pointer_to(pointer, "mcs"));
-    if (config.firmware.empty())
+    const auto mcs_pointer = pointer_to(pointer, "mcs");
+    const auto& section = reader.require(device, pointer, "mcs");
+    auto mcs = McsLoader{reader}.load_mcs(section, mcs_pointer);
+    // The firmware generation and the GIV answer never disagree: either names the other
+    // (docs/config.md, "firmware" and "interface_version").
+    const bool version_given = reader.find(section, "interface_version") != nullptr;
+    const auto& iv = mcs.interface_version;
+    const Firmware of_version = firmware_of_version({iv.high, iv.low, iv.update});
+    if (config.firmware.empty()) {
+        mcs.firmware = version_given ? of_version : Firmware::V1_2_44;
         config.firmware = firmware_name(mcs.firmware);
-    const auto firmware = find_firmware(config.firmware);
-    if (!firmware)
-        reader.fail(pointer_to(pointer, "firmware"), "unknown MCS firmware generation " + quote(config.firmware) +
-                                                         " (expected " + std::string(firmware_names()) + ")");
-    mcs.firmware = *firmware;
+    } else {
+        const auto firmware = find_firmware(config.firmware);
+        if (!firmware)
+            reader.fail(pointer_to(pointer, "firmware"), "unknown MCS firmware generation " + quote(config.firmware) +
+                                                             " (expected " + std::string(firmware_names()) + ")");
+        mcs.firmware = *firmware;
+        if (version_given && of_version != mcs.firmware)
+            reader.fail(pointer_to(mcs_pointer, "interface_version"),
+                        "interface version " + quote(section["interface_version"].get<std::string>()) +
+                            " belongs to firmware generation " + quote(std::string(firmware_name(of_version))) +
+                            " (the newest whose version is not above it), but \"firmware\" is " +
+                            quote(config.firmware));
+    }
+    if (!version_given) {
+        const auto v = firmware_version(mcs.firmware);
+        mcs.interface_version = {v[0], v[1], v[2]};
+    }
     config.section = std::move(mcs);
 }
 

@@ -36,7 +36,8 @@ Controller::Controller(const McsConfig& config, models::World& world, const std:
     channels_.reserve(config.channels.size());
     for (std::size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i];
-        channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, world, device + "/" + std::to_string(i)));
+        channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, config.firmware, world,
+                                                         device + "/" + std::to_string(i)));
         if (c.kind == "end_effector")
             effectors_.push_back(std::make_unique<EndEffector>(
                 clock_, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),

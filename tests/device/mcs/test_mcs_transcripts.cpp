@@ -125,4 +125,9 @@ TEST_CASE("transcript: end effectors", "[device][mcs][transcript]")
     replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_end_effectors.txt");
 }
 
+TEST_CASE("transcript: firmware generation 2.0.1", "[device][mcs][transcript][firmware]")
+{
+    replay(RIGSIM_SOURCE_DIR "/tests/device/transcripts/mcs_firmware_2.0.1.txt");
+}
+
 } // namespace test_mcs_transcripts
