@@ -171,6 +171,25 @@ void check_apt_units(const ConfigReader& r, const std::string& pointer, const St
     }
 }
 
+/// The travel of the stage object `stage` in the counts `controller` counts (a later-generation
+/// stepper's finer microsteps, driven_stage) fits the 32-bit position counter; the stage file's
+/// own counts are checked as it is read.
+void check_driven_travel(const ConfigReader& r, const std::string& pointer, const StageModel& stage,
+                         const ControllerModel& controller, const std::string& model)
+{
+    const double span = stage.kind == StageKind::Goniometer ? stage.angle_max_deg - stage.angle_min_deg : stage.travel_mm;
+    const double counts = span * driven_stage(controller, stage).counts_per_mm;
+    if (stage.kind == StageKind::Rotary || controller.counts_per_stage_count == 1 || counts <= 2'147'483'647.0)
+        return;
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.15g", std::round(counts));
+    r.fail(pointer_to(pointer, stage.kind == StageKind::Goniometer ? "angle_range_deg" : "travel_mm"),
+           "the travel is " + std::string(shown) + " counts on a " + model + " at firmware "
+               + std::string(firmware_name(controller.firmware)) + " (" + std::to_string(static_cast<int>(
+                   controller.counts_per_stage_count)) + " x the stage's counts): expected at most 2147483647 "
+               "(the 32-bit position counter)");
+}
+
 /// A single unit's "stage" or one of a rack's "bays": a shipped stage's name, or a stage object
 /// (stage_file.hpp); either with the motor `controller` drives.
 StageModel load_stage(const ConfigReader& r, const json& v, const std::string& pointer,
@@ -200,6 +219,7 @@ StageModel load_stage(const ConfigReader& r, const json& v, const std::string& p
         r.fail(pointer_to(pointer, "motor"), "expected " + quote(motor_name(controller.motor)) + " (the motor a "
                                                  + model + " drives), got " + quote(motor_name(stage.motor)));
     check_apt_units(r, pointer, stage, controller, model);
+    check_driven_travel(r, pointer, stage, controller, model);
     return stage;
 }
 

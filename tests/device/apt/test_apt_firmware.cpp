@@ -287,4 +287,37 @@ TEST_CASE("rig loader: a KST101 stage's power-up velocity is checked in the gene
                    "(7.1 scaling): expected 1..2147483647");
 }
 
+TEST_CASE("rig loader: a KST101 stage's travel must fit the position counter in the generation's microsteps",
+          "[device][apt][firmware][config]")
+{
+    // 6,000 mm at 25,600 microsteps/mm: 153,600,000 counts in the manual's generation, 16 times
+    // that (2,457,600,000) in the later one.
+    const auto device = [](const char* firmware) {
+        return nlohmann::json{
+            {"name", "kst"}, {"protocol", "apt"}, {"model", "KST101"}, {"firmware", firmware},
+            {"apt",
+             {{"stage",
+               {{"kind", "linear"}, {"motor", "stepper"}, {"travel_mm", 6000}, {"counts_per_mm", 25600},
+                {"max_velocity_mm_s", 1}, {"acceleration_mm_s2", 4}, {"home_velocity_mm_s", 1}}}}}};
+    };
+    DeviceConfig manual;
+    manual.name = "kst";
+    manual.protocol = "apt";
+    manual.model = "KST101";
+    manual.firmware = "issue-3";
+    REQUIRE_NOTHROW(load_device_section(ConfigReader("rig.json"), device("issue-3"), "/devices/0", manual));
+
+    DeviceConfig later = manual;
+    later.firmware = "issue-44.1";
+    std::string error;
+    try {
+        load_device_section(ConfigReader("rig.json"), device("issue-44.1"), "/devices/0", later);
+    } catch (const std::exception& e) {
+        error = e.what();
+    }
+    CHECK(error == "rig.json: /devices/0/apt/stage/travel_mm: the travel is 2457600000 counts on a KST101 at "
+                   "firmware issue-44.1 (16 x the stage's counts): expected at most 2147483647 (the 32-bit position "
+                   "counter)");
+}
+
 } // namespace test_apt_firmware
