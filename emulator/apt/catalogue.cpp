@@ -184,6 +184,33 @@ constexpr std::uint16_t kTsgTakes[]{
     MGMSG_PZ_REQ_TSG_READING, MGMSG_PZ_GET_TSG_READING,
 };
 
+// ---- What the K-Cubes of the later generation ("issue-44.1") take beyond their T-Cube's set ----
+// Their own messages of the later protocol issues (docs/protocol/apt.md "K-Cube units" gives the
+// public source of each); the manual's generation ignores and logs them, as a 2012 unit would.
+
+// KSC101: MOT_REQ_STATUSBITS (MSLNZ/msl-equipment thorlabs/ksc.py reads the shutter and key from
+// its status bits), MOT_REQ_STATUSUPDATE (quantumion/thorlabs_cube tcube/tsc.py, inherited by
+// kcube/ksc.py), and the K-Cube motor messages of its display and trigger ports (ksc.py).
+constexpr std::uint16_t kKscLaterTakes[]{
+    MGMSG_MOT_REQ_STATUSBITS, MGMSG_MOT_GET_STATUSBITS, MGMSG_MOT_REQ_STATUSUPDATE,
+    MGMSG_MOT_SET_KCUBEMMIPARAMS, MGMSG_MOT_REQ_KCUBEMMIPARAMS, MGMSG_MOT_GET_KCUBEMMIPARAMS,
+    MGMSG_MOT_SET_KCUBETRIGIOCONFIG, MGMSG_MOT_REQ_KCUBETRIGIOCONFIG, MGMSG_MOT_GET_KCUBETRIGIOCONFIG,
+};
+
+// KPZ101: its MMI and trigger blocks, and PZ_REQ_PZSTATUSUPDATE.
+constexpr std::uint16_t kKpzLaterTakes[]{
+    MGMSG_PZ_REQ_PZSTATUSUPDATE,
+    MGMSG_KPZ_SET_KCUBEMMIPARAMS, MGMSG_KPZ_REQ_KCUBEMMIPARAMS, MGMSG_KPZ_GET_KCUBEMMIPARAMS,
+    MGMSG_KPZ_SET_KCUBETRIGIOCONFIG, MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG, MGMSG_KPZ_GET_KCUBETRIGIOCONFIG,
+};
+
+// KSG101: its MMI and trigger blocks, and PZ_REQ_PZSTATUSUPDATE.
+constexpr std::uint16_t kKsgLaterTakes[]{
+    MGMSG_PZ_REQ_PZSTATUSUPDATE,
+    MGMSG_KSG_SET_KCUBEMMIPARAMS, MGMSG_KSG_REQ_KCUBEMMIPARAMS, MGMSG_KSG_GET_KCUBEMMIPARAMS,
+    MGMSG_KSG_SET_KCUBETRIGIOCONFIG, MGMSG_KSG_REQ_KCUBETRIGIOCONFIG, MGMSG_KSG_GET_KCUBETRIGIOCONFIG,
+};
+
 template <std::size_t N>
 constexpr MessageSet message_set(const std::uint16_t (&ids)[N])
 {
@@ -230,6 +257,13 @@ constexpr ControllerModel rich(ControllerModel c)
     return c;
 }
 
+/// A K-Cube unit: its T-Cube's set, and `later` with the later firmware generation.
+constexpr ControllerModel kcube_unit(ControllerModel c, MessageSet later)
+{
+    c.later_takes = later;
+    return c;
+}
+
 // BPC30x piezo racks: a motherboard at 0x11 and a card per channel (HW_GET_INFO 45 both,
 // D-20; cards carry the rack's prefix). LUT: indices 0..7999 (p. 106), 1 ms samples (p. 109);
 // the loop at that 1 kHz rate.
@@ -256,15 +290,15 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
 constexpr std::array<ControllerModel, 14> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
-    rich(solenoid_cube("KSC101", 68, "Solenoid Controller")),
+    kcube_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), message_set(kKscLaterTakes)),
     piezo_cube("TPZ001", 81, "APT Piezo Driver"),
-    rich(piezo_cube("KPZ101", 29, "Piezo Controller")),
+    kcube_unit(rich(piezo_cube("KPZ101", 29, "Piezo Controller")), message_set(kKpzLaterTakes)),
     // BPC303: Thorlabs' prefix 71; BPC301: 41 after the 40/70 single/three-channel pattern of
     // 2.2 (the least certain of D-1).
     bpc("BPC301", 41, 1),
     bpc("BPC303", 71, 3),
     gauge_cube("TSG001", 84, "APT Strain Gauge Reader"),
-    rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")),
+    kcube_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), message_set(kKsgLaterTakes)),
 };
 
 // ---- The later generation ("issue-44.1"; docs/protocol/apt.md, "Firmware generations") ----

@@ -35,6 +35,9 @@ struct ControllerModel {
     Firmware firmware = Firmware::Issue3;
     UnitKind kind = UnitKind::Motor;
     MessageSet takes;
+    /// What a unit of the later firmware generation ("issue-44.1") takes beyond `takes`: a
+    /// K-Cube's own messages, which the manual's generation ignores and logs.
+    MessageSet later_takes;
     /// The host's "server alive" acknowledgement of status updates: MOT_ACK_DCSTATUSUPDATE
     /// (p. 80) for motor and solenoid units, PZ_ACK_PZSTATUSUPDATE (0x0662, p. 105) for piezo
     /// and strain-gauge units; the same cut-off after 50 unacknowledged updates.

@@ -73,7 +73,7 @@ template <class T> Message as(const Frame& f)
 
 /// Decodes a frame whose ID is its message's.
 using Decoder = Message (*)(const Frame&);
-/// Above the highest ID of the message table (MGMSG_PZ_GET_TSG_READING, 0x07DE).
+/// Above the highest ID of the message table (MGMSG_KSG_GET_KCUBETRIGIOCONFIG, 0x07FB).
 constexpr std::size_t kDecoderSlots = 0x0800;
 using DecoderTable = std::array<Decoder, kDecoderSlots>;
 

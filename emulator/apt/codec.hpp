@@ -1140,6 +1140,13 @@ using SetTsgIoSettings = Set<TsgIoSettings>;
 using ReqTsgIoSettings = Req<TsgIoSettings>;
 using GetTsgIoSettings = Get<TsgIoSettings>;
 
+} // namespace msg
+} // namespace rigsim::apt
+// The K-Cube piezo driver's and strain gauge reader's own messages (later protocol issues).
+#include "emulator/apt/codec_kcube_units.hpp"
+namespace rigsim::apt {
+namespace msg {
+
 #undef RIGSIM_APT_BARE_MESSAGE
 #undef RIGSIM_APT_MESSAGE
 
@@ -1250,7 +1257,7 @@ struct GroupOf<T, G, Groups...>
 
 /// Every chapter, in the order of Message's alternatives.
 using Chapters = std::tuple<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                            PiezoTrioMessage, PiezoMessage, KCubeMotorMessage>;
+                            PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage>;
 
 namespace codec_detail {
 template <class T, class C> struct GroupOfIn;
@@ -1262,7 +1269,7 @@ template <class T> using GroupOf = typename codec_detail::GroupOfIn<T, Chapters>
 
 /// Every message decode() can return: a chapter's message, or an Untyped.
 struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                              PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, Untyped> {
+                              PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage, Untyped> {
     Message() = default;
     /// Typed message `m`, in its chapter.
     template <class T, class G = GroupOf<T>>

@@ -33,6 +33,7 @@ enum Block : unsigned {
 ///   a unit answering one a client does not send harms no client: kept for the KST101.
 /// - KCUBEKSTLOOPPARAMS: the KST101 (its name); a thorpy example sends it to a BSC20x "as set
 ///   by APT".
+/// - KCUBEMMIPARAMS, KCUBETRIGIOCONFIG also the KSC101 solenoid cube (msl-equipment ksc.py).
 /// - TSTACTUATORTYPE: KST101 and BSC20x (MSLNZ/msl-equipment thorlabs/kst.py and bsc.py send
 ///   it); issue 16 p. 94 names the TST101 only (rigsim has no TST101; not the TST001).
 unsigned blocks_of(std::string_view model)
@@ -47,6 +48,10 @@ unsigned blocks_of(std::string_view model)
         return kPower | kTrigger | kKstLoop | kActuator;
     if (model == "BBD203")
         return kTrigger;
+    // The KSC101's display block and TRIG1/TRIG2 ports (MSLNZ/msl-equipment thorlabs/ksc.py;
+    // its solenoid module holds a KCubeParams: docs/protocol/apt.md "K-Cube units").
+    if (model == "KSC101")
+        return kMmi | kTrigIo;
     return 0;
 }
 

@@ -354,6 +354,41 @@ constexpr MessageInfo kTable[] = {
     {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS), 28, M, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEKSTLOOPPARAMS), H, M, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS), 28, M, false, kLaterIssue},
+
+    // ---- Later protocol issues: the K-Cube piezo driver and strain gauge reader ----
+    // Not in the 2012 manual; a unit of the manual's generation ignores and logs them (catalogue.cpp:
+    // only a KPZ101/KSG101 of the later generation takes them). Issue 44.1 is the one K-Cube drivers
+    // cite (docs/protocol/apt.md "K-Cube units" gives each source).
+    // PZ_REQ_PZSTATUSUPDATE: header-only, param1 = channel; answered by PZ_GET_PZSTATUSUPDATE
+    // (yaq-project/thorlabs-apt-protocol functions.py pz_req_pzstatusupdate; AlexShkarin/pyLabLib
+    // kinesis.py reads a KPZ's status with it).
+    {RIGSIM_APT_MSG(MGMSG_PZ_REQ_PZSTATUSUPDATE), H, P, false, kLaterIssue},
+    // KPZ101 MMI block: 34 bytes: chan, JSMode, JSVoltGearbox (words), JSVoltStep (long),
+    // DirSense (word), PresetVolt1, PresetVolt2 (longs), DispBrightness, DispTimeout,
+    // DispDimLevel (words), four reserved words (kptrofatter/kcube kcube_message.c writes length
+    // 0x22; quantumion/thorlabs_cube driver/kcube/kpz.py packs the same 34 bytes, citing protocol
+    // issue 38). REQ: header-only, param1 = channel.
+    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBEMMIPARAMS), 34, P, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KPZ_REQ_KCUBEMMIPARAMS), H, P, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KPZ_GET_KCUBEMMIPARAMS), 34, P, false, kLaterIssue},
+    // KPZ101 trigger ports: 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity,
+    // six reserved words (kcube_message.c length 0x16; thorlabs_cube kpz.py 11 words). yaq's
+    // 6-word form (12 bytes) is short of both: 22 wins.
+    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBETRIGIOCONFIG), 22, P, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG), H, P, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KPZ_GET_KCUBETRIGIOCONFIG), 22, P, false, kLaterIssue},
+    // KSG101 MMI block: 8 bytes: chan, DispIntensity, DispTimeout, DispDimLevel (words)
+    // (kcube_message.c length 0x08; yaq "<HHHH"). Kinesis' KSG_MMIParams struct has four more
+    // reserved words, but it is the DLL's, not the wire's: the two wire-level sources win.
+    {RIGSIM_APT_MSG(MGMSG_KSG_SET_KCUBEMMIPARAMS), 8, S, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KSG_REQ_KCUBEMMIPARAMS), H, S, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KSG_GET_KCUBEMMIPARAMS), 8, S, false, kLaterIssue},
+    // KSG101 trigger ports: 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity
+    // (words), LowerLim, UpperLim (longs), SmoothingSamples, one reserved word (kcube_message.c
+    // length 0x16; yaq "<HHHHHllHH").
+    {RIGSIM_APT_MSG(MGMSG_KSG_SET_KCUBETRIGIOCONFIG), 22, S, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KSG_REQ_KCUBETRIGIOCONFIG), H, S, false, kLaterIssue},
+    {RIGSIM_APT_MSG(MGMSG_KSG_GET_KCUBETRIGIOCONFIG), 22, S, false, kLaterIssue},
 };
 
 #undef RIGSIM_APT_MSG

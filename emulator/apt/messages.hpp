@@ -253,5 +253,20 @@ constexpr std::uint16_t MGMSG_PZ_REQ_TSG_IOSETTINGS = 0x07DB;
 constexpr std::uint16_t MGMSG_PZ_GET_TSG_IOSETTINGS = 0x07DC;
 constexpr std::uint16_t MGMSG_PZ_REQ_TSG_READING = 0x07DD;
 constexpr std::uint16_t MGMSG_PZ_GET_TSG_READING = 0x07DE;
+// Later protocol issues (not in the 2012 manual): the K-Cube piezo driver's and strain gauge
+// reader's own blocks, and the piezo status-update request (messages.cpp: sources).
+constexpr std::uint16_t MGMSG_PZ_REQ_PZSTATUSUPDATE = 0x0660;
+constexpr std::uint16_t MGMSG_KPZ_SET_KCUBEMMIPARAMS = 0x07F0;
+constexpr std::uint16_t MGMSG_KPZ_REQ_KCUBEMMIPARAMS = 0x07F1;
+constexpr std::uint16_t MGMSG_KPZ_GET_KCUBEMMIPARAMS = 0x07F2;
+constexpr std::uint16_t MGMSG_KPZ_SET_KCUBETRIGIOCONFIG = 0x07F3;
+constexpr std::uint16_t MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG = 0x07F4;
+constexpr std::uint16_t MGMSG_KPZ_GET_KCUBETRIGIOCONFIG = 0x07F5;
+constexpr std::uint16_t MGMSG_KSG_SET_KCUBEMMIPARAMS = 0x07F6;
+constexpr std::uint16_t MGMSG_KSG_REQ_KCUBEMMIPARAMS = 0x07F7;
+constexpr std::uint16_t MGMSG_KSG_GET_KCUBEMMIPARAMS = 0x07F8;
+constexpr std::uint16_t MGMSG_KSG_SET_KCUBETRIGIOCONFIG = 0x07F9;
+constexpr std::uint16_t MGMSG_KSG_REQ_KCUBETRIGIOCONFIG = 0x07FA;
+constexpr std::uint16_t MGMSG_KSG_GET_KCUBETRIGIOCONFIG = 0x07FB;
 
 } // namespace rigsim::apt

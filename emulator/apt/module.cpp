@@ -95,8 +95,9 @@ void Module::not_mine()
 
 bool Module::taken()
 {
-    const auto& takes = unit_.model.takes;
-    if (takes.empty() || takes.contains(request_->frame.id))
+    const auto& model = unit_.model;
+    const auto id = request_->frame.id;
+    if (model.takes.empty() || model.takes.contains(id) || (later_generation() && model.later_takes.contains(id)))
         return true;
     not_mine();
     return false;

@@ -147,8 +147,13 @@ protected:
     void ignore(const std::string& text);
     /// "<name> is not a message a <model> acts on: ignored".
     void not_mine();
-    /// The message is in the model's MessageSet, or the model has none; else logged and ignored.
+    /// The message is in the model's MessageSet (with the later generation: or in its
+    /// later_takes), or the model has none; else logged and ignored.
     bool taken();
+    /// The unit follows a later firmware generation than the manual's (its "firmware").
+    bool later_generation() const { return unit_.firmware != Firmware::Issue3; }
+    /// The unit takes message `id` only as the later generation does (ControllerModel::later_takes).
+    bool takes_later(std::uint16_t id) const { return later_generation() && unit_.model.later_takes.contains(id); }
     /// The channel the message addresses (a cube's channel 0 read as 1).
     std::uint16_t channel() const;
     /// Log and ignore a message for another channel than 1.

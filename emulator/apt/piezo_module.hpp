@@ -6,6 +6,7 @@
 // "<device>/<bay+1>"). The actuator integrates the motion; this module only sets its voltage.
 // Choices the manual leaves open: docs/protocol/errata.md (D-7, D-9, D-11, D-13, D-17..D-19).
 
+#include "emulator/apt/kcube_units.hpp"
 #include "emulator/apt/module.hpp"
 #include "emulator/apt/output_trace.hpp"
 #include "models/lut_player.hpp"
@@ -35,6 +36,8 @@ public:
     using Saved = SavedSets<msg::PzSetPosControlMode, msg::SetPzInputVoltsSrc, msg::SetPzPiConsts,
                             msg::SetPzOutputLutParams, msg::SetTpzDispSettings, msg::SetTpzIoSettings,
                             msg::SetPzOutputMaxVolts, msg::SetTpzSlewRates>;
+    /// What it also saves on a KPZ101 of the later generation: its own blocks (piezo_kcube.cpp).
+    using LaterSaved = SavedSets<msg::SetKpzMmiParams, msg::SetKpzTrigIoConfig>;
 
     /// A TPZ/KPZ's position feedback: the reading (µm from its zero) that reaches input
     /// `hub_analog_input` (TPZ_IOSETTINGS, p. 115) at `now`, or nullopt if none does.
@@ -49,8 +52,8 @@ public:
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
     void power_down(bool restore_positions) override;
-    bool saves(std::uint16_t id) const override { return Saved::saves(id); }
-    std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
+    bool saves(std::uint16_t id) const override;
+    std::optional<std::string> saved_data(const msg::Message& m) const override;
     void describe(nlohmann::json& out) const override;
     /// `{"trig_in": true|false|"pulse"}`: the TRIG IN level of a BPC30x bay (the LUT's input
     /// trigger, p. 108); a TPZ001/KPZ101 has none (400).
@@ -103,6 +106,12 @@ public:
     void on(const msg::ReqTpzSlewRates& m);            ///< MGMSG_PZ_REQ_TPZ_SLEWRATES (p. 123)
     void on(const msg::MotSetPzStageParamDefaults& m); ///< MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS (p. 125)
     void on(const msg::PzSetLutValueType& m);          ///< MGMSG_PZ_SET_LUTVALUETYPE (p. 126, MPZ601 only)
+    // The KPZ101's own messages of the later protocol issues (piezo_kcube.cpp).
+    void on(const msg::PzReqPzStatusUpdate& m);        ///< MGMSG_PZ_REQ_PZSTATUSUPDATE (later issue)
+    void on(const msg::SetKpzMmiParams& m);            ///< MGMSG_KPZ_SET_KCUBEMMIPARAMS (later issue)
+    void on(const msg::ReqKpzMmiParams& m);            ///< MGMSG_KPZ_REQ_KCUBEMMIPARAMS (later issue)
+    void on(const msg::SetKpzTrigIoConfig& m);         ///< MGMSG_KPZ_SET_KCUBETRIGIOCONFIG (later issue)
+    void on(const msg::ReqKpzTrigIoConfig& m);         ///< MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG (later issue)
 
 private:
     /// The slewed output ramp: from `from_v` at `start` towards `target_v` at `rate_v_per_tick`
@@ -187,6 +196,8 @@ private:
     double zero_offset_um_ = 0;
     Ticks last_tick_ = 0;
     bool fed_ = false;                ///< has_feedback() at the last tick or feedback change seen
+    msg::KpzMmiParams kcube_mmi_ = kpz_mmi_power_up();      ///< KPZ101, later generation
+    msg::KpzTrigIoConfig kcube_trig_ = kpz_trig_power_up(); ///< KPZ101, later generation
 };
 
 } // namespace rigsim::apt

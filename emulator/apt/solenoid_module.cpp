@@ -16,6 +16,17 @@ constexpr std::uint8_t kChan1 = 0x01;
 constexpr std::uint32_t kOutputOn = 0x00000001;
 /// p. 77 table: "interlock state (1 = enabled)".
 constexpr std::uint32_t kInterlockEnabled = 0x00001000;
+/// A KSC101's key switch unlocked (MSLNZ/msl-equipment thorlabs/ksc.py is_key_unlocked: bit 13).
+/// rigsim has no key: the key of a unit whose output works is unlocked.
+constexpr std::uint32_t kKeyUnlocked = 0x00002000;
+
+/// MOT_GET_SOL_STATE's state byte (p. 91: 1 on, 2 off).
+constexpr std::uint8_t kSolOn = 1;
+constexpr std::uint8_t kSolOff = 2;
+/// A KSC101's firmware reports the output off as 0, not 2 (amsikking/thorlabs_KSC101
+/// thorlabs_KSC101.py reads 0 closed, 1 open, "error in docs?"; Kinesis' SC_OperatingStates
+/// names the 0 it "sometimes" returns, msl-equipment kinesis/enums.py).
+constexpr std::uint8_t kKCubeSolOff = 0;
 
 const char* mode_name(SolenoidModule::Mode m)
 {
@@ -38,7 +49,8 @@ SolenoidModule::SolenoidModule(const UnitIdentity& unit, std::size_t bay, std::u
                                models::Solenoid& output, const Clock& clock, bool interlock_fitted,
                                spdlog::logger& log, SaveToEeprom save)
     : Module(unit, bay, address, log, std::move(save)), output_(output), clock_(clock),
-      interlock_fitted_(interlock_fitted), published_active_(output.active_at(clock.now()))
+      interlock_fitted_(interlock_fitted), published_active_(output.active_at(clock.now())),
+      kcube_(unit.model_name, unit.firmware)
 {
 }
 
@@ -81,6 +93,8 @@ std::uint32_t SolenoidModule::status_bits() const
         bits |= kOutputOn;
     if (interlock_mode_ == 1)
         bits |= kInterlockEnabled;
+    if (kcube_firmware())
+        bits |= kKeyUnlocked;
     return bits;
 }
 
@@ -188,7 +202,8 @@ void SolenoidModule::on(const msg::SolSetState& m)
 
 void SolenoidModule::on(const msg::SolReqState&)
 {
-    answer(msg::SolGetState{kChan1, static_cast<std::uint8_t>(output_.active_at(clock_.now()) ? 1 : 2)});
+    const std::uint8_t off = kcube_firmware() ? kKCubeSolOff : kSolOff;
+    answer(msg::SolGetState{kChan1, output_.active_at(clock_.now()) ? kSolOn : off});
 }
 
 // ---- Motor family (p. 138) ----
@@ -221,6 +236,38 @@ void SolenoidModule::on(const msg::ReqButtonParams&)
 void SolenoidModule::on(const msg::SetEepromParams& m)
 {
     save_to_eeprom_(m.msg_id, request_->peer);
+}
+
+void SolenoidModule::on(const msg::ReqStatusBits&)
+{
+    answer(msg::GetStatusBits{kChan1, status_bits()});
+}
+
+void SolenoidModule::on(const msg::ReqStatusUpdate&)
+{
+    request_->reply += status_update(request_->host);   // the 100 ms update, now
+}
+
+void SolenoidModule::finish(const KCubeOutcome& out)
+{
+    if (!out.ignored.empty())
+        return ignore(fmt::format("{}: {}", request_->peer, out.ignored));
+    if (out.answer)
+        answer(*out.answer);
+}
+
+void SolenoidModule::on(const msg::SetKCubeTrigIoConfig& m)
+{
+    // Kinesis' KSC_TriggerPortMode (msl-equipment kinesis/enums.py): 0 disabled, 1 input, 0x0A
+    // output; the motor cubes' move and position modes have no solenoid meaning.
+    for (const auto mode : {m.params.trig1_mode, m.params.trig2_mode})
+        if (mode != 0 && mode != 1 && mode != 0x0A)
+            return ignore(fmt::format("{}: MOT_SET_KCUBETRIGIOCONFIG with trigger mode {} (a KSC101: 0, 1 or 10): "
+                                      "ignored",
+                                      request_->peer, mode));
+    KCubeOutcome out;
+    kcube_.on(m, out);
+    finish(out);
 }
 
 // ---- Control API ----

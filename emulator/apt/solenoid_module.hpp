@@ -4,6 +4,7 @@
 // triggered mode's priming, the interlock plug and the TRIG IN level) and drives the output
 // through models::Solenoid, the body in the world that times the on/off cycles.
 
+#include "emulator/apt/kcube_params.hpp"
 #include "emulator/apt/module.hpp"
 #include "models/clock.hpp"
 #include "models/solenoid.hpp"
@@ -28,21 +29,28 @@ public:
     SolenoidModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, models::Solenoid& output,
                    const Clock& clock, bool interlock_fitted, spdlog::logger& log, SaveToEeprom save);
 
-    static constexpr bool handles(msg::Family f) { return f == msg::Family::Solenoid || f == msg::Family::Motor; }
+    static constexpr bool handles(msg::Family f)
+    {
+        return f == msg::Family::Solenoid || f == msg::Family::Motor || f == msg::Family::KCubeMotor;
+    }
     void handle(const msg::Message& m, Request& r) override;
     std::string status_update(std::uint8_t host) const override;
     void power_down(bool restore_positions) override;
     /// The output's next edge: the shell wakes then so that the "solenoid" event has its tick.
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
-    bool saves(std::uint16_t id) const override { return Saved::saves(id); }
-    std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
+    bool saves(std::uint16_t id) const override { return Saved::saves(id) || kcube_.saves(id); }
+    std::optional<std::string> saved_data(const msg::Message& m) const override
+    {
+        return Saved::saves(msg::message_id(m)) ? Saved::data(m) : kcube_.saved_data(m);
+    }
     void describe(nlohmann::json& out) const override;
     Refused patch(const nlohmann::json& body) override;
 
     /// The interlock plug is in (it outlives a power cycle: the shell hands it to the new module).
     bool interlock_fitted() const { return interlock_fitted_; }
-    /// MOT_GET_STATUSUPDATE's status bits (p. 77; D-4): 0x1 output on, 0x1000 interlock enabled.
+    /// MOT_GET_STATUSUPDATE's status bits (p. 77; D-4): 0x1 output on, 0x1000 interlock enabled;
+    /// a KSC101 of the later generation also 0x2000, its key switch unlocked ("K-Cube units").
     std::uint32_t status_bits() const;
 
     using Module::on;
@@ -59,12 +67,29 @@ public:
     void on(const msg::SetButtonParams& m);       ///< MGMSG_MOT_SET_BUTTONPARAMS (p. 58)
     void on(const msg::ReqButtonParams& m);       ///< MGMSG_MOT_REQ_BUTTONPARAMS (p. 58)
     void on(const msg::SetEepromParams& m);       ///< MGMSG_MOT_SET_EEPROMPARAMS (p. 60)
+    // A KSC101 of the later generation (catalogue.cpp kKscLaterTakes; the TSC001 ignores them, D-4).
+    void on(const msg::ReqStatusBits& m);         ///< MGMSG_MOT_REQ_STATUSBITS (p. 81; KSC101, later generation)
+    void on(const msg::ReqStatusUpdate& m);       ///< MGMSG_MOT_REQ_STATUSUPDATE (p. 78; KSC101, later generation)
+    /// MGMSG_MOT_SET_KCUBETRIGIOCONFIG (later issue; KSC101): a solenoid cube's port modes first.
+    void on(const msg::SetKCubeTrigIoConfig& m);
+    /// The KCubeMotor family (later issues): the KSC101's display and trigger blocks, kept by
+    /// KCubeParams (kcube_params.hpp) as a K-Cube motor module keeps them; the rest it ignores.
+    template <class T, class = decltype(std::declval<KCubeParams&>().on(std::declval<const T&>(),
+                                                                        std::declval<KCubeOutcome&>()))>
+    void on(const T& m)
+    {
+        KCubeOutcome out;
+        kcube_.on(m, out);
+        finish(out);
+    }
     /// Every other Motor-family message: no solenoid meaning (D-4), ignored and logged.
     template <class T, std::enable_if_t<T::family == msg::Family::Motor, int> = 0> void on(const T&) { not_mine(); }
 
 private:
     bool running() const { return output_.running(clock_.now()); }
     bool interlock_blocks() const { return interlock_mode_ == 1 && !interlock_fitted_; }
+    /// A K-Cube's firmware of the later generation: the KSC101's state encoding ("K-Cube units").
+    bool kcube_firmware() const { return later_generation() && !unit_.model.later_takes.empty(); }
     /// Close the output and disarm the triggered mode; the command reads OFF.
     void close_output();
     /// Start the programmed cycles now (`cycles` of them, 0 = forever).
@@ -76,6 +101,8 @@ private:
     Ticks ticks_of(std::int32_t units_250us) const;
     /// Publish the "solenoid" event if the output changed since the last one.
     void note_output(Ticks now);
+    /// Send KCubeParams's answer, or log why it ignored the message.
+    void finish(const KCubeOutcome& out);
 
     models::Solenoid& output_;
     const Clock& clock_;
@@ -89,6 +116,7 @@ private:
     bool published_active_ = false;             ///< the output as the last "solenoid" event said
     msg::AvModes av_modes_{1, 0x000B};
     msg::ButtonParams button_params_{};
+    KCubeParams kcube_;                         ///< the KSC101's K-Cube blocks (later generation)
 };
 
 } // namespace rigsim::apt

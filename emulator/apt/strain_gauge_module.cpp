@@ -225,6 +225,51 @@ void StrainGaugeModule::on(const msg::PzReqMaxTravel&)
     answer(msg::PzGetMaxTravel{kChan1, static_cast<std::uint16_t>(std::lround(travel_um() * 10))});
 }
 
+// ---- The KSG101's own messages (later protocol issues; docs/protocol/apt.md "K-Cube units") ----
+
+bool StrainGaugeModule::saves(std::uint16_t id) const
+{
+    return Saved::saves(id) || (takes_later(id) && LaterSaved::saves(id));
+}
+
+std::optional<std::string> StrainGaugeModule::saved_data(const msg::Message& m) const
+{
+    if (auto data = Saved::data(m))
+        return data;
+    return takes_later(msg::message_id(m)) ? LaterSaved::data(m) : std::nullopt;
+}
+
+void StrainGaugeModule::on(const msg::PzReqPzStatusUpdate&)
+{
+    request_->reply += status_update(request_->host);   // the 100 ms update, now
+}
+
+void StrainGaugeModule::on(const msg::SetKsgMmiParams& m)
+{
+    if (const auto bad = kcube_out_of_range(m.params))
+        return ignore(fmt::format("{}: KSG_SET_KCUBEMMIPARAMS with {}: ignored", request_->peer, *bad));
+    kcube_mmi_ = m.params;
+    kcube_mmi_.chan_ident = kChan1;
+}
+
+void StrainGaugeModule::on(const msg::ReqKsgMmiParams&)
+{
+    answer(msg::GetKsgMmiParams{kcube_mmi_});
+}
+
+void StrainGaugeModule::on(const msg::SetKsgTrigIoConfig& m)
+{
+    if (const auto bad = kcube_out_of_range(m.params))
+        return ignore(fmt::format("{}: KSG_SET_KCUBETRIGIOCONFIG with {}: ignored", request_->peer, *bad));
+    kcube_trig_ = m.params;
+    kcube_trig_.chan_ident = kChan1;
+}
+
+void StrainGaugeModule::on(const msg::ReqKsgTrigIoConfig&)
+{
+    answer(msg::GetKsgTrigIoConfig{kcube_trig_});
+}
+
 std::unique_ptr<Module> make_strain_gauge_module(const UnitIdentity& unit, std::uint8_t address,
                                                  const DeviceConfig& config, models::World& world,
                                                  spdlog::logger& log, Module::SaveToEeprom save)

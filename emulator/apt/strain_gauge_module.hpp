@@ -12,6 +12,7 @@
 // Choices the manual leaves open: docs/protocol/errata.md (D-15, D-16, D-22).
 
 #include "emulator/apt/config.hpp"
+#include "emulator/apt/kcube_units.hpp"
 #include "emulator/apt/module.hpp"
 #include "models/strain_gauge.hpp"
 
@@ -63,6 +64,8 @@ class StrainGaugeModule final : public Module {
 public:
     /// What PZ_SET_EEPROMPARAMS saves (p. 113) on a gauge reader.
     using Saved = SavedSets<msg::SetTsgIoSettings, msg::SetTpzDispSettings>;
+    /// What it also saves on a KSG101 of the later generation: its own blocks.
+    using LaterSaved = SavedSets<msg::SetKsgMmiParams, msg::SetKsgTrigIoConfig>;
 
     /// `gauge` is nullptr when no gauge is fitted (no mounted_on).
     StrainGaugeModule(const UnitIdentity& unit, std::size_t bay, std::uint8_t address, WiredStrainGauge* gauge,
@@ -75,8 +78,8 @@ public:
     void power_down(bool restore_positions) override;
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
-    bool saves(std::uint16_t id) const override { return Saved::saves(id); }
-    std::optional<std::string> saved_data(const msg::Message& m) const override { return Saved::data(m); }
+    bool saves(std::uint16_t id) const override;
+    std::optional<std::string> saved_data(const msg::Message& m) const override;
     void describe(nlohmann::json& out) const override;
     /// `{"noise_um": x}`: the gauge's noise sigma from now on (x >= 0, finite).
     Refused patch(const nlohmann::json& body) override;
@@ -96,8 +99,16 @@ public:
     void on(const msg::ReqTpzDispSettings& m);   ///< MGMSG_PZ_REQ_TPZ_DISPSETTINGS (p. 114)
     void on(const msg::PzSetZero& m);            ///< MGMSG_PZ_SET_ZERO (p. 117)
     void on(const msg::PzReqMaxTravel& m);       ///< MGMSG_PZ_REQ_MAXTRAVEL (p. 118)
-    /// The other Piezo messages: outside the TSG001's MessageSet (p. 134), so dispatch() never
-    /// lets one reach here; a model without a set would log and ignore it.
+    // The KSG101's own messages of the later protocol issues: its display and trigger-port blocks,
+    // kept and answered (rigsim drives no display or trigger port), and the status-update request.
+    void on(const msg::PzReqPzStatusUpdate& m);  ///< MGMSG_PZ_REQ_PZSTATUSUPDATE (later issue)
+    void on(const msg::SetKsgMmiParams& m);      ///< MGMSG_KSG_SET_KCUBEMMIPARAMS (later issue)
+    void on(const msg::ReqKsgMmiParams& m);      ///< MGMSG_KSG_REQ_KCUBEMMIPARAMS (later issue)
+    void on(const msg::SetKsgTrigIoConfig& m);   ///< MGMSG_KSG_SET_KCUBETRIGIOCONFIG (later issue)
+    void on(const msg::ReqKsgTrigIoConfig& m);   ///< MGMSG_KSG_REQ_KCUBETRIGIOCONFIG (later issue)
+    /// The other Piezo and StrainGauge messages: outside the TSG001's MessageSet (p. 134) and the
+    /// KSG101's later_takes, so dispatch() never lets one reach here; a model without a set would
+    /// log and ignore it.
     template <class T> void on(const T&) { not_mine(); }
 
 private:
@@ -116,6 +127,8 @@ private:
     std::uint16_t disp_intensity_ = 255;
     Ticks zero_end_ = kNever;           ///< SET_ZERO in progress until this tick
     bool zeroed_ = false;
+    msg::KsgMmiParams kcube_mmi_ = ksg_mmi_power_up();      ///< KSG101, later generation
+    msg::KsgTrigIoConfig kcube_trig_ = ksg_trig_power_up(); ///< KSG101, later generation
 };
 
 /// The gauge reader of device `config` at `address`: its gauge body ("<device>/1", made once,

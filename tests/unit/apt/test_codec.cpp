@@ -475,7 +475,8 @@ TEST_CASE("apt codec keeps a message it does not type whole, as Untyped", "[apt]
     CHECK(get_if<Untyped>(m)->data == data);
     CHECK(hex(encode(m, 0x50, 0x01)) == "01 00 04 00 D0 01 01 00 E8 03");
 
-    // IDs above the table's highest (0x07DE), up to the largest a header can carry.
+    // IDs the table does not know: between its entries (0x07DF), above its highest (0x07FB), up to the
+    // largest a header can carry.
     f.has_data = false;
     for (std::uint16_t id : {0x07DF, 0x0800, 0x0801, 0xFFFF}) {
         f.id = id;

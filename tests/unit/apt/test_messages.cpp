@@ -91,11 +91,17 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
         if (m.group == Group::Motor) {
             CHECK(m.name.substr(0, 10) == "MGMSG_MOT_");
         } else if (m.group == Group::Piezo) {
-            CHECK(m.name.substr(0, 9) == "MGMSG_PZ_");
+            // The piezo chapter's PZ_ messages, and the KPZ101's own KPZ_ ones of later issues.
+            CHECK((m.name.substr(0, 9) == "MGMSG_PZ_" || (m.later_issue && m.name.substr(0, 10) == "MGMSG_KPZ_")));
             CHECK(m.name.find("_TSG_") == std::string_view::npos);
         } else if (m.group == Group::StrainGauge) {
-            CHECK(m.name.substr(0, 9) == "MGMSG_PZ_");
-            CHECK(m.name.find("_TSG_") != std::string_view::npos);
+            // The TSG001's PZ_*TSG_* messages, and the KSG101's own KSG_ ones of later issues.
+            if (m.later_issue) {
+                CHECK(m.name.substr(0, 10) == "MGMSG_KSG_");
+            } else {
+                CHECK(m.name.substr(0, 9) == "MGMSG_PZ_");
+                CHECK(m.name.find("_TSG_") != std::string_view::npos);
+            }
         } else {
             const auto kind = m.name.substr(6, m.name.find('_', 6) - 6);
             CHECK((kind == "MOD" || kind == "HW" || kind == "RACK" || kind == "HUB"));
@@ -108,12 +114,14 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
     }
     CHECK(count(Group::Generic) == 22);
     CHECK(count(Group::Motor) == 92 + 19);   // the manual's, then the later issues' (test_codec_kcube.cpp)
-    CHECK(count(Group::Piezo) == 47);
-    CHECK(count(Group::StrainGauge) == 5);
-    CHECK(all_messages().size() == 166 + 19);
+    // The piezo and strain gauge chapters' 47 and 5, and the K-Cube units' 7 and 6 of later issues.
+    CHECK(count(Group::Piezo) == 47 + 7);
+    CHECK(count(Group::StrainGauge) == 5 + 6);
+    CHECK(all_messages().size() == 166 + 19 + 13);
     CHECK(find_message(0x0000) == nullptr);
     CHECK(find_message(0xFFFF) == nullptr);
-    CHECK(find_message(0x0660) == nullptr);   // a REQ for PZ_GET_PZSTATUSUPDATE: not in the manual
+    REQUIRE(find_message(0x0660) != nullptr);   // a REQ for PZ_GET_PZSTATUSUPDATE: not in the manual,
+    CHECK(find_message(0x0660)->later_issue);   // later issues add it
     CHECK(find_message(0x0640) == &all_messages()[113]);   // the piezo chapter follows the 22 + 79 + 12
 }
 
@@ -267,7 +275,14 @@ TEST_CASE("apt message table flags the short forms and the later-issue messages"
                        "MGMSG_MOT_GET_KCUBETRIGIOCONFIG", "MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS",
                        "MGMSG_MOT_REQ_KCUBEPOSTRIGPARAMS", "MGMSG_MOT_GET_KCUBEPOSTRIGPARAMS",
                        "MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS", "MGMSG_MOT_REQ_KCUBEKSTLOOPPARAMS",
-                       "MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS"});
+                       "MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS",
+                       // The K-Cube piezo driver's and strain gauge reader's own (codec_kcube_units.hpp).
+                       "MGMSG_PZ_REQ_PZSTATUSUPDATE", "MGMSG_KPZ_SET_KCUBEMMIPARAMS", "MGMSG_KPZ_REQ_KCUBEMMIPARAMS",
+                       "MGMSG_KPZ_GET_KCUBEMMIPARAMS", "MGMSG_KPZ_SET_KCUBETRIGIOCONFIG",
+                       "MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG", "MGMSG_KPZ_GET_KCUBETRIGIOCONFIG",
+                       "MGMSG_KSG_SET_KCUBEMMIPARAMS", "MGMSG_KSG_REQ_KCUBEMMIPARAMS", "MGMSG_KSG_GET_KCUBEMMIPARAMS",
+                       "MGMSG_KSG_SET_KCUBETRIGIOCONFIG", "MGMSG_KSG_REQ_KCUBETRIGIOCONFIG",
+                       "MGMSG_KSG_GET_KCUBETRIGIOCONFIG"});
     CHECK(find_message(MGMSG_HW_NO_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_HW_YES_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_MOT_MOVE_JOG)->header_only());

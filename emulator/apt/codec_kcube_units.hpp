@@ -1,0 +1,132 @@
+#pragma once
+// The K-Cube piezo driver's and strain gauge reader's own messages (KPZ101, KSG101), which later
+// issues of the APT protocol add and the 2012 manual lacks, typed as codec.hpp types the
+// manual's: one parameter block per SET/REQ/GET trio, with the field names of the public sources
+// (messages.cpp and docs/protocol/apt.md "K-Cube units" name them), and the header-only
+// PZ_REQ_PZSTATUSUPDATE.
+//
+// This header is a part of codec.hpp: codec.hpp includes it after its Set<>, Req<> and Get<>
+// templates and before its Message variant (group KCubeUnitMessage); include codec.hpp, not this.
+
+namespace rigsim::apt::msg {
+
+/// MGMSG_KPZ_SET/REQ/GET_KCUBEMMIPARAMS (later issue, 34 bytes): the KPZ101's wheel and display.
+struct KpzMmiParams {
+    static constexpr std::uint16_t set_id = MGMSG_KPZ_SET_KCUBEMMIPARAMS;
+    static constexpr std::uint16_t req_id = MGMSG_KPZ_REQ_KCUBEMMIPARAMS;
+    static constexpr std::uint16_t get_id = MGMSG_KPZ_GET_KCUBEMMIPARAMS;
+    static constexpr Family family = Family::Piezo;
+    std::uint16_t chan_ident = 1;
+    std::uint16_t js_mode = 1;          ///< wheel: 1 move at voltage, 2 jog voltage, 3 go to a preset voltage
+    std::uint16_t js_volt_gearbox = 1;  ///< wheel rate: 1 high, 2 medium, 3 low
+    std::int32_t js_volt_step = 0;      ///< the jog mode's voltage step
+    std::uint16_t dir_sense = 1;        ///< wheel direction: 1 positive, 2 negative (0: as sent by clients)
+    std::int32_t preset_volt1 = 0;      ///< the go-to mode's preset voltages
+    std::int32_t preset_volt2 = 0;
+    std::uint16_t disp_brightness = 0;  ///< display, 0..100 %
+    std::uint16_t disp_timeout = 0;     ///< minutes without use before the display dims, 0..480 (0: never)
+    std::uint16_t disp_dim_level = 0;   ///< dimmed brightness, 0..10
+    std::uint16_t reserved1 = 0;
+    std::uint16_t reserved2 = 0;
+    std::uint16_t reserved3 = 0;
+    std::uint16_t reserved4 = 0;
+    template <class S> static auto fields(S& s)
+    {
+        return std::tie(s.chan_ident, s.js_mode, s.js_volt_gearbox, s.js_volt_step, s.dir_sense, s.preset_volt1,
+                        s.preset_volt2, s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.reserved1, s.reserved2,
+                        s.reserved3, s.reserved4);
+    }
+};
+
+/// MGMSG_KPZ_SET/REQ/GET_KCUBETRIGIOCONFIG (later issue, 22 bytes): the KPZ101's TRIG1/TRIG2 ports.
+struct KpzTrigIoConfig {
+    static constexpr std::uint16_t set_id = MGMSG_KPZ_SET_KCUBETRIGIOCONFIG;
+    static constexpr std::uint16_t req_id = MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG;
+    static constexpr std::uint16_t get_id = MGMSG_KPZ_GET_KCUBETRIGIOCONFIG;
+    static constexpr Family family = Family::Piezo;
+    std::uint16_t chan_ident = 1;
+    std::uint16_t trig1_mode = 0;       ///< 0 disabled, 1 input (GPI), 2 input: voltage step up, 3 step down, 0x0A output (GPO)
+    std::uint16_t trig1_polarity = 1;   ///< 1 active high, 2 active low
+    std::uint16_t trig2_mode = 0;
+    std::uint16_t trig2_polarity = 1;
+    std::uint16_t reserved1 = 0;
+    std::uint16_t reserved2 = 0;
+    std::uint16_t reserved3 = 0;
+    std::uint16_t reserved4 = 0;
+    std::uint16_t reserved5 = 0;
+    std::uint16_t reserved6 = 0;
+    template <class S> static auto fields(S& s)
+    {
+        return std::tie(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved1,
+                        s.reserved2, s.reserved3, s.reserved4, s.reserved5, s.reserved6);
+    }
+};
+
+/// MGMSG_KSG_SET/REQ/GET_KCUBEMMIPARAMS (later issue, 8 bytes): the KSG101's display.
+struct KsgMmiParams {
+    static constexpr std::uint16_t set_id = MGMSG_KSG_SET_KCUBEMMIPARAMS;
+    static constexpr std::uint16_t req_id = MGMSG_KSG_REQ_KCUBEMMIPARAMS;
+    static constexpr std::uint16_t get_id = MGMSG_KSG_GET_KCUBEMMIPARAMS;
+    static constexpr Family family = Family::StrainGauge;
+    std::uint16_t chan_ident = 1;
+    std::uint16_t disp_intensity = 0;   ///< 0..100 %
+    std::uint16_t disp_timeout = 0;     ///< minutes, 0..480 (0: never dims)
+    std::uint16_t disp_dim_level = 0;   ///< 0..10
+    template <class S> static auto fields(S& s)
+    {
+        return std::tie(s.chan_ident, s.disp_intensity, s.disp_timeout, s.disp_dim_level);
+    }
+};
+
+/// MGMSG_KSG_SET/REQ/GET_KCUBETRIGIOCONFIG (later issue, 22 bytes): the KSG101's TRIG1/TRIG2
+/// ports and the reading limits its outputs compare against.
+struct KsgTrigIoConfig {
+    static constexpr std::uint16_t set_id = MGMSG_KSG_SET_KCUBETRIGIOCONFIG;
+    static constexpr std::uint16_t req_id = MGMSG_KSG_REQ_KCUBETRIGIOCONFIG;
+    static constexpr std::uint16_t get_id = MGMSG_KSG_GET_KCUBETRIGIOCONFIG;
+    static constexpr Family family = Family::StrainGauge;
+    std::uint16_t chan_ident = 1;
+    std::uint16_t trig1_mode = 0;       ///< 0 disabled, 1 GPI, 0x0A GPO, 0x0B..0x10 output against the limits
+    std::uint16_t trig1_polarity = 1;   ///< 1 active high, 2 active low
+    std::uint16_t trig2_mode = 0;
+    std::uint16_t trig2_polarity = 1;
+    std::int32_t lower_lim = 0;         ///< on the reading's scale
+    std::int32_t upper_lim = 0;
+    std::uint16_t smoothing_samples = 1;
+    std::uint16_t reserved = 0;
+    template <class S> static auto fields(S& s)
+    {
+        return std::tie(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.lower_lim,
+                        s.upper_lim, s.smoothing_samples, s.reserved);
+    }
+};
+
+/// MGMSG_PZ_REQ_PZSTATUSUPDATE (later issue): answered by MGMSG_PZ_GET_PZSTATUSUPDATE.
+struct PzReqPzStatusUpdate {
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSUPDATE, true, Piezo);
+    std::uint8_t chan_ident = 1;
+    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+};
+
+using SetKpzMmiParams = Set<KpzMmiParams>;
+using ReqKpzMmiParams = Req<KpzMmiParams>;
+using GetKpzMmiParams = Get<KpzMmiParams>;
+using SetKpzTrigIoConfig = Set<KpzTrigIoConfig>;
+using ReqKpzTrigIoConfig = Req<KpzTrigIoConfig>;
+using GetKpzTrigIoConfig = Get<KpzTrigIoConfig>;
+using SetKsgMmiParams = Set<KsgMmiParams>;
+using ReqKsgMmiParams = Req<KsgMmiParams>;
+using GetKsgMmiParams = Get<KsgMmiParams>;
+using SetKsgTrigIoConfig = Set<KsgTrigIoConfig>;
+using ReqKsgTrigIoConfig = Req<KsgTrigIoConfig>;
+using GetKsgTrigIoConfig = Get<KsgTrigIoConfig>;
+
+/// The K-Cube piezo driver's and strain gauge reader's own messages (later protocol issues).
+struct KCubeUnitMessage
+    : std::variant<SetKpzMmiParams, ReqKpzMmiParams, GetKpzMmiParams, SetKpzTrigIoConfig, ReqKpzTrigIoConfig,
+                   GetKpzTrigIoConfig, SetKsgMmiParams, ReqKsgMmiParams, GetKsgMmiParams, SetKsgTrigIoConfig,
+                   ReqKsgTrigIoConfig, GetKsgTrigIoConfig, PzReqPzStatusUpdate> {
+    using variant::variant;
+};
+
+} // namespace rigsim::apt::msg
