@@ -277,9 +277,13 @@ void AptDevice::restore_from_eeprom()
         const Frame f = saved_frame(*info, address_of(bay), data);
         const auto m = msg::decode(f);
         // The stored form differs from the data only in a channel other than 1.
-        if (const auto stored = modules_[bay]->saved_data(m); stored && *stored != data)
+        if (const auto stored = modules_[bay]->saved_data(m); stored && *stored != data) {
+            // TSTACTUATORTYPE's param1 is the actuator, not a channel: only its param2 can differ.
+            if (id == MGMSG_MOT_SET_TSTACTUATORTYPE)
+                return "param2 " + std::to_string(f.param2) + "; MGMSG_MOT_SET_TSTACTUATORTYPE's param2 is 0";
             return "channel " + std::to_string(f.has_data ? get_u16(data, 0) : f.param1) + " in the data; bay "
                    + std::to_string(bay) + " is channel 1";
+        }
         last_set_.erase({bay, id});
         std::string ignored;
         Request r{f, "state file", ignored, host_};

@@ -1,6 +1,7 @@
 #include "emulator/apt/firmware.hpp"
 
 #include <array>
+#include <string>
 #include <utility>
 
 namespace rigsim::apt {
@@ -31,7 +32,14 @@ std::optional<Firmware> find_firmware(std::string_view name)
 
 std::string_view firmware_names()
 {
-    return "\"issue-3\", \"issue-44.1\"";
+    // Built once from the table, so the message never drifts from the names.
+    static const std::string names = [] {
+        std::string out;
+        for (const auto& g : kNames)
+            out += (out.empty() ? "\"" : ", \"") + std::string(g.second) + "\"";
+        return out;
+    }();
+    return names;
 }
 
 } // namespace rigsim::apt

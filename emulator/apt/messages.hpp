@@ -34,7 +34,8 @@ struct MessageInfo {
     std::int16_t data_length;         ///< -1: header-only; else the exact data packet length
     Group group;
     bool header_only_allowed = false; ///< a short header-only form exists beside the data form
-    bool later_issue = false;         ///< not in the 2012 manual; later issues add it and units accept it
+    bool later_issue = false;         ///< not in the 2012 manual but in later issues: framed always; acted on
+                                      ///< only by units of a later firmware generation (HW_YES/NO_FLASH_PROGRAMMING: all)
 
     /// True when the message is a 6-byte header without a data packet (in its only form).
     constexpr bool header_only() const { return data_length < 0; }

@@ -127,6 +127,10 @@ bool Module::channel_ok()
 
 bool Module::in_range()
 {
+    // A later issue's message on a unit of the manual's generation: the handler ignores it as a
+    // message the unit does not know, whatever its values.
+    if (request_->frame.info->later_issue && !later_generation())
+        return true;
     const auto bad = out_of_range(*message_);
     if (bad)
         ignore(fmt::format("{}: {} with {}: ignored", request_->peer, request_->frame.info->name, *bad));

@@ -160,13 +160,15 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
     const auto mcs_pointer = pointer_to(pointer, "mcs");
     const auto& section = reader.require(device, pointer, "mcs");
     auto mcs = McsLoader{reader}.load_mcs(section, mcs_pointer);
-    // The firmware generation and the GIV answer never disagree: either names the other
+    // Without "firmware" the device follows the manual, whatever GIV answers: the interface
+    // version keeps the meaning it had before generations existed (the GIV answer only). With
+    // "firmware", an interface version given beside it must belong to that generation
     // (docs/config.md, "firmware" and "interface_version").
     const bool version_given = reader.find(section, "interface_version") != nullptr;
     const auto& iv = mcs.interface_version;
     const Firmware of_version = firmware_of_version({iv.high, iv.low, iv.update});
     if (config.firmware.empty()) {
-        mcs.firmware = version_given ? of_version : Firmware::V1_2_44;
+        mcs.firmware = Firmware::V1_2_44;
         config.firmware = firmware_name(mcs.firmware);
     } else {
         const auto firmware = find_firmware(config.firmware);

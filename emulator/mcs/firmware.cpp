@@ -1,5 +1,6 @@
 #include "emulator/mcs/firmware.hpp"
 
+#include <string>
 
 namespace rigsim::mcs {
 namespace {
@@ -41,7 +42,14 @@ std::optional<Firmware> find_firmware(std::string_view name)
 
 std::string_view firmware_names()
 {
-    return "\"1.2.44\", \"2.0.1\"";
+    // Built once from the table, so the message never drifts from the names.
+    static const std::string names = [] {
+        std::string out;
+        for (const auto& g : kGenerations)
+            out += (out.empty() ? "\"" : ", \"") + std::string(g.name) + "\"";
+        return out;
+    }();
+    return names;
 }
 
 std::array<std::int64_t, 3> firmware_version(Firmware f)

@@ -1,5 +1,5 @@
-// MCS firmware generations in the rig: "firmware" and "mcs.interface_version" name each
-// other (docs/config.md), so a client reading GIV never meets a generation it did not ask for.
+// MCS firmware generations in the rig: "firmware" picks the generation (the manual's without it);
+// "mcs.interface_version" given beside it must belong to it (docs/config.md).
 #include "emulator/core/rig_families.hpp"
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/firmware.hpp"
@@ -106,15 +106,16 @@ TEST_CASE("mcs firmware: the firmware alone sets GIV's default", "[unit][mcs][fi
     CHECK(load("1.2.44", "").giv == "1.2.44");
 }
 
-TEST_CASE("mcs firmware: the interface version alone picks the generation", "[unit][mcs][firmware][config]")
+TEST_CASE("mcs firmware: without a firmware the device is the manual's, whatever GIV answers", "[unit][mcs][firmware][config]")
 {
-    const auto old = load("", "1.5.0");   // below 2.0.1: still the manual's generation
+    const auto old = load("", "1.5.0");
     CHECK(old.firmware_name == "1.2.44");
     CHECK(old.firmware == Firmware::V1_2_44);
     CHECK(old.giv == "1.5.0");
+    // The interface version alone keeps its meaning (the GIV answer): no later behaviour.
     const auto later = load("", "2.3.7");
-    CHECK(later.firmware_name == "2.0.1");   // the name the control API reports
-    CHECK(later.firmware == Firmware::V2_0_1);
+    CHECK(later.firmware_name == "1.2.44");   // the name the control API reports
+    CHECK(later.firmware == Firmware::V1_2_44);
     CHECK(later.giv == "2.3.7");
     CHECK(load("", "1.0.0").firmware == Firmware::V1_2_44);
 }
