@@ -2,6 +2,7 @@
 // hand below, little-endian as the ERRATA says), and those bytes, through the framer, decode
 // back to the same struct.
 #include "emulator/apt/codec.hpp"
+#include "tests/support/apt_round_trip.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
@@ -13,31 +14,10 @@ namespace test_apt_codec {
 using namespace rigsim::apt;
 using namespace rigsim::apt::msg;
 using rigsim::test::hex;
+using rigsim::test::round_trip;
 const auto unhex = rigsim::test::bytes;
 
 namespace {
-
-/// Decode `bytes` (one whole frame) through the framer.
-Message decode_bytes(const std::string& bytes)
-{
-    FrameFramer framer;
-    const auto r = framer.parse(bytes);
-    REQUIRE(r.status == FrameFramer::Status::Frame);
-    REQUIRE(r.consumed == bytes.size());
-    return decode(r.frame);
-}
-
-/// encode(m) from the host (0x01) to a single unit (0x50) is `frame_hex`, which decodes to m.
-template <class T> void round_trip(const T& m, const std::string& frame_hex, std::uint8_t dest = 0x50,
-                                   std::uint8_t source = 0x01)
-{
-    const auto bytes = encode(m, dest, source);
-    CHECK(hex(bytes) == frame_hex);
-    const auto decoded = decode_bytes(unhex(frame_hex));
-    REQUIRE(holds<T>(decoded));
-    CHECK((*get_if<T>(decoded) == m));
-    CHECK(message_id(decoded) == (unhex(frame_hex)[0] & 0xFF) + (unhex(frame_hex)[1] & 0xFF) * 256);
-}
 
 template <std::size_t N> std::array<char, N> chars(const std::string& s)
 {

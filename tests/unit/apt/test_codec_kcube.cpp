@@ -2,6 +2,7 @@
 // public sources print (examples quoted at each case) and decodes back through the framer; the
 // table knows their IDs and lengths and flags them later_issue.
 #include "emulator/apt/codec.hpp"
+#include "tests/support/apt_round_trip.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
@@ -15,30 +16,10 @@ namespace test_codec_kcube {
 using namespace rigsim::apt;
 using namespace rigsim::apt::msg;
 using rigsim::test::hex;
+using rigsim::test::round_trip;
 const auto unhex = rigsim::test::bytes;
 
 namespace {
-
-/// Decode `bytes` (one whole frame) through the framer.
-Message decode_bytes(const std::string& bytes)
-{
-    FrameFramer framer;
-    const auto r = framer.parse(bytes);
-    REQUIRE(r.status == FrameFramer::Status::Frame);
-    REQUIRE(r.consumed == bytes.size());
-    return decode(r.frame);
-}
-
-/// encode(m) from `source` to `dest` is `frame_hex`, which decodes to m.
-template <class T> void round_trip(const T& m, const std::string& frame_hex, std::uint8_t dest = 0x50,
-                                   std::uint8_t source = 0x01)
-{
-    CHECK(hex(encode(m, dest, source)) == frame_hex);
-    const auto decoded = decode_bytes(unhex(frame_hex));
-    REQUIRE(holds<T>(decoded));
-    CHECK((*get_if<T>(decoded) == m));
-    CHECK(hex(encode(decoded, dest, source)) == frame_hex);
-}
 
 const std::string kTwelveZeros = " 00 00 00 00 00 00 00 00 00 00 00 00";
 
@@ -137,7 +118,7 @@ TEST_CASE("the later-issue motor messages are in the table with their lengths, f
         // Every data length is its struct's: a frame of the table's length is typed, not Untyped.
         std::string frame = info->header_only() ? encode_header_only(id, 1, 0, 0x50, 0x01)
                                                 : encode_with_data(id, 0x50, 0x01, std::string(length, '\0'));
-        CHECK_FALSE(holds<Untyped>(decode_bytes(frame)));
+        CHECK_FALSE(holds<Untyped>(rigsim::test::decode_frame(frame)));
     }
 }
 

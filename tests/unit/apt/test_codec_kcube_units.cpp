@@ -3,6 +3,7 @@
 // give (docs/protocol/apt.md "K-Cube units"), with the values of the KPZ101/KSG101 session of
 // kptrofatter/kcube (its kcube_message.c writes the lengths used here), and decodes back.
 #include "emulator/apt/codec.hpp"
+#include "tests/support/apt_round_trip.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
@@ -14,27 +15,8 @@ namespace test_codec_kcube_units {
 using namespace rigsim::apt;
 using namespace rigsim::apt::msg;
 using rigsim::test::hex;
+using rigsim::test::round_trip;
 const auto unhex = rigsim::test::bytes;
-
-namespace {
-
-/// encode(m) from `source` to `dest` is `frame_hex`; that frame, through the framer, decodes to m.
-template <class T> void round_trip(const T& m, const std::string& frame_hex, std::uint8_t dest = 0x50,
-                                   std::uint8_t source = 0x01)
-{
-    CHECK(hex(encode(m, dest, source)) == frame_hex);
-    const std::string bytes = unhex(frame_hex);   // the frame's data packet points into it
-    FrameFramer framer;
-    const auto r = framer.parse(bytes);
-    REQUIRE(r.status == FrameFramer::Status::Frame);
-    REQUIRE(r.consumed == bytes.size());
-    const auto decoded = decode(r.frame);
-    REQUIRE(holds<T>(decoded));
-    CHECK((*get_if<T>(decoded) == m));
-    CHECK(message_id(decoded) == T::id);
-}
-
-} // namespace
 
 TEST_CASE("MGMSG_KPZ_SET/REQ/GET_KCUBEMMIPARAMS round-trip in their 34-byte layout", "[unit][apt][codec][kcube]")
 {
