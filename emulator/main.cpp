@@ -80,6 +80,16 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
                          ADDR an IP address ([::1] for IPv6), PORT 0 picks a free port;
                          wins over the config's "control" (default: off unless the
                          config has "control", then on 127.0.0.1)
+  --control-token TOKEN  the control API takes only requests carrying the header
+                         "Authorization: Bearer TOKEN" (401 otherwise); TOKEN printable
+                         ASCII without spaces, at most 1024 characters
+  --control-token-file FILE
+                         the same, the token being FILE's first line (FILE at most 4 KiB;
+                         keeps the token out of the process list)
+  --control-allow-host NAME
+                         a Host header the control API accepts besides IP addresses and
+                         localhost (may be repeated); any other name is refused (403),
+                         as are cross-origin requests and bodies that are not JSON
   --max-connections N    TCP connections open at once, all devices together; more are
                          accepted and closed at once (1..65536; default 256)
   --max-connections-per-device N
@@ -119,6 +129,7 @@ struct ControlListen {
 
 struct Options {
     std::optional<ControlListen> control;   ///< --control
+    rigsim::control::HttpAccess control_access;   ///< --control-token(-file), --control-allow-host
     std::optional<std::string> config;
     std::optional<std::string> check_config;
     std::optional<std::string> endpoints_json;
@@ -189,6 +200,24 @@ ControlListen parse_control(const std::string& value)
     return listen;
 }
 
+/// --control-token TOKEN or --control-token-file FILE: one of them, once.
+void set_control_token(const std::string& flag, const std::string& value, rigsim::control::HttpAccess& access)
+{
+    if (!access.token.empty())
+        throw UsageError{flag + ": the control token is already given (--control-token or --control-token-file, once)"};
+    if (flag == "--control-token-file") {
+        try {
+            access.token = rigsim::control::read_token_file(value);
+        } catch (const std::runtime_error& e) {
+            throw UsageError{e.what()};
+        }
+        return;
+    }
+    if (auto why = rigsim::control::bad_token(value))
+        throw UsageError{flag + ": " + *why};
+    access.token = value;
+}
+
 /// One option of the command line other than --help and --version; `value` takes its value,
 /// `no_value` refuses one.
 template <class Value, class NoValue>
@@ -217,6 +246,15 @@ void parse_option(const std::string& arg, Value& value, NoValue& no_value, Optio
             throw UsageError{"--bind: expected an IP address, got " + echo(v)};
     } else if (arg == "--control")
         o.control = parse_control(value());
+    else if (arg == "--control-token" || arg == "--control-token-file")
+        set_control_token(arg, value(), o.control_access);
+    else if (arg == "--control-allow-host") {
+        const auto v = value();
+        const auto name = rigsim::control::host_name_of(v);
+        if (!name || v.find(':') != std::string::npos)
+            throw UsageError{"--control-allow-host: expected a host name without a port, got " + echo(v)};
+        o.control_access.allowed_hosts.push_back(*name);
+    }
     else if (arg == "--max-connections")
         o.rig.max_connections = parse_uint(arg, value(), 1, 65536);
     else if (arg == "--max-connections-per-device")
@@ -297,15 +335,21 @@ std::optional<ControlListen> control_listen(const rigsim::RigConfig& config, con
 /// The control API on `listen`, started; throws if it cannot listen.
 std::unique_ptr<rigsim::control::HttpServer> start_control(boost::asio::io_context& io, rigsim::Rig& rig,
                                                            const ControlListen& listen,
+                                                           const rigsim::control::HttpAccess& access,
                                                            std::shared_ptr<spdlog::logger> log)
 {
+    if (!listen.address.is_loopback())
+        log->warn("control API listens on {}, beyond loopback: anyone who reaches it steers the rig{}",
+                  rigsim::tcp_address_text(listen.address, listen.port),
+                  access.token.empty() ? " (no --control-token is set)" : "");
     auto api = std::make_shared<rigsim::control::ControlApi>(rig);
     auto router = [api](std::string_view method, std::string_view target, std::string_view body) {
         return api->handle(method, target, body);
     };
     std::unique_ptr<rigsim::control::HttpServer> server;
     try {
-        server = std::make_unique<rigsim::control::HttpServer>(io, listen.address, listen.port, router, log);
+        server = std::make_unique<rigsim::control::HttpServer>(io, listen.address, listen.port, router, log,
+                                                               rigsim::control::HttpServerLimits{}, access);
     } catch (const std::exception& e) {
         throw std::runtime_error("control API: cannot listen on tcp "
                                  + rigsim::tcp_address_text(listen.address, listen.port) + ": " + e.what());
@@ -337,6 +381,20 @@ void announce_endpoints(const rigsim::Rig& rig, const std::string& url, const Op
             log.info("removed {}, left by a daemon that was killed while writing it", stale);
         rigsim::write_file_atomically(*opts.endpoints_json, rigsim::endpoints_json(rig.endpoints(), url));
         endpoints_file.emplace(*opts.endpoints_json);
+    }
+}
+
+/// Runs `io` until it is stopped. A handler that throws costs only the operation it served (its
+/// connection, which the unwinding closes): the daemon logs it and goes on serving the others.
+void run_loop(boost::asio::io_context& io, spdlog::logger& log)
+{
+    for (;;) {
+        try {
+            io.run();
+            return;
+        } catch (const std::exception& e) {
+            log.error("a handler failed and its connection was dropped: {}; serving the others", e.what());
+        }
     }
 }
 
@@ -383,14 +441,14 @@ int run(const rigsim::RigConfig& config, const Options& opts)
         rig->start();
         std::string url;
         if (const auto listen = control_listen(config, opts)) {
-            control = start_control(io, *rig, *listen, log);
+            control = start_control(io, *rig, *listen, opts.control_access, log);
             url = control_url(*control);
             log->info("control API on {}", url);
         }
         announce_endpoints(*rig, url, opts, *log, endpoints_file);
         log->info("rig running: {} device(s), tick {} Hz, time scale {}{}", rig->endpoints().size(),
                   config.tick_hz, opts.rig.time_scale, opts.rig.paused ? ", clock paused" : "");
-        io.run();
+        run_loop(io, *log);
     } catch (const rigsim::ConfigError& e) {
         // Found once the devices exist (a frame's joint on a channel that cannot drive it).
         log->critical("{}", e.what());

@@ -26,8 +26,11 @@ using boost::asio::ip::tcp;
 class Session;
 
 struct HttpServer::State {
-    State(boost::asio::io_context& io, Router r, std::shared_ptr<spdlog::logger> l, HttpServerLimits lim)
-        : acceptor(io), backoff_timer(io), router(std::move(r)), log(std::move(l)), limits(lim) {}
+    State(boost::asio::io_context& io, Router r, std::shared_ptr<spdlog::logger> l, HttpServerLimits lim,
+          HttpAccess a)
+        : acceptor(io), backoff_timer(io), router(std::move(r)), log(std::move(l)), limits(lim), access(std::move(a))
+    {
+    }
 
     tcp::acceptor acceptor;
     /// After an accept that failed for want of resources (EMFILE...), the next waits: the
@@ -38,6 +41,7 @@ struct HttpServer::State {
     Router router;
     std::shared_ptr<spdlog::logger> log;
     HttpServerLimits limits;
+    HttpAccess access;
     std::set<Session*> sessions;   ///< open connections, closed by stop()
     std::size_t streams = 0;       ///< of which event streams (they never idle out)
     bool stopped = false;
@@ -54,6 +58,41 @@ std::string error_body(const std::string& message)
 unsigned status_of_parse_error(const boost::system::error_code& ec)
 {
     return ec == http::error::body_limit ? 413 : 400;
+}
+
+/// A header's value, if the request has it.
+std::optional<std::string_view> field(const http::request<http::string_body>& req, http::field name)
+{
+    const auto it = req.find(name);
+    if (it == req.end())
+        return std::nullopt;
+    return std::string_view(it->value().data(), it->value().size());
+}
+
+/// A header without a Beast name (Sec-Fetch-Site), if the request has it.
+std::optional<std::string_view> field(const http::request<http::string_body>& req, std::string_view name)
+{
+    const auto it = req.find(boost::beast::string_view(name.data(), name.size()));
+    if (it == req.end())
+        return std::nullopt;
+    return std::string_view(it->value().data(), it->value().size());
+}
+
+/// What the access rules read of a request whose headers have been parsed.
+RequestHead head_of(const http::request_parser<http::string_body>& parser)
+{
+    const auto& req = parser.get();
+    RequestHead head;
+    head.method = std::string_view(req.method_string().data(), req.method_string().size());
+    head.version = req.version();
+    head.host = field(req, http::field::host);
+    head.origin = field(req, http::field::origin);
+    head.sec_fetch_site = field(req, "Sec-Fetch-Site");
+    head.content_type = field(req, http::field::content_type);
+    head.authorization = field(req, http::field::authorization);
+    head.chunked = parser.chunked();
+    head.has_body = parser.content_length().value_or(0) > 0;
+    return head;
 }
 
 bool is_parse_error(const boost::system::error_code& ec)
@@ -90,12 +129,65 @@ public:
     }
 
 private:
+    /// Read a request's headers; its body is read only once they pass the access rules.
     void read()
     {
         parser_.emplace();
         parser_->body_limit(state_->limits.max_body_bytes);
         parser_->header_limit(static_cast<std::uint32_t>(state_->limits.max_header_bytes));
         stream_.expires_after(state_->limits.idle_timeout);
+        http::async_read_header(stream_, buffer_, *parser_,
+                                [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+                                    self->on_header(ec);
+                                });
+    }
+
+    /// A read failed: a malformed request is answered (its framing is lost, so the connection
+    /// closes after); end of stream, a timeout, a reset or a stop end the session quietly.
+    void on_read_error(const boost::system::error_code& ec)
+    {
+        if (is_parse_error(ec) && !state_->stopped) {
+            state_->log->warn("control: bad request: {}", ec.message());
+            write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message()), {}, {}, {}}, 11,
+                  false);
+        }
+    }
+
+    void on_header(const boost::system::error_code& ec)
+    {
+        if (ec) {
+            on_read_error(ec);
+            return;
+        }
+        const auto head = head_of(*parser_);
+        if (const auto refused = check_access(state_->access, head)) {
+            state_->log->warn("control: refused {} {}: {}", std::string(head.method),
+                              std::string(parser_->get().target()), refused->message);
+            HttpReply reply{refused->status, error_body(refused->message), {}, {}, {}};
+            if (refused->status == 401)
+                reply.headers.emplace_back("WWW-Authenticate", "Bearer realm=\"rigsim\"");
+            // The body is not read: the connection's framing ends here.
+            write(std::move(reply), head.version, false);
+            return;
+        }
+        const auto expect = field(parser_->get(), http::field::expect);
+        if (expect && beast::iequals(beast::string_view(expect->data(), expect->size()), "100-continue") && !parser_->is_done()) {
+            // curl waits a second for this before it sends a body over 1 KiB.
+            continue_ = "HTTP/1.1 100 Continue\r\n\r\n";
+            boost::asio::async_write(stream_, boost::asio::buffer(continue_),
+                                     [self = shared_from_this()](const boost::system::error_code& wec, std::size_t) {
+                                         if (wec)
+                                             self->close();
+                                         else
+                                             self->read_body();
+                                     });
+            return;
+        }
+        read_body();
+    }
+
+    void read_body()
+    {
         http::async_read(stream_, buffer_, *parser_,
                          [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                              self->on_read(ec);
@@ -105,12 +197,8 @@ private:
     void on_read(const boost::system::error_code& ec)
     {
         if (ec) {
-            if (is_parse_error(ec) && !state_->stopped) {
-                state_->log->warn("control: bad request: {}", ec.message());
-                // After a malformed request the stream's framing is lost: answer, then close.
-                write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message()), {}}, 11, false);
-            }
-            return;   // end of stream, timeout, reset or stop: the session ends here
+            on_read_error(ec);
+            return;
         }
         const auto& req = parser_->get();
         HttpReply reply;
@@ -120,18 +208,40 @@ private:
         } catch (const std::exception& e) {
             state_->log->error("control: {} {}: {}", std::string(req.method_string()), std::string(req.target()),
                                e.what());
-            reply = HttpReply{500, error_body(std::string("internal error: ") + e.what()), {}};
+            reply = HttpReply{500, error_body(std::string("internal error: ") + e.what()), {}, {}, {}};
+        }
+        if (reply.later) {
+            answer_later(std::move(reply.later), req.version(), req.keep_alive());
+            return;
         }
         if (reply.stream && state_->streams >= state_->limits.max_streams)
             write(HttpReply{503,
                             error_body(std::to_string(state_->streams)
                                        + " event streams are open, the most the daemon serves at once: close one"),
-                            {}},
+                            {}, {}, {}},
                   req.version(), false);
         else if (reply.stream)
             start_stream(std::move(reply.stream));
         else
             write(std::move(reply), req.version(), req.keep_alive());
+    }
+
+    /// The answer comes when `later` calls back; meanwhile the connection reads nothing (one
+    /// request at a time) and has no deadline (a long clock step is not an idle client).
+    void answer_later(std::function<void(Respond)> later, unsigned version, bool keep_alive)
+    {
+        stream_.expires_never();
+        std::weak_ptr<Session> weak = shared_from_this();
+        auto respond = [weak, version, keep_alive](HttpReply reply) {
+            if (auto self = weak.lock(); self && !self->closed_)
+                self->write(std::move(reply), version, keep_alive);
+        };
+        try {
+            later(std::move(respond));
+        } catch (const std::exception& e) {
+            state_->log->error("control: a deferred answer failed: {}", e.what());
+            write(HttpReply{500, error_body(std::string("internal error: ") + e.what()), {}, {}, {}}, version, false);
+        }
     }
 
     // ---- A stream (GET /api/events): headers, then events as they come, until the client goes.
@@ -215,6 +325,9 @@ private:
         response_.result(reply.status);
         response_.set(http::field::server, "rigsimd");
         response_.set(http::field::content_type, "application/json");
+        response_.set("X-Content-Type-Options", "nosniff");
+        for (const auto& [name, value] : reply.headers)
+            response_.set(name, value);
         response_.keep_alive(keep_alive);
         response_.body() = std::move(reply.body);
         response_.prepare_payload();
@@ -241,6 +354,7 @@ private:
     bool closed_ = false;
     bool streaming_ = false;
     std::array<char, 512> sink_{};
+    std::string continue_;   ///< "100 Continue" while it is written
 };
 
 namespace {
@@ -292,8 +406,9 @@ void accept(const std::shared_ptr<HttpServer::State>& state)
 } // namespace
 
 HttpServer::HttpServer(boost::asio::io_context& io, const boost::asio::ip::address& address, std::uint16_t port,
-                       Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits)
-    : state_(std::make_shared<State>(io, std::move(router), std::move(log), limits))
+                       Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits,
+                       HttpAccess access)
+    : state_(std::make_shared<State>(io, std::move(router), std::move(log), limits, std::move(access)))
 {
     const tcp::endpoint endpoint(address, port);
     state_->acceptor.open(endpoint.protocol());

@@ -1,7 +1,10 @@
 #pragma once
 // A small HTTP/1.1 server for the control API (Boost.Beast, on the daemon's one io_context):
-// keep-alive, one request at a time per connection, bounded bodies and connections. It knows
-// no route: each request goes to a Router. Beast stays in http_server.cpp.
+// keep-alive, one request at a time per connection, bounded bodies and connections. A request's
+// headers are read first and checked against the access rules (http_access.hpp) before its body
+// is read. It knows no route: each request goes to a Router. Beast stays in http_server.cpp.
+
+#include "emulator/control/http_access.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -15,6 +18,8 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace rigsim::control {
 
@@ -24,12 +29,23 @@ using StreamWriter = std::function<void(std::string_view bytes)>;
 /// (called once when the client goes away or the server stops).
 using StreamStart = std::function<std::function<void()>(StreamWriter writer)>;
 
-/// A route's answer: an HTTP status and a JSON body, or a stream (Server-Sent Events).
+struct HttpReply;
+/// Sends the answer of a request that is answered later (called at most once, on the io_context
+/// thread; after the client went away it does nothing).
+using Respond = std::function<void(HttpReply reply)>;
+
+/// A route's answer: an HTTP status and a JSON body, or a stream (Server-Sent Events), or an
+/// answer that comes later.
 struct HttpReply {
     unsigned status = 200;
     std::string body;
     /// Set: the answer is `200 text/event-stream` that lasts until the client closes; `body` unused.
     StreamStart stream;
+    /// Set: the answer comes later (a clock step that runs in slices between other work): called
+    /// once with what sends it; `status` and `body` unused. The connection reads nothing meanwhile.
+    std::function<void(Respond respond)> later;
+    /// Header lines to add (name, value), e.g. WWW-Authenticate on a 401.
+    std::vector<std::pair<std::string, std::string>> headers;
 };
 
 /// (method, target, body) -> reply; called on the io_context thread, one request at a time.
@@ -48,7 +64,8 @@ class HttpServer {
 public:
     /// Listens on `address:port` (port 0: an ephemeral one); throws on failure to bind.
     HttpServer(boost::asio::io_context& io, const boost::asio::ip::address& address, std::uint16_t port,
-               Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits = {});
+               Router router, std::shared_ptr<spdlog::logger> log, HttpServerLimits limits = {},
+               HttpAccess access = {});
     ~HttpServer();
     HttpServer(const HttpServer&) = delete;
     HttpServer& operator=(const HttpServer&) = delete;

@@ -13,12 +13,12 @@ std::string dump(const json& value)
 
 HttpReply ok(const json& body, unsigned status)
 {
-    return HttpReply{status, dump(body) + "\n", {}};
+    return HttpReply{status, dump(body) + "\n", {}, {}, {}};
 }
 
 HttpReply error(unsigned status, const std::string& message)
 {
-    return HttpReply{status, dump(json{{"error", message}}) + "\n", {}};
+    return HttpReply{status, dump(json{{"error", message}}) + "\n", {}, {}, {}};
 }
 
 json parse_object(std::string_view text, bool empty_ok)

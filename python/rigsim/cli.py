@@ -9,7 +9,8 @@ import urllib.error
 from rigsim.control import ControlClient, ControlError
 
 EPILOG = """The control API is found by --control URL, else --endpoints FILE (its "control" key,
-as rigsimd --endpoints-json writes it), else $RIGSIM_CONTROL. Answers print as indented JSON
+as rigsimd --endpoints-json writes it), else $RIGSIM_CONTROL; a daemon started with --control-token takes --token TOKEN, --token-file FILE
+or $RIGSIM_CONTROL_TOKEN. Answers print as indented JSON
 (--format table: a short table). Errors go to standard error, exit status 1."""
 
 
@@ -50,6 +51,22 @@ def control_url(args):
     if os.environ.get("RIGSIM_CONTROL"):
         return os.environ["RIGSIM_CONTROL"]
     raise UsageError("no control API: pass --control URL or --endpoints FILE, or set RIGSIM_CONTROL")
+
+
+def control_token(args):
+    """--token, else --token-file's first line, else None (the client reads RIGSIM_CONTROL_TOKEN)."""
+    if getattr(args, "token", None):
+        return args.token
+    if getattr(args, "token_file", None):
+        try:
+            with open(args.token_file, encoding="utf-8") as f:
+                token = f.readline().strip()
+        except OSError as e:
+            raise UsageError(f"cannot read the token file {args.token_file}: {e.strerror}") from None
+        if not token:
+            raise UsageError(f"the token file {args.token_file} is empty")
+        return token
+    return None
 
 
 # ---- output ----
@@ -267,6 +284,10 @@ def _common(suppress):
                    help="the control API's URL (http://127.0.0.1:PORT)")
     p.add_argument("--endpoints", metavar="FILE", default=default,
                    help='the endpoints JSON rigsimd wrote (--endpoints-json); its "control" key')
+    p.add_argument("--token", metavar="TOKEN", default=default,
+                   help="the daemon's --control-token (default: $RIGSIM_CONTROL_TOKEN)")
+    p.add_argument("--token-file", metavar="FILE", default=default,
+                   help="read the token from FILE's first line (rigsimd --control-token-file)")
     p.add_argument("--format", choices=("json", "table"),
                    default=argparse.SUPPRESS if suppress else "json",
                    help="indented JSON (default) or a short table")
@@ -379,7 +400,7 @@ def main(argv=None, out=None):
     url = None
     try:
         url = control_url(args)
-        args.func(ControlClient(url), args, out)
+        args.func(ControlClient(url, token=control_token(args)), args, out)
     except ControlError as e:
         print(f"rigsimctl: {e.status}: {e.message}", file=sys.stderr)
         return 1

@@ -2,6 +2,7 @@
 
 import collections
 import json
+import os
 import queue
 import socket
 import threading
@@ -76,18 +77,27 @@ class Pose(collections.namedtuple("Pose", "name parent tool joint world parent_r
 
 
 class ControlClient:
-    """The routes of the control API at `url` ("http://127.0.0.1:PORT")."""
+    """The routes of the control API at `url` ("http://127.0.0.1:PORT").
 
-    def __init__(self, url, timeout_s=10.0):
+    `token`: the daemon's --control-token, sent as "Authorization: Bearer <token>"; None reads
+    the environment variable RIGSIM_CONTROL_TOKEN (unset or empty: no token)."""
+
+    def __init__(self, url, timeout_s=10.0, token=None):
         self.url = url.rstrip("/")
         self.timeout_s = timeout_s
+        self.token = token if token is not None else os.environ.get("RIGSIM_CONTROL_TOKEN") or None
+
+    def _headers(self, extra=None):
+        headers = dict(extra or {})
+        if self.token:
+            headers["Authorization"] = "Bearer " + self.token
+        return headers
 
     def request(self, method, path, body=None):
         """One request; returns the decoded JSON answer or raises ControlError."""
         data = None if body is None else json.dumps(body).encode()
-        req = urllib.request.Request(self.url + path, data=data, method=method)
-        if data is not None:
-            req.add_header("Content-Type", "application/json")
+        headers = self._headers({"Content-Type": "application/json"} if data is not None else None)
+        req = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
         try:
             with urllib.request.urlopen(req, timeout=self.timeout_s) as answer:
                 return json.loads(answer.read() or b"null")
@@ -238,7 +248,7 @@ class ControlClient:
                 names = [value] if isinstance(value, str) else list(value)
                 query.append(key + "=" + ",".join(_quote(n) for n in names))
         path = "/api/events" + ("?" + "&".join(query) if query else "")
-        req = urllib.request.Request(self.url + path, headers={"Accept": "text/event-stream"})
+        req = urllib.request.Request(self.url + path, headers=self._headers({"Accept": "text/event-stream"}))
         try:
             answer = urllib.request.urlopen(req, timeout=self.timeout_s)
         except urllib.error.HTTPError as e:

@@ -2,6 +2,7 @@
 
 import json
 import os
+import secrets
 import shutil
 import signal
 import subprocess
@@ -49,10 +50,14 @@ def find_rigsimd(explicit=None):
 
 class Rigsim:
     """One rigsimd process on `rig`: a JSON file path, a dict (written to a file), or None for
-    the built-in default rig. Extra command-line flags go in `args`."""
+    the built-in default rig. Extra command-line flags go in `args`.
+
+    The control API takes a token: a fresh random one per daemon (`token`, passed to rigsimd in
+    a file only this user can read), unless `args` give their own --control-token(-file)."""
 
     def __init__(self, rig=None, rigsimd=None, args=(), start_timeout_s=15.0):
         self.rigsimd = find_rigsimd(rigsimd)
+        self.token = None
         self.rig = rig
         self.args = list(args)
         self.start_timeout_s = start_timeout_s
@@ -68,6 +73,7 @@ class Rigsim:
         self.dir = tempfile.mkdtemp(prefix="rigsim-")
         cmd = [self.rigsimd, "--ephemeral-ports", "--pty-dir", os.path.join(self.dir, "pty"),
                "--endpoints-json", self._path("endpoints.json"), "--control", "127.0.0.1:0"]
+        cmd += self._token_args()
         if isinstance(self.rig, dict):
             with open(self._path("rig.json"), "w") as f:
                 json.dump(self.rig, f)
@@ -228,6 +234,26 @@ class Rigsim:
     def _path(self, name):
         return os.path.join(self.dir, name)
 
+    def _token_args(self):
+        """--control-token-file with a fresh token, unless the caller's args give one."""
+        args = self.args
+        for i, arg in enumerate(args):
+            name, _, inline = arg.partition("=")
+            if name in ("--control-token", "--control-token-file"):
+                value = inline if inline else (args[i + 1] if i + 1 < len(args) else "")
+                if name == "--control-token":
+                    self.token = value
+                else:
+                    with open(value) as f:
+                        self.token = f.readline().strip()
+                return []
+        self.token = secrets.token_urlsafe(32)
+        path = self._path("control-token")
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        with os.fdopen(fd, "w") as f:
+            f.write(self.token + "\n")
+        return ["--control-token-file", path]
+
     def _wait_for_endpoints(self):
         deadline = time.monotonic() + self.start_timeout_s
         path = self._path("endpoints.json")
@@ -244,6 +270,6 @@ class Rigsim:
             raise RigsimError(f"rigsimd wrote no endpoints within {self.start_timeout_s} s:\n{self.log()}")
         if "control" not in doc:
             raise RigsimError("the endpoints file names no control API: is this rigsimd older than --control?")
-        self.control = ControlClient(doc["control"])
+        self.control = ControlClient(doc["control"], token=self.token)
         self.endpoints = {d["name"]: Endpoint(d["name"], d["protocol"], d["model"], d["tcp"], d["pty"])
                           for d in doc["devices"]}

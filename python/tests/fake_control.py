@@ -1,8 +1,8 @@
 """A tiny stand-in for rigsimd's control API (http.server), answering per the contract
-(/work/notes/contract.md, docs/control-api.md) for the routes the real daemon may not serve yet.
+(docs/control-api.md) for the routes the real daemon may not serve yet.
 
 It holds two devices, "mcs0" (MCS, 3 channels) and "apt0" (APT, 1 channel), records every
-request in `requests` ((method, path, body) tuples) and serves /api/events from `publish()`."""
+request in `requests` ((method, path, body) tuples) and its headers in `headers` and serves /api/events from `publish()`."""
 
 import json
 import threading
@@ -56,6 +56,7 @@ class FakeControl:
 
     def __init__(self):
         self.requests = []
+        self.headers = []         # each request's headers (an email.message.Message), in order
         self.lock = threading.Condition()
         self.events = []          # every published event, in order
         self.closing = False
@@ -222,6 +223,7 @@ def _handler(fake):
             raw = self.rfile.read(length) if length else b""
             body = json.loads(raw) if raw else {}
             fake.requests.append((self.command, self.path, body))
+            fake.headers.append(self.headers)
             if url.path == "/api/events" and self.command == "GET":
                 return self.stream(urllib.parse.parse_qs(url.query))
             with fake.lock:

@@ -205,3 +205,20 @@ def test_events_filtered_by_device_and_types(fake):
     stream = ControlClient(fake.url).events(device=["mcs0", "apt0"], type=["frames", "move_ended"], timeout=0.2)
     assert list(stream) == []
     assert fake.requests[-1][1] == "/api/events?device=mcs0,apt0&type=frames,move_ended"
+
+
+def test_a_token_is_sent_as_a_bearer_header(fake, monkeypatch):
+    monkeypatch.delenv("RIGSIM_CONTROL_TOKEN", raising=False)
+    ControlClient(fake.url).clock()
+    assert fake.headers[-1].get("Authorization") is None
+    ControlClient(fake.url, token="t0k").pause()
+    assert fake.headers[-1].get("Authorization") == "Bearer t0k"
+    assert fake.headers[-1].get("Content-Type") == "application/json"
+    monkeypatch.setenv("RIGSIM_CONTROL_TOKEN", "from-env")
+    ControlClient(fake.url).clock()
+    assert fake.headers[-1].get("Authorization") == "Bearer from-env"
+    events = ControlClient(fake.url).events(timeout=0.2)
+    list(events)
+    assert fake.headers[-1].get("Authorization") == "Bearer from-env"
+    ControlClient(fake.url, token="").clock()   # an explicit empty token: none sent
+    assert fake.headers[-1].get("Authorization") is None

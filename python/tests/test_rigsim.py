@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from rigsim import ControlError, RigsimError
+from rigsim import ControlClient, ControlError, RigsimError
 
 
 def mcs_ask(sock, command):
@@ -67,6 +67,27 @@ def test_a_bad_request_raises_control_error(rigsim):
         rig.control.request("POST", "/api/clock", {"step_ms": -1})
     assert e.value.status == 400
     assert "step_ms" in e.value.message
+
+
+def test_the_daemon_takes_its_fresh_token_only(rigsim):
+    rig = rigsim()
+    assert rig.token and len(rig.token) >= 32
+    token_file = os.path.join(rig.dir, "control-token")
+    assert os.stat(token_file).st_mode & 0o777 == 0o600
+    assert rig.token not in " ".join(open(f"/proc/{rig.process.pid}/cmdline").read().split("\0"))
+    with pytest.raises(ControlError) as e:
+        ControlClient(rig.control.url, token="").clock()
+    assert e.value.status == 401
+    with pytest.raises(ControlError) as e:
+        ControlClient(rig.control.url, token=rig.token + "x").clock()
+    assert e.value.status == 401
+    assert ControlClient(rig.control.url, token=rig.token).clock()["tick_hz"] == 1000
+
+
+def test_a_token_of_its_own_in_args_is_kept(rigsim):
+    rig = rigsim(args=["--control-token", "mine-1234"])
+    assert rig.token == "mine-1234"
+    assert rig.clock()["tick_hz"] == 1000
 
 
 def test_a_bad_rig_raises_with_the_daemon_message(rigsim):

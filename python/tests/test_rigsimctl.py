@@ -312,11 +312,33 @@ def test_help_per_sub_command(argv):
 
 # ---- against the real daemon ----
 
+def launch(rig, *argv):
+    """The launcher against the daemon, with the daemon's token in the environment."""
+    return run_launcher(*argv, env={"RIGSIM_CONTROL_TOKEN": rig.token})
+
+
 def real(rig, *argv):
     """rigsimctl against the daemon."""
-    result = run_launcher("--control", rig.control.url, *argv)
+    result = launch(rig, "--control", rig.control.url, *argv)
     assert result.returncode == 0, result.stderr
     return json.loads(result.stdout) if result.stdout.strip() else None
+
+
+def test_real_token_by_flag_file_or_environment(rigsim, tmp_path):
+    rig = rigsim()
+    refused = run_launcher("--control", rig.control.url, "clock", env={"RIGSIM_CONTROL_TOKEN": ""})
+    assert refused.returncode == 1
+    assert refused.stderr.startswith("rigsimctl: 401: no token")
+    wrong = run_launcher("--control", rig.control.url, "--token", "nope", "clock")
+    assert wrong.returncode == 1 and wrong.stderr.startswith("rigsimctl: 401: wrong token")
+    by_flag = run_launcher("--control", rig.control.url, "--token", rig.token, "clock")
+    assert by_flag.returncode == 0 and json.loads(by_flag.stdout)["tick_hz"] == 1000
+    token_file = tmp_path / "token"
+    token_file.write_text(rig.token + "\n")
+    by_file = run_launcher("clock", "--control", rig.control.url, "--token-file", str(token_file))
+    assert by_file.returncode == 0, by_file.stderr
+    missing = run_launcher("--control", rig.control.url, "--token-file", str(tmp_path / "absent"), "clock")
+    assert missing.returncode == 1 and "cannot read the token file" in missing.stderr
 
 
 def test_real_rig_and_clock(rigsim):
@@ -332,14 +354,14 @@ def test_real_rig_and_clock(rigsim):
 
 def test_real_bad_clock_step_shows_the_daemon_error(rigsim):
     rig = rigsim()
-    result = run_launcher("--control", rig.control.url, "clock", "step", "-1")
+    result = launch(rig, "--control", rig.control.url, "clock", "step", "-1")
     assert result.returncode == 1
     assert result.stderr.startswith("rigsimctl: 400: \"step_ms\"")
 
 
 def test_real_endpoints_file(rigsim):
     rig = rigsim()
-    result = run_launcher("--endpoints", os.path.join(rig.dir, "endpoints.json"), "clock")
+    result = launch(rig, "--endpoints", os.path.join(rig.dir, "endpoints.json"), "clock")
     assert result.returncode == 0 and json.loads(result.stdout)["tick_hz"] == 1000
 
 
@@ -362,7 +384,7 @@ def test_real_faults(rigsim):
     assert real(rig, "fault", "list") == []
     other = real(rig, "fault", "add", "tdc001", "drop_bytes", "direction=in", "probability=0.5", "seed=3")
     assert real(rig, "fault", "clear")["removed"] == [other["id"]]
-    result = run_launcher("--control", rig.control.url, "fault", "rm", str(other["id"]))
+    result = launch(rig, "--control", rig.control.url, "fault", "rm", str(other["id"]))
     assert result.returncode == 1 and result.stderr.startswith("rigsimctl: 404: ")
 
 
@@ -386,7 +408,7 @@ def test_real_frames(rigsim):
     assert [f["name"] for f in answer["frames"]] == ["table", "turn", "x"]
     assert [t["name"] for t in answer["tools"]] == ["tip"]
     assert real(rig, "frames", "tip")["world"]["position_mm"] == pytest.approx([0.5, 0, 50], abs=1e-9)
-    result = run_launcher("--control", rig.control.url, "--format", "table", "frames")
+    result = launch(rig, "--control", rig.control.url, "--format", "table", "frames")
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[0].split()[:3] == ["name", "parent", "joint"]
@@ -394,5 +416,5 @@ def test_real_frames(rigsim):
                                 "30.0000", "0.0000", "0.0000", "0.0000"]
     assert lines[4].split()[:6] == ["tip", "x", "tool", "0.5000", "0.0000", "50.0000"]
     assert lines[-1] == "collisions: none"
-    result = run_launcher("--control", rig.control.url, "frames", "nope")
+    result = launch(rig, "--control", rig.control.url, "frames", "nope")
     assert result.returncode == 1 and result.stderr == 'rigsimctl: 404: no frame named "nope"\n'
