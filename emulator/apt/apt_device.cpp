@@ -551,6 +551,13 @@ Ticks AptDevice::next_change(Ticks now) const
     return next;
 }
 
+bool AptDevice::busy() const
+{
+    const Ticks now = clock_.now();
+    return std::any_of(channels_.begin(), channels_.end(), [now](const auto& ch) { return ch->next_change(now) != kNever; })
+        || std::any_of(modules_.begin(), modules_.end(), [now](const auto& m) { return m->busy(now); });
+}
+
 void AptDevice::tick(Ticks now)
 {
     for (const auto& module : modules_)

@@ -98,6 +98,9 @@ public:
     Refused add_fault(const DeviceFault& f, bool* kept) override;
     void remove_fault(std::uint64_t id) override;
     void power_cycle(const PowerCycle& how) override;
+    /// A module busy (Module::busy(): a piezo settling or running its LUT, a solenoid cycling, a
+    /// gauge zeroing) or a motor's end-of-move not yet sent; status updates do not count.
+    bool busy() const override;
     Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const override;
     /// A motor bay's stage as a joint (carriage position in mm or degrees), a piezo bay's
     /// actuator (extension in mm); solenoid outputs and gauges move nothing (400).

@@ -90,6 +90,9 @@ public:
     /// The earliest tick (> now) at which tick() has work, or kNever (a motor's channel is the
     /// shell's own Tickable: a motor module has none).
     virtual Ticks next_change(Ticks /*now*/) const { return kNever; }
+    /// Something the module does changes by itself after `now` that a test waits for
+    /// (AptDevice::busy()); by default, whenever it has a tick to come.
+    virtual bool busy(Ticks now) const { return next_change(now) != kNever; }
     /// Bring the module's own timed state (a solenoid's cycles, a piezo's slew and LUT) up to `now`.
     virtual void tick(Ticks /*now*/) {}
     /// Frames the module sent by itself since the last call, to every connection (from `host`'s view:

@@ -196,6 +196,18 @@ Ticks PiezoModule::next_change(Ticks now) const
     return next;
 }
 
+bool PiezoModule::busy(Ticks now) const
+{
+    if (smooth_start_ != kNever || zero_end_ != kNever || (lut_.started() && lut_.next_change(now) != kNever))
+        return true;   // a run's held value after its end changes nothing
+    if (!(closed_loop() && has_feedback()))
+        return output_at(now) != ramp_.target_v;
+    // Settled: the position read is the demand to the count, or the output stands at a rail.
+    const double out = output_at(now);
+    const long error = std::lround(position_frac(now) * kFullScale) - static_cast<long>(position_code_);
+    return std::abs(error) > 1 && out > 0 && out < max_v_;
+}
+
 void PiezoModule::resume_loop(Ticks now)
 {
     const bool fed = has_feedback();

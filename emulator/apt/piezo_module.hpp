@@ -50,6 +50,9 @@ public:
     void handle(const msg::Message& m, Request& r) override;
     std::string status_update(std::uint8_t host) const override;
     Ticks next_change(Ticks now) const override;
+    /// Slewing, smoothing, zeroing, running a LUT, or a closed loop not yet settled on its
+    /// demand (a settled loop keeps ticking but changes nothing a client reads).
+    bool busy(Ticks now) const override;
     void tick(Ticks now) override;
     void power_down(bool restore_positions) override;
     bool saves(std::uint16_t id) const override;

@@ -120,6 +120,8 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
 
 ControlApi::~ControlApi()
 {
+    ticker_.drop_jobs();   // their answers refer to this
+
     if (events_ && !frames_.empty()) {
         events_->set_follow_up({});
         events_->set_on_active({});
@@ -516,31 +518,56 @@ HttpReply ControlApi::post_clock(std::string_view text)
     const auto body = parse_object(text);
     const auto action = clock_action(body);
     ticker_.sync();
-    std::optional<Ticks> reached;
     if (action == "pause") {
         require_true(body, "pause");
         ticker_.pause();
     } else if (action == "resume") {
         require_true(body, "resume");
         ticker_.resume();
-    } else if (action == "step_ms") {
-        ticker_.step(clock_.ticks_from_ms(require_int(body, "step_ms", 0, kMaxStepMs)));
     } else if (action == "scale") {
         // The range of --time-scale: beyond it the wall-time arithmetic of the ticker overflows.
         ticker_.set_time_scale(require_number(body, "scale", kMinTimeScale, kMaxTimeScale));
     } else {
-        require_true(body, "run_until_idle");
-        if (!body.contains("max_ms"))
-            throw BadField{400, "\"max_ms\": required with run_until_idle"};
-        const auto max_ms = require_int(body, "max_ms", 1, kMaxStepMs);
-        reached = ticker_.run_until_idle(clock_.ticks_from_ms(max_ms), busy_);
+        return clock_job(action, body);
     }
     ticker_.reschedule();
     auto state = clock_state(clock_, ticker_);
-    if (reached)
-        state["reached_ms"] = clock_.seconds(*reached) * 1000.0;
     publish("", "clock", state);
     return ok(state);
+}
+
+HttpReply ControlApi::clock_job(const std::string& action, const nlohmann::json& body)
+{
+    // Checked before anything is queued: a bad request is answered at once and changes nothing.
+    Ticks ticks = 0;
+    if (action == "step_ms") {
+        ticks = clock_.ticks_from_ms(require_int(body, "step_ms", 0, kMaxStepMs));
+    } else {
+        require_true(body, "run_until_idle");
+        if (!body.contains("max_ms"))
+            throw BadField{400, "\"max_ms\": required with run_until_idle"};
+        ticks = clock_.ticks_from_ms(require_int(body, "max_ms", 1, kMaxStepMs));
+    }
+    const bool until_idle = action == "run_until_idle";
+    HttpReply reply;
+    // The step runs in slices on the loop (Ticker::queue_step): devices and other requests are
+    // served meanwhile, and this answer comes when it is done.
+    reply.later = [this, ticks, until_idle](Respond respond) {
+        auto done = [this, until_idle, respond = std::move(respond)](Ticks reached) {
+            auto state = clock_state(clock_, ticker_);
+            if (until_idle) {
+                state["reached_ms"] = clock_.seconds(reached) * 1000.0;
+                state["idle"] = !busy_();
+            }
+            publish("", "clock", state);
+            respond(ok(state));
+        };
+        if (until_idle)
+            ticker_.queue_run_until_idle(ticks, busy_, std::move(done));
+        else
+            ticker_.queue_step(ticks, std::move(done));
+    };
+    return reply;
 }
 
 } // namespace rigsim::control

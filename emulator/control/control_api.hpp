@@ -17,8 +17,9 @@
 
 namespace rigsim::control {
 
-/// Longest clock time one step_ms or run_until_idle may cover (one day): the daemon answers
-/// nothing else meanwhile, so a mistyped number must not stall it for hours.
+/// Longest clock time one step_ms or run_until_idle may cover (one day). The daemon serves its
+/// devices and other requests while it runs (in slices), yet a mistyped number must not keep
+/// the answer away for hours.
 inline constexpr std::int64_t kMaxStepMs = 86'400'000;
 /// The time scales POST /api/clock takes (those of --time-scale and the rig JSON's clock).
 inline constexpr double kMinTimeScale = 0.001;
@@ -47,6 +48,8 @@ private:
     HttpReply get_rig();
     HttpReply get_clock();
     HttpReply post_clock(std::string_view body);
+    /// step_ms and run_until_idle: checked now, run in slices on the loop, answered when done.
+    HttpReply clock_job(const std::string& action, const nlohmann::json& body);
     HttpReply device_route(std::string_view method, const std::vector<std::string>& parts, std::string_view target,
                            std::string_view body);
     HttpReply get_device(const ControlledDevice& d);

@@ -231,9 +231,10 @@ private:
     void answer_later(std::function<void(Respond)> later, unsigned version, bool keep_alive)
     {
         stream_.expires_never();
-        std::weak_ptr<Session> weak = shared_from_this();
-        auto respond = [weak, version, keep_alive](HttpReply reply) {
-            if (auto self = weak.lock(); self && !self->closed_)
+        // The answer keeps the session (no read or write of it is pending meanwhile); dropped
+        // unanswered (the daemon stops), it lets the session go.
+        auto respond = [self = shared_from_this(), version, keep_alive](HttpReply reply) {
+            if (!self->closed_)
                 self->write(std::move(reply), version, keep_alive);
         };
         try {

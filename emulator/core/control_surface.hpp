@@ -92,6 +92,11 @@ public:
     virtual void remove_fault(std::uint64_t id) = 0;
     /// Power down and up: protocol state back to power-up.
     virtual void power_cycle(const PowerCycle& how) = 0;
+    /// Something inside the device changes by itself that a test waits for: a calibration, a
+    /// move delay, a hold time, a piezo settling or a LUT running (not a periodic report such as
+    /// status updates or a keep-alive deadline). The rig is idle when the world and every device
+    /// are (POST /api/clock run_until_idle).
+    virtual bool busy() const { return false; }
     virtual WireLog& wire_log() = 0;
 };
 

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <fcntl.h>
@@ -213,6 +214,16 @@ void Rig::stop()
         e->pty->stop();
     }
     watcher_.stop();
+}
+
+bool Rig::busy() const
+{
+    if (world_.next_change(clock_.now()) != kNever)
+        return true;
+    return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) {
+        const auto* surface = e->device->control();
+        return surface && surface->busy();
+    });
 }
 
 std::vector<ControlledDevice> Rig::controlled()

@@ -78,8 +78,9 @@ public:
     EventBus& events() { return events_; }
     /// Every device, in config order, as the control API steers it.
     std::vector<ControlledDevice> controlled();
-    /// Something moves: the world changes by itself at some later tick.
-    bool busy() const { return world_.next_change(clock_.now()) != kNever; }
+    /// Something moves: the world changes by itself at some later tick, or a device is busy
+    /// (ControlSurface::busy(): a calibration, a move delay, a LUT running).
+    bool busy() const;
     /// The rig's frames (rig JSON "kinematics", docs/config.md), or nullptr when it has none.
     models::Kinematics* kinematics() { return kinematics_.get(); }
     /// What drives each frame's joint, indexed like the frames of kinematics() (an empty

@@ -13,7 +13,9 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include <chrono>
+#include <deque>
 #include <functional>
+#include <memory>
 
 namespace rigsim {
 
@@ -25,7 +27,15 @@ public:
     /// daemon started with --paused, or a test, sits at the clock's tick until it is stepped
     /// (pausing after construction would count the time spent in between).
     Ticker(boost::asio::io_context& io, Clock& clock, double time_scale, Start start = Start::Running,
-           std::chrono::steady_clock::duration min_period = std::chrono::milliseconds(1));
+           std::chrono::steady_clock::duration min_period = std::chrono::milliseconds(1),
+           std::chrono::steady_clock::duration slice = kDefaultSlice);
+    ~Ticker();
+    Ticker(const Ticker&) = delete;
+    Ticker& operator=(const Ticker&) = delete;
+
+    /// Wall time one slice of a queued step or run-until-idle takes at most (beyond one wake-up's
+    /// work, which is never split) before the loop serves device and API traffic again.
+    static constexpr std::chrono::steady_clock::duration kDefaultSlice = std::chrono::milliseconds(10);
 
     /// Advance the clock to the tick that is due at the current wall time.
     void sync();
@@ -52,6 +62,26 @@ public:
     /// for at most `max_ticks`; returns the tick reached.
     Ticks run_until_idle(Ticks max_ticks, const std::function<bool()>& busy);
 
+    // ---- The same, on the loop: long clock work that does not stop the daemon ----
+    // A queued job runs in slices of at most `slice` wall time each, posted to the io_context,
+    // so that devices and the control API are served between slices (they see the clock where
+    // the job has brought it). Jobs run one after the other in the order they were queued; while
+    // one is queued the clock does not follow wall time (sync() does nothing), and when the last
+    // is done the wall-time mapping is re-anchored at the tick reached. stop() drops queued jobs
+    // without calling them back.
+
+    /// Called once when a job is done, with the tick reached.
+    using JobDone = std::function<void(Ticks reached)>;
+    /// step(n), sliced; throws std::invalid_argument for n < 0 (before queuing anything).
+    void queue_step(Ticks n, JobDone done);
+    /// run_until_idle(), sliced; `busy` is called between wake-ups, on the loop.
+    void queue_run_until_idle(Ticks max_ticks, std::function<bool()> busy, JobDone done);
+    /// Jobs queued and not yet done (the one running included).
+    std::size_t jobs() const { return jobs_.size(); }
+    /// Drop the queued jobs without calling them back (their owner goes); the clock follows
+    /// wall time again from the tick reached.
+    void drop_jobs();
+
 private:
     using SteadyClock = std::chrono::steady_clock;
     SteadyClock::time_point wall_of(Ticks t) const;
@@ -60,6 +90,18 @@ private:
     /// The wall time of the current tick is now (after a change of mode or a jump).
     void reanchor();
     void disarm();
+
+    struct Job {
+        Ticks ticks = 0;                ///< the step, or run-until-idle's limit
+        std::function<bool()> busy;     ///< set: run until idle
+        JobDone done;
+        Ticks limit = -1;               ///< the tick the job ends at, fixed when it starts
+    };
+    void queue(Job job);
+    void post_slice();
+    void run_slice();
+    /// Work on `job` until it is done (true) or the slice ends at `end` (false).
+    bool advance(Job& job, SteadyClock::time_point end);
 
     Clock& clock_;
     double time_scale_;
@@ -71,6 +113,13 @@ private:
     SteadyClock::time_point armed_for_ = SteadyClock::time_point::max();
     SteadyClock::time_point last_fire_;
     bool stopped_ = false;
+    SteadyClock::duration slice_;
+    std::deque<Job> jobs_;
+    bool in_slice_ = false;
+    Ticks chunk_ = 1024;   ///< ticks per Clock::advance_to() call of a step, adapted to the slice
+    boost::asio::io_context& io_;
+    /// Posted slices hold a weak reference: one that runs after the ticker is gone does nothing.
+    std::shared_ptr<char> alive_ = std::make_shared<char>();
 };
 
 } // namespace rigsim

@@ -199,6 +199,13 @@ Ticks Controller::next_change(Ticks now) const
     return next;
 }
 
+bool Controller::busy(Ticks now) const
+{
+    return std::any_of(channels_.begin(), channels_.end(), [now](const auto& c) { return c->next_change(now) != kNever; })
+        || std::any_of(effectors_.begin(), effectors_.end(),
+                       [now](const auto& e) { return e && e->next_change(now) != kNever; });
+}
+
 void Controller::tick(Ticks now)
 {
     if (now >= keep_alive_deadline_) {

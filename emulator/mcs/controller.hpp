@@ -110,6 +110,8 @@ public:
 
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
+    /// Some channel or end effector changes by itself after `now` (the keep-alive deadline aside).
+    bool busy(Ticks now) const;
 
 private:
     const Clock& clock_;

@@ -63,6 +63,9 @@ public:
     Refused add_fault(const DeviceFault& f, bool* kept) override;
     void remove_fault(std::uint64_t id) override;
     void power_cycle(const PowerCycle& how) override;
+    /// A channel calibrating, waiting out a power-save move delay or holding for a finite time,
+    /// or an end effector ramping or zeroing (not the keep-alive deadline).
+    bool busy() const override { return controller_.busy(clock_.now()); }
     /// A positioner as a joint: linear channels in mm, rotary and goniometer channels in
     /// degrees, read from the physical position; end effectors move nothing (400).
     Refused joint(std::size_t index, JointBinding& out) const override;

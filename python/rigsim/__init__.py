@@ -12,7 +12,7 @@ Standard library only (pyserial where a test opens a device's pty or socket:// U
 The pytest plugin (rigsim.pytest_plugin) gives tests a `rigsim` fixture factory.
 """
 
-from rigsim.control import ControlClient, ControlError, Placement, Pose
+from rigsim.control import ControlClient, ControlError, NotIdle, Placement, Pose
 from rigsim.daemon import Endpoint, Rigsim, RigsimError
 
-__all__ = ["ControlClient", "ControlError", "Endpoint", "Placement", "Pose", "Rigsim", "RigsimError"]
+__all__ = ["ControlClient", "ControlError", "Endpoint", "NotIdle", "Placement", "Pose", "Rigsim", "RigsimError"]

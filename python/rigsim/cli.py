@@ -221,7 +221,7 @@ def cmd_clock(client, args, out):
     elif action == "scale":
         answer = client.scale(args.factor)
     else:
-        answer = client.run_until_idle(args.max_ms)
+        answer = client.run_until_idle(args.max_ms, check=False)   # the answer says "idle"
     emit(args, "clock", answer, out)
 
 

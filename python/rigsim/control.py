@@ -6,6 +6,7 @@ import os
 import queue
 import socket
 import threading
+import time
 import urllib.error
 import urllib.parse
 import urllib.request
@@ -18,6 +19,26 @@ class ControlError(Exception):
         super().__init__(f"{status}: {message}")
         self.status = status
         self.message = message
+
+
+class NotIdle(Exception):
+    """run_until_idle() reached its max_ms while something still moved or settled; `clock` is
+    the daemon's answer (with "reached_ms" and "idle": false)."""
+
+    def __init__(self, clock, max_ms):
+        super().__init__(f"still busy after {max_ms} ms of clock time (now_ms {clock.get('now_ms')}): "
+                         "something still moves, settles or runs; raise max_ms, or pass check=False")
+        self.clock = clock
+
+
+def _message_matches(entry, message, direction):
+    """Whether wire log `entry` is `message` in `direction`: an APT name with or without its
+    MGMSG_ prefix, or an MCS command (MPA) or its name."""
+    if direction is not None and entry.get("direction") != direction:
+        return False
+    decoded = entry.get("decoded") or {}
+    names = {decoded.get("name"), decoded.get("command")}
+    return message in names or "MGMSG_" + message in names
 
 
 def _quote(name):
@@ -131,9 +152,71 @@ class ControlClient:
         """Run the clock `factor` times faster than wall time from now on."""
         return self.request("POST", "/api/clock", {"scale": factor})
 
-    def run_until_idle(self, max_ms):
-        """Advance as fast as the CPU allows until nothing moves, at most `max_ms` of clock time."""
-        return self.request("POST", "/api/clock", {"run_until_idle": True, "max_ms": max_ms})
+    def run_until_idle(self, max_ms, check=True, chunk_ms=None, wait_for=None, timeout_s=5.0):
+        """Advance as fast as the CPU allows until nothing moves, at most `max_ms` of clock time.
+
+        Idle means the world and every device: no motion, settling, calibration, move delay or
+        LUT run left. When `max_ms` comes first the answer has "idle": false and this raises
+        NotIdle, unless `check` is False.
+
+        For drivers with a thread of their own: `chunk_ms` runs the clock in pieces of that many
+        milliseconds; after each piece that left the rig busy, `wait_for=(device, message)` waits
+        (up to `timeout_s` of wall time) until the device received that message after the piece
+        ended (a driver's keep-alive or status acknowledgement), so the driver keeps up."""
+        if chunk_ms is None:
+            if wait_for is not None:
+                raise ValueError("wait_for needs chunk_ms")
+            answer = self._run_until_idle(max_ms)
+        else:
+            answer = self._run_in_chunks(max_ms, int(chunk_ms), wait_for, timeout_s)
+        if check and answer.get("idle") is False:
+            raise NotIdle(answer, max_ms)
+        return answer
+
+    def _run_until_idle(self, max_ms):
+        return self.request("POST", "/api/clock", {"run_until_idle": True, "max_ms": int(max_ms)})
+
+    def _run_in_chunks(self, max_ms, chunk_ms, wait_for, timeout_s):
+        if chunk_ms < 1:
+            raise ValueError(f"chunk_ms must be at least 1, got {chunk_ms}")
+        left = int(max_ms)
+        while True:
+            answer = self._run_until_idle(min(chunk_ms, left))
+            left -= min(chunk_ms, left)
+            if answer.get("idle") is not False or left <= 0:
+                return answer
+            if wait_for:
+                # After the piece: the message must come once the piece's clock time has run (an
+                # acknowledgement sent during it does not answer what the piece sent after it).
+                cursor = self.log_cursor(wait_for[0])
+                self.wait_for_message(wait_for[0], wait_for[1], after=cursor, timeout_s=timeout_s)
+
+    def log_cursor(self, name):
+        """The seq of the newest entry of `name`'s wire log (0 when empty): pass it as
+        wait_for_message(after=...) to wait for a message that comes after this point."""
+        entries = self.log(name, last=1).get("entries", [])
+        return entries[-1]["seq"] if entries else 0
+
+    def wait_for_message(self, name, message, after=None, direction="in", timeout_s=5.0, poll_s=0.005):
+        """Wait (wall time, the clock stands or runs as it does) until device `name`'s wire log
+        holds `message` after seq `after` (None: anywhere in the log), and return that entry.
+
+        `message` is an APT name (MOT_MOVE_ABSOLUTE, with or without MGMSG_) or an MCS command
+        (MPA); `direction` "in" (from a client, the default), "out", or None for either. This is
+        how a test waits until a driver's own thread has sent its command before it runs the
+        clock. Raises TimeoutError after `timeout_s`."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            entries = self.log(name).get("entries", [])
+            if after is not None and entries and entries[-1]["seq"] < after:
+                after = 0   # the log was emptied (a reset) since the cursor was taken
+            for entry in entries:
+                if (after is None or entry["seq"] > after) and _message_matches(entry, message, direction):
+                    return entry
+            if time.monotonic() >= deadline:
+                seen = [(e.get("decoded") or {}).get("name") for e in entries[-5:]]
+                raise TimeoutError(f"{name} received no {message} within {timeout_s} s (last entries: {seen})")
+            time.sleep(poll_s)
 
     # ---- devices ----
 

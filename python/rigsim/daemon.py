@@ -155,8 +155,19 @@ class Rigsim:
     def scale(self, factor):
         return self.control.scale(factor)
 
-    def run_until_idle(self, max_ms=600_000):
-        return self.control.run_until_idle(max_ms)
+    def run_until_idle(self, max_ms=600_000, check=True, chunk_ms=None, wait_for=None, timeout_s=5.0):
+        """ControlClient.run_until_idle(): raises NotIdle when max_ms comes first, unless check=False."""
+        return self.control.run_until_idle(max_ms, check=check, chunk_ms=chunk_ms, wait_for=wait_for,
+                                           timeout_s=timeout_s)
+
+    def wait_for_message(self, name, message, after=None, direction="in", timeout_s=5.0):
+        """ControlClient.wait_for_message(): the wire log entry of `message` sent to `name`."""
+        self._use(name)
+        return self.control.wait_for_message(name, message, after=after, direction=direction, timeout_s=timeout_s)
+
+    def log_cursor(self, name):
+        """ControlClient.log_cursor(): the seq of the newest entry of `name`'s wire log."""
+        return self.control.log_cursor(name)
 
     def clock(self):
         return self.control.clock()

@@ -77,6 +77,8 @@ class FakeControl:
                              "hex": "3a50302c300a", "unprompted": False,
                              "decoded": {"text": ":P0,0"}, "notes": []}]
                      for name in self.devices}
+        self.busy_ms = None       # run_until_idle: None, 10 ms then idle; else the clock time still busy
+        self.acks_on_poll = None  # a device whose full log read finds one more inbound ack (a driver's thread)
         self.faults = {}
         self.next_fault_id = 1
         self.frames = _frames()
@@ -150,10 +152,13 @@ class FakeControl:
         elif "scale" in body:
             clock["time_scale"] = float(body["scale"])
         elif "run_until_idle" in body:
-            answer = dict(clock, reached_ms=clock["now_ms"] + 10.0)
-            clock["now_ms"] += 10.0
+            ran = 10.0
+            if self.busy_ms is not None:   # something that moves for busy_ms more of clock time
+                ran = min(self.busy_ms, body["max_ms"])
+                self.busy_ms -= ran
+            clock["now_ms"] += ran
             clock["now_ticks"] = int(clock["now_ms"])
-            return 200, answer
+            return 200, dict(clock, reached_ms=clock["now_ms"], idle=not self.busy_ms)
         clock["now_ticks"] = int(clock["now_ms"])
         return 200, clock
 
@@ -177,6 +182,10 @@ class FakeControl:
                 self.logs[parts[0]] = []
                 return 200, {"device": parts[0], "cleared": True}
             entries = self.logs[parts[0]]
+            if parts[0] == self.acks_on_poll and "last" not in query:
+                entries.append({"seq": entries[-1]["seq"] + 1 if entries else 1, "time_ms": self.clock["now_ms"],
+                                "direction": "in", "peer": "tcp", "hex": "92 04 00 00 50 01",
+                                "decoded": {"id": "0x0492", "name": "MGMSG_MOT_ACK_DCSTATUSUPDATE"}, "notes": []})
             if "last" in query:
                 entries = entries[-int(query["last"][0]):]
             return 200, {"device": parts[0], "capacity": 1000, "entries": entries}

@@ -7,7 +7,7 @@ import time
 import pytest
 
 from fake_control import FakeControl
-from rigsim import ControlClient, ControlError, Rigsim
+from rigsim import ControlClient, ControlError, NotIdle, Rigsim
 
 
 @pytest.fixture
@@ -222,3 +222,50 @@ def test_a_token_is_sent_as_a_bearer_header(fake, monkeypatch):
     assert fake.headers[-1].get("Authorization") == "Bearer from-env"
     ControlClient(fake.url, token="").clock()   # an explicit empty token: none sent
     assert fake.headers[-1].get("Authorization") is None
+
+
+def test_run_until_idle_raises_not_idle_when_max_ms_comes_first(rig, fake):
+    fake.busy_ms = 5000
+    with pytest.raises(NotIdle, match="still busy after 1000 ms") as e:
+        rig.run_until_idle(1000)
+    assert e.value.clock["idle"] is False
+    assert e.value.clock["reached_ms"] == 1000
+    answer = rig.run_until_idle(1000, check=False)
+    assert answer["idle"] is False
+    assert rig.run_until_idle(600_000)["idle"] is True
+    assert fake.requests[-1] == ("POST", "/api/clock", {"run_until_idle": True, "max_ms": 600000})
+
+
+def test_run_until_idle_in_chunks_waits_for_the_drivers_message_between_them(rig, fake):
+    fake.busy_ms = 2500
+    fake.acks_on_poll = "apt0"
+    answer = rig.run_until_idle(600_000, chunk_ms=1000, wait_for=("apt0", "MOT_ACK_DCSTATUSUPDATE"))
+    assert answer["idle"] is True
+    assert answer["reached_ms"] == 2500
+    runs = [r[2] for r in fake.requests if r[:2] == ("POST", "/api/clock")]
+    assert runs == [{"run_until_idle": True, "max_ms": 1000}] * 3
+    polls = [r[1] for r in fake.requests if r[1] == "/api/devices/apt0/log"]
+    assert len(polls) == 2   # one wait after each piece that left the rig busy
+    with pytest.raises(ValueError, match="wait_for needs chunk_ms"):
+        rig.run_until_idle(1000, wait_for=("apt0", "MOT_ACK_DCSTATUSUPDATE"))
+
+
+def test_run_in_chunks_stops_at_max_ms_and_raises(rig, fake):
+    fake.busy_ms = 10_000
+    with pytest.raises(NotIdle):
+        rig.run_until_idle(2500, chunk_ms=1000)
+    runs = [r[2]["max_ms"] for r in fake.requests if r[:2] == ("POST", "/api/clock")]
+    assert runs == [1000, 1000, 500]
+
+
+def test_wait_for_message_finds_the_entry_or_times_out_naming_it(rig, fake):
+    assert rig.log_cursor("mcs0") == 2
+    entry = rig.wait_for_message("mcs0", "GP")
+    assert entry["seq"] == 1
+    with pytest.raises(TimeoutError, match="mcs0 received no GP within 0.05 s"):
+        rig.wait_for_message("mcs0", "GP", after=1, timeout_s=0.05)
+    with pytest.raises(TimeoutError):
+        rig.wait_for_message("mcs0", "GP", direction="out", timeout_s=0.05)
+    fake.acks_on_poll = "apt0"
+    assert rig.wait_for_message("apt0", "MGMSG_MOT_ACK_DCSTATUSUPDATE", after=2)["seq"] == 3
+    assert rig.wait_for_message("apt0", "MOT_ACK_DCSTATUSUPDATE", after=3)["seq"] == 4
