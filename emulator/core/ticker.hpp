@@ -35,7 +35,7 @@ public:
 
     /// Wall time one slice of a queued step or run-until-idle takes at most (beyond one wake-up's
     /// work, which is never split) before the loop serves device and API traffic again.
-    static constexpr std::chrono::steady_clock::duration kDefaultSlice = std::chrono::milliseconds(10);
+    static constexpr std::chrono::steady_clock::duration kDefaultSlice = std::chrono::milliseconds(2);
 
     /// Advance the clock to the tick that is due at the current wall time.
     void sync();
