@@ -140,4 +140,23 @@ TEST_CASE("apt BPC303 LUT: a bad index or bad parameters are ignored and logged"
     CHECK(output_code(h) == 0);
 }
 
+TEST_CASE("apt BPC303 LUT: the unit is busy while the LUT runs, idle once it holds, and status updates alone are not busy",
+          "[device][apt][piezo][lut]")
+{
+    AptHarness h(bpc303());
+    h.send("11 00 00 00 11 01");   // HW_START_UPDATEMSGS: a periodic report only
+    h.advance_ms(250);
+    CHECK_FALSE(h.take().empty());  // the updates come
+    CHECK_FALSE(h.device().busy());
+    load(h, {1000, 2000, 3000, 4000});
+    h.send(lut_params(0x02, 4, 2));
+    h.send("06 07 01 00 21 01");
+    CHECK(h.device().busy());
+    h.advance_ms(7);
+    CHECK(h.device().busy());      // the last sample of the second cycle is still out
+    h.advance_ms(2);
+    CHECK(output_code(h) == 4000);   // the run is over: the last sample holds
+    CHECK_FALSE(h.device().busy());
+}
+
 } // namespace test_apt_lut

@@ -44,4 +44,36 @@ TEST_CASE("MCS: moving channels wake the clock at their events only, not once pe
     CHECK(h.send(":GS1\n:S1\n:GS1\n") == ":S1,1\n:S1,0\n");
 }
 
+TEST_CASE("MCS: busy() while a channel calibrates, waits out a power-save move delay or holds for a time, not for the keep-alive",
+          "[device][mcs][wakeups]")
+{
+    McsHarness h(mcs_device_config(1));
+    CHECK_FALSE(h.device().busy());
+    CHECK(h.send(":CS0\n") == ":E0,0\n");   // calibrating (status 6): no body moves, the device waits
+    CHECK(h.send(":GS0\n") == ":S0,6\n");
+    CHECK(h.device().busy());
+    while (h.device().busy())
+        h.clock().advance_to(h.clock().next_wakeup());
+    CHECK(h.send(":GS0\n") == ":S0,0\n");
+
+    CHECK(h.send(":SSE2\n:MPA0,1000,0\n") == ":E-1,0\n:E0,0\n");   // power save: the move waits (status 5)
+    CHECK(h.send(":GS0\n") == ":S0,5\n");
+    CHECK(h.device().busy());
+    h.advance_ms(1000);
+    CHECK(h.send(":GS0\n:GP0\n") == ":S0,0\n:P0,1000\n");
+    CHECK_FALSE(h.device().busy());
+
+    CHECK(h.send(":SSE1\n:MPA0,2000,500\n") == ":E-1,0\n:E0,0\n");   // then holds 500 ms
+    h.advance_ms(100);
+    CHECK(h.send(":GS0\n") == ":S0,3\n");
+    CHECK(h.device().busy());   // the hold ends by itself
+    h.advance_ms(500);
+    CHECK(h.send(":GS0\n") == ":S0,0\n");
+    CHECK_FALSE(h.device().busy());
+
+    CHECK(h.send(":K5000\n") == ":E-1,0\n");   // a keep-alive deadline is not work a test waits for
+    CHECK(h.clock().next_wakeup() != rigsim::kNever);
+    CHECK_FALSE(h.device().busy());
+}
+
 } // namespace test_mcs_wakeups
