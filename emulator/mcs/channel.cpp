@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
 
 namespace rigsim::mcs {
 
@@ -176,21 +175,6 @@ double Channel::travel_max() const
     return angular() ? static_cast<double>(config_.travel_max_udeg) : travel_max_nm_;
 }
 
-std::pair<double, double> Channel::physical_limit() const
-{
-    double lo = travel_min();
-    double hi = travel_max();
-    if (limit_ && limit_->first < limit_->second) {
-        double a = physical_from_logical(static_cast<double>(limit_->first));
-        double b = physical_from_logical(static_cast<double>(limit_->second));
-        if (a > b)
-            std::swap(a, b);   // an inverted scale turns the limit around
-        lo = std::max(lo, a);
-        hi = std::min(hi, b);
-    }
-    return {lo, hi};
-}
-
 std::optional<ErrorCode> Channel::check_angular_sensor() const
 {
     if (auto err = sensor_error())
@@ -206,23 +190,6 @@ std::optional<ErrorCode> Channel::check_move(std::int32_t hold_ms) const
         return ErrorCode::MovementLocked;   // 2.2.1: "all movement commands will return 146"
     if (hold_ms < 0 || hold_ms > kHoldForever_ms)
         return ErrorCode::InvalidParameter;
-    return std::nullopt;
-}
-
-std::pair<std::int64_t, std::int64_t> Channel::range_limit() const
-{
-    return limit_ ? *limit_ : std::pair<std::int64_t, std::int64_t>{0, 0};
-}
-
-std::optional<ErrorCode> Channel::set_range_limit(std::int64_t min, std::int64_t max)
-{
-    // 2.3.4: "The range limit may only be set if the positioner knows its physical position."
-    if (!physical_position_known())
-        return ErrorCode::PhysicalPositionUnknown;
-    if (min == max)
-        limit_.reset();   // "If both parameters have the same value then the ... limit is disabled."
-    else
-        limit_ = std::make_pair(min, max);
     return std::nullopt;
 }
 
@@ -254,21 +221,6 @@ std::int64_t Channel::position() const
 bool Channel::physical_position_known() const
 {
     return known_ && !blind_stepped();
-}
-
-bool Channel::blind_stepped() const
-{
-    return blind_logical_ && body_.steps_done() > 0;
-}
-
-void Channel::commit_blind()
-{
-    // 2.3.2: "the positioner cannot track its position during the movement": once a step
-    // is made blind, the position is unknown and reads what it read when the steps began.
-    if (!blind_stepped())
-        return;
-    known_ = false;
-    unknown_base_nm_ = body_.position_nm() - *blind_logical_;
 }
 
 double Channel::top_speed() const
@@ -372,8 +324,6 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
         arrive(now);
 }
 
-
-
 void Channel::on_body_event(Ticks now)
 {
     using Outcome = models::StickSlipPositioner::Outcome;
@@ -444,236 +394,6 @@ void Channel::finish_movement()
         events_.push_back(ChannelEvent{ChannelEvent::Kind::Completed});
 }
 
-std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::int32_t hold_ms, std::int32_t auto_zero)
-{
-    if (auto err = sensor_error())
-        return err;
-    const auto search = frm_direction(firmware_, direction);
-    if (!search || (auto_zero != 0 && auto_zero != 1))
-        return ErrorCode::InvalidParameter;
-    if (auto err = check_move(hold_ms))
-        return err;
-    if (sensor_->reference == ReferenceType::None)
-        return ErrorCode::CouldNotFindReferenceMark;   // appendix 4.3: "cannot be referenced"
-    begin_movement([this, search = *search, hold_ms, auto_zero](Ticks now) {
-        body_.halt();
-        hold_ms_ = hold_ms;
-        auto_zero_ = auto_zero == 1;
-        // Searching runs at the closed-loop speed if one is set, else at 1 mm/s (1°/s).
-        search_speed_ = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed())
-                                            : std::min(1'000'000.0, top_speed());
-        const double here = body_.position_nm();
-        // End stops and range limits both turn the search around (2.3.4).
-        const auto [lo, hi] = physical_limit();
-        // End-stop types ignore the direction parameter and use the safe direction (SSD):
-        // the end stop is their reference, so no direction aborts there.
-        const bool end_stop_type = sensor_->reference == ReferenceType::EndStop;
-        const double dir = end_stop_type ? (safe_direction_ == 0 ? 1.0 : -1.0) : (search.backward ? -1.0 : 1.0);
-        plan_reference_search(here, dir, lo, hi, search.abort_on_end_stop && !end_stop_type);
-        if (body_.blocked())
-            reference_found_ = false;   // a stalled stage meets "end stops" both ways at once
-        motion_ = Motion::Referencing;
-        if (!body_.start_legs(std::move(reference_legs_), search_speed_))
-            finish_reference(now);
-        reference_legs_.clear();
-    });
-    return std::nullopt;
-}
-
-void Channel::plan_reference_search(double here, double dir, double lo, double hi, bool abort_at_end)
-{
-    const double step = static_cast<double>(config_.coded_mark_spacing);
-    const double mark = static_cast<double>(config_.reference_position);
-    reference_legs_.clear();
-    reference_found_ = false;
-    const double end_ahead = dir > 0 ? hi : lo;
-    const double end_behind = dir > 0 ? lo : hi;
-    switch (sensor_->reference) {
-    case ReferenceType::None:
-        break;
-    case ReferenceType::EndStop:
-        reference_legs_ = {end_ahead};
-        reference_found_ = true;
-        reference_point_ = end_ahead;
-        break;
-    case ReferenceType::Mark:
-        if (endless()) {   // a mark every revolution: at most one turn away
-            const double turn = 360'000'000.0;
-            const double k = dir > 0 ? std::ceil((here - mark) / turn) : std::floor((here - mark) / turn);
-            reference_point_ = mark + k * turn;
-            reference_legs_ = {reference_point_};
-            reference_found_ = true;
-        } else if (mark >= lo && mark <= hi && (!abort_at_end || (mark - here) * dir >= 0)) {
-            if ((mark - here) * dir < 0)
-                reference_legs_.push_back(end_ahead);   // reverse at the end stop
-            reference_legs_.push_back(mark);
-            reference_point_ = mark;
-            reference_found_ = true;
-        } else if (abort_at_end) {
-            reference_legs_ = {end_ahead};   // the mark lies behind or outside: 144 there
-        } else {
-            reference_legs_ = {end_ahead, end_behind};   // the mark lies outside: 144
-        }
-        break;
-    case ReferenceType::DistanceCodedMarks: {
-        // Two neighbouring marks give the position (2.3.3): stop at the second one met.
-        auto second_mark = [&](double from, double d, double bound) -> std::optional<double> {
-            double first = d > 0 ? mark + std::floor((from - mark) / step + 1) * step
-                                 : mark + std::ceil((from - mark) / step - 1) * step;
-            const double second = first + d * step;
-            if (std::isinf(bound) || (second - bound) * d <= 0)
-                return second;
-            return std::nullopt;
-        };
-        if (auto m = second_mark(here, dir, end_ahead)) {
-            reference_legs_ = {*m};
-        } else if (abort_at_end) {
-            reference_legs_ = {end_ahead};   // two marks do not fit before the end stop: 144
-            break;
-        } else if (auto back = second_mark(end_ahead, -dir, end_behind)) {
-            reference_legs_ = {end_ahead, *back};
-        } else {
-            reference_legs_ = {end_ahead, end_behind};
-            break;
-        }
-        reference_point_ = mark;   // the marks' code gives the absolute position
-        reference_found_ = true;
-        break;
-    }
-    }
-}
-
-void Channel::finish_reference(Ticks now)
-{
-    if (!reference_found_) {
-        // "If a second end stop is detected before the reference mark is found the search
-        // will abort unsuccessfully" (2.3.3): 144 in async mode, status 0.
-        motion_ = Motion::Idle;
-        post_error(ErrorCode::CouldNotFindReferenceMark);
-        outcome_ = "reference_not_found";
-        return;
-    }
-    become_known(reference_point_, auto_zero_);
-    end_stop_hit_ = false;
-    limit_hit_ = false;
-    arrive(now);
-}
-
-void Channel::become_known(double reference_physical, bool auto_zero)
-{
-    known_ = true;
-    reference_nm_ = reference_physical;
-    if (auto_zero) {   // "the current position resp. angle is set to zero"
-        const double relative = body_.position_nm() - reference_nm_;
-        scale_offset_ = static_cast<std::int32_t>(-std::llround(scale_inverted_ ? -relative : relative));
-    }
-}
-
-models::StepLimit Channel::step_limit() const
-{
-    models::StepLimit l;
-    l.active = limit_.has_value();
-    if (!limit_ || limit_->first >= limit_->second)
-        return l;   // end stops only
-    if (blind_logical_) {   // the scale, and the limit on it, move with the stage (2.3.2)
-        l.follows_stage = true;
-        l.min_nm = static_cast<double>(limit_->first) - *blind_logical_;
-        l.max_nm = static_cast<double>(limit_->second) - *blind_logical_;
-        return l;
-    }
-    std::tie(l.min_nm, l.max_nm) = physical_limit();
-    return l;
-}
-
-std::optional<ErrorCode> Channel::move_steps(std::int32_t steps, std::int32_t amplitude, std::int32_t frequency_hz)
-{
-    if (locked_)
-        return ErrorCode::MovementLocked;
-    if (steps < -30'000 || steps > 30'000 || amplitude < 0 || amplitude > 4095 || frequency_hz < 1
-        || frequency_hz > kMaxFrequency_hz)
-        return ErrorCode::InvalidParameter;
-    if (steps == 0) {   // "A value of 0 stops the positioner"
-        stop();
-        return std::nullopt;
-    }
-    begin_movement([this, steps, amplitude, frequency_hz](Ticks) {
-        body_.halt();
-        motion_ = Motion::Stepping;
-        if (sensor_ && sensor_mode_ == SensorMode::Disabled)
-            blind_logical_ = logical_from_physical(body_.position_nm());
-        models::StepBurst burst;
-        burst.steps = std::abs(steps) == 30'000 ? 0 : std::abs(steps);   // ±30000: unbounded
-        burst.direction = steps > 0 ? 1.0 : -1.0;
-        burst.amplitude_levels = amplitude;
-        burst.frequency_hz = frequency_hz;
-        burst.limit = step_limit();
-        body_.start_burst(burst);
-    });
-    return std::nullopt;
-}
-
-void Channel::end_burst(bool limit_met)
-{
-    commit_blind();
-    blind_logical_.reset();
-    motion_ = Motion::Idle;
-    if (limit_met)
-        post_error(ErrorCode::RangeLimitReached);   // 2.3.4: open-loop movements stop there too
-    else
-        finish_movement();
-}
-
-std::int32_t Channel::voltage_level() const
-{
-    return static_cast<std::int32_t>(std::lround(body_.scan_level()));
-}
-
-std::optional<ErrorCode> Channel::scan_absolute(std::int32_t target, std::int64_t speed)
-{
-    if (locked_)
-        return ErrorCode::MovementLocked;
-    if (target < 0 || target > 4095 || speed < 1 || speed > 4'095'000'000LL)
-        return ErrorCode::InvalidParameter;
-    begin_movement([this, target, speed](Ticks) {
-        motion_ = Motion::Scanning;
-        if (body_.start_scan(target, static_cast<double>(speed))) {
-            motion_ = Motion::Idle;
-            finish_movement();
-        }
-    });
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::scan_relative(std::int32_t diff, std::int64_t speed)
-{
-    if (locked_)
-        return ErrorCode::MovementLocked;
-    if (diff < -4095 || diff > 4095 || speed < 1 || speed > 4'095'000'000LL)
-        return ErrorCode::InvalidParameter;
-    // "If the resulting absolute scan target exceeds the valid range of 0..4,095 the scan
-    // movement will stop at the boundary."
-    const auto target = static_cast<std::int32_t>(std::clamp(std::lround(body_.scan_level()) + diff, 0L, 4095L));
-    return scan_absolute(target, speed);
-}
-
-
-
-std::optional<ErrorCode> Channel::calibrate()
-{
-    if (locked_)
-        return ErrorCode::MovementLocked;
-    if (auto err = sensor_error())
-        return err;
-    begin_movement([this](Ticks now) {
-        body_.halt();
-        motion_ = Motion::Calibrating;
-        calibrate_until_ = now + clock_.ticks_from_ms(config_.calibration_ms);
-        if (calibrate_until_ <= now)
-            tick(now);
-    });
-    return std::nullopt;
-}
-
 void Channel::stop()
 {
     using Outcome = models::StickSlipPositioner::Outcome;
@@ -718,79 +438,6 @@ std::optional<ErrorCode> Channel::set_position(std::int64_t position)
     }
     if (blind_logical_)
         blind_logical_ = static_cast<double>(position);   // blind steps go on from the new reading
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_scale(std::int32_t offset, std::int32_t inverted)
-{
-    if (inverted != 0 && inverted != 1)
-        return ErrorCode::InvalidParameter;
-    if (offset < -2'000'000'000 || offset > 2'000'000'000)   // channel property range (4.4)
-        return ErrorCode::InvalidParameter;
-    scale_offset_ = offset;
-    scale_inverted_ = inverted == 1;
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_safe_direction(std::int32_t direction)
-{
-    if (direction != 0 && direction != 1)
-        return ErrorCode::InvalidParameter;
-    safe_direction_ = direction;
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_accumulate_relative(std::int32_t accumulate)
-{
-    if (accumulate != 0 && accumulate != 1)
-        return ErrorCode::InvalidParameter;
-    accumulate_relative_ = accumulate == 1;
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_step_while_scan(std::int32_t step)
-{
-    if (step != 0 && step != 1)
-        return ErrorCode::InvalidParameter;
-    step_while_scan_ = step == 1;
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_closed_loop_speed(std::int32_t speed_nm_per_s)
-{
-    if (speed_nm_per_s < 0 || speed_nm_per_s > kMaxClosedLoopSpeed)
-        return ErrorCode::InvalidParameter;
-    if (speed_nm_per_s == 0 && low_vibration_ && motion_ != Motion::Idle)
-        return ErrorCode::CommandNotProcessable;   // 2.5.1: low vibration can't be left while moving
-    speed_nm_per_s_ = speed_nm_per_s;
-    if (speed_nm_per_s_ == 0) {
-        acceleration_um_per_s2_ = 0;   // acceleration control needs speed control (2.5.1)
-        low_vibration_ = false;
-    }
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_closed_loop_acceleration(std::int32_t acceleration_um_per_s2)
-{
-    if (acceleration_um_per_s2 < 0 || acceleration_um_per_s2 > kMaxClosedLoopAcceleration)
-        return ErrorCode::InvalidParameter;
-    if (acceleration_um_per_s2 == 0 && low_vibration_ && motion_ != Motion::Idle)
-        return ErrorCode::CommandNotProcessable;
-    acceleration_um_per_s2_ = acceleration_um_per_s2;
-    if (acceleration_um_per_s2_ == 0)
-        low_vibration_ = false;
-    // "Enabling acceleration control will implicitly enable the speed control should it
-    // be inactive" (SCLA): it starts at the stage's top speed.
-    if (acceleration_um_per_s2_ > 0 && speed_nm_per_s_ == 0)
-        speed_nm_per_s_ = static_cast<std::int32_t>(std::min<double>(top_speed(), kMaxClosedLoopSpeed));
-    return std::nullopt;
-}
-
-std::optional<ErrorCode> Channel::set_closed_loop_max_frequency(std::int32_t frequency_hz)
-{
-    if (frequency_hz < kMinFrequency_hz || frequency_hz > kMaxFrequency_hz)
-        return ErrorCode::InvalidParameter;
-    max_frequency_hz_ = frequency_hz;
     return std::nullopt;
 }
 

@@ -1,5 +1,6 @@
-// MCS channel: properties (appendix 4.4), emergency stop (2.2.1), broadcast stop (2.2.3),
-// event receivers and the command queue (2.4). The rest of the channel is in channel.cpp.
+// MCS channel: the configuration setters of 3.2 (SSC, SSD, SARP, SSWS, SCLS, SCLA, SCLF),
+// properties (appendix 4.4), emergency stop (2.2.1), broadcast stop (2.2.3), event receivers
+// and the command queue (2.4). The rest of the channel is in channel.cpp.
 #include "emulator/mcs/channel.hpp"
 
 #include <algorithm>
@@ -226,6 +227,79 @@ std::vector<Command> Channel::take_triggered()
     std::vector<Command> t;
     t.swap(triggered_);
     return t;
+}
+
+std::optional<ErrorCode> Channel::set_scale(std::int32_t offset, std::int32_t inverted)
+{
+    if (inverted != 0 && inverted != 1)
+        return ErrorCode::InvalidParameter;
+    if (offset < -2'000'000'000 || offset > 2'000'000'000)   // channel property range (4.4)
+        return ErrorCode::InvalidParameter;
+    scale_offset_ = offset;
+    scale_inverted_ = inverted == 1;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_safe_direction(std::int32_t direction)
+{
+    if (direction != 0 && direction != 1)
+        return ErrorCode::InvalidParameter;
+    safe_direction_ = direction;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_accumulate_relative(std::int32_t accumulate)
+{
+    if (accumulate != 0 && accumulate != 1)
+        return ErrorCode::InvalidParameter;
+    accumulate_relative_ = accumulate == 1;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_step_while_scan(std::int32_t step)
+{
+    if (step != 0 && step != 1)
+        return ErrorCode::InvalidParameter;
+    step_while_scan_ = step == 1;
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_closed_loop_speed(std::int32_t speed_nm_per_s)
+{
+    if (speed_nm_per_s < 0 || speed_nm_per_s > kMaxClosedLoopSpeed)
+        return ErrorCode::InvalidParameter;
+    if (speed_nm_per_s == 0 && low_vibration_ && motion_ != Motion::Idle)
+        return ErrorCode::CommandNotProcessable;   // 2.5.1: low vibration can't be left while moving
+    speed_nm_per_s_ = speed_nm_per_s;
+    if (speed_nm_per_s_ == 0) {
+        acceleration_um_per_s2_ = 0;   // acceleration control needs speed control (2.5.1)
+        low_vibration_ = false;
+    }
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_closed_loop_acceleration(std::int32_t acceleration_um_per_s2)
+{
+    if (acceleration_um_per_s2 < 0 || acceleration_um_per_s2 > kMaxClosedLoopAcceleration)
+        return ErrorCode::InvalidParameter;
+    if (acceleration_um_per_s2 == 0 && low_vibration_ && motion_ != Motion::Idle)
+        return ErrorCode::CommandNotProcessable;
+    acceleration_um_per_s2_ = acceleration_um_per_s2;
+    if (acceleration_um_per_s2_ == 0)
+        low_vibration_ = false;
+    // "Enabling acceleration control will implicitly enable the speed control should it
+    // be inactive" (SCLA): it starts at the stage's top speed.
+    if (acceleration_um_per_s2_ > 0 && speed_nm_per_s_ == 0)
+        speed_nm_per_s_ = static_cast<std::int32_t>(std::min<double>(top_speed(), kMaxClosedLoopSpeed));
+    return std::nullopt;
+}
+
+std::optional<ErrorCode> Channel::set_closed_loop_max_frequency(std::int32_t frequency_hz)
+{
+    if (frequency_hz < kMinFrequency_hz || frequency_hz > kMaxFrequency_hz)
+        return ErrorCode::InvalidParameter;
+    max_frequency_hz_ = frequency_hz;
+    return std::nullopt;
 }
 
 } // namespace rigsim::mcs
