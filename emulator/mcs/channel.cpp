@@ -149,6 +149,8 @@ void Channel::post_error(ErrorCode code)
     events_.push_back(ChannelEvent{ChannelEvent::Kind::Error, code});
     if (code == ErrorCode::RangeLimitReached)
         outcome_ = "range_limit";
+    if (code == ErrorCode::CouldNotFindReferenceMark)
+        outcome_ = "reference_not_found";
 }
 
 bool Channel::angular() const
@@ -290,11 +292,8 @@ void Channel::start_closed_loop(double target_physical, std::int32_t hold_ms, Ti
     // 2.3.4: a movement stops at the software range limit (147 in async mode); from
     // outside the limit only movements back toward it are allowed; a limit whose maximum
     // is below its minimum allows no movement at all.
-    if (limit_ && limit_->first > limit_->second) {
-        motion_ = Motion::Idle;
-        post_error(ErrorCode::RangeLimitReached);
+    if (stop_at_empty_limit(ErrorCode::RangeLimitReached))
         return;
-    }
     const auto [lo, hi] = physical_limit();
     const bool outward = (here <= lo && target_physical < here) || (here >= hi && target_physical > here);
     if (limit_ && outward) {

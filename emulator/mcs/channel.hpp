@@ -234,8 +234,15 @@ private:
     bool endless() const;
     double travel_min() const;
     double travel_max() const;
-    /// Physical bounds a movement may not pass: end stops and the software range limit.
+    /// Physical bounds a movement may not pass: end stops and the software range limit; an
+    /// empty limit leaves only where the stage stands.
     std::pair<double, double> physical_limit() const;
+    /// SPL/SAL (3.2): a limit whose maximum is below its minimum, under which "the positioner
+    /// will not move at all", open-loop or closed-loop (every movement but a scan, 2.3.4).
+    bool empty_limit() const;
+    /// Under an empty limit a movement ends where it starts: status 0 and, in asynchronous
+    /// mode, `code` (147, or 144 for FRM). False (and nothing done) under any other limit.
+    bool stop_at_empty_limit(ErrorCode code);
 
     std::optional<ErrorCode> check_move(std::int32_t hold_ms) const;
     /// Runs `start` now, or after the sensor powered up (power save mode, status 5).

@@ -35,6 +35,10 @@ std::optional<ErrorCode> Channel::move_steps(std::int32_t steps, std::int32_t am
         return std::nullopt;
     }
     begin_movement([this, steps, amplitude, frequency_hz](Ticks) {
+        // SPL/SAL: the limit "affects open-loop as well as closed-loop movements" (3.2); an
+        // empty one allows no step, not even the first (147, 4.2).
+        if (stop_at_empty_limit(ErrorCode::RangeLimitReached))
+            return;
         body_.halt();
         motion_ = Motion::Stepping;
         if (sensor_ && sensor_mode_ == SensorMode::Disabled)

@@ -8,11 +8,30 @@
 
 namespace rigsim::mcs {
 
+bool Channel::empty_limit() const
+{
+    return limit_ && limit_->first > limit_->second;
+}
+
+bool Channel::stop_at_empty_limit(ErrorCode code)
+{
+    if (!empty_limit())
+        return false;
+    body_.halt();
+    motion_ = Motion::Idle;
+    post_error(code);
+    return true;
+}
+
 std::pair<double, double> Channel::physical_limit() const
 {
+    if (empty_limit()) {   // no position is inside it: the stage may not leave where it stands
+        const double here = body_.position_nm();
+        return {here, here};
+    }
     double lo = travel_min();
     double hi = travel_max();
-    if (limit_ && limit_->first < limit_->second) {
+    if (limit_) {
         double a = physical_from_logical(static_cast<double>(limit_->first));
         double b = physical_from_logical(static_cast<double>(limit_->second));
         if (a > b)
@@ -58,6 +77,11 @@ std::optional<ErrorCode> Channel::find_reference(std::int32_t direction, std::in
         // Searching runs at the closed-loop speed if one is set, else at 1 mm/s (1°/s).
         search_speed_ = speed_nm_per_s_ > 0 ? std::min<double>(speed_nm_per_s_, top_speed())
                                             : std::min(1'000'000.0, top_speed());
+        // 2.3.4: the limit's boundaries act as end stops for FRM, and "if the reference mark is
+        // located outside the range limit then it will not be found". An empty limit has every
+        // mark outside it, so the search fails where it starts: 144 (4.2), not 147.
+        if (stop_at_empty_limit(ErrorCode::CouldNotFindReferenceMark))
+            return;
         const double here = body_.position_nm();
         // End stops and range limits both turn the search around (2.3.4).
         const auto [lo, hi] = physical_limit();
@@ -169,9 +193,9 @@ models::StepLimit Channel::step_limit() const
 {
     models::StepLimit l;
     l.active = limit_.has_value();
-    if (!limit_ || limit_->first >= limit_->second)
+    if (!limit_)
         return l;   // end stops only
-    if (blind_logical_) {   // the scale, and the limit on it, move with the stage (2.3.2)
+    if (blind_logical_ && !empty_limit()) {   // the scale, and the limit on it, move with the stage (2.3.2)
         l.follows_stage = true;
         l.min_nm = static_cast<double>(limit_->first) - *blind_logical_;
         l.max_nm = static_cast<double>(limit_->second) - *blind_logical_;
@@ -188,6 +212,11 @@ std::optional<ErrorCode> Channel::calibrate()
     if (auto err = sensor_error())
         return err;
     begin_movement([this](Ticks now) {
+        // CS moves the positioner "up to several mm", and 2.3.4 warns that near a range limit
+        // boundary "the calibration will be aborted": under an empty limit it stops where it
+        // starts, with the limit's 147 (the manual names no code of its own for it).
+        if (stop_at_empty_limit(ErrorCode::RangeLimitReached))
+            return;
         body_.halt();
         motion_ = Motion::Calibrating;
         calibrate_until_ = now + clock_.ticks_from_ms(config_.calibration_ms);
