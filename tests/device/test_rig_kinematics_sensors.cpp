@@ -133,7 +133,7 @@ TEST_CASE("rig kinematics sensors: a stepper's lost microsteps move its counters
     // Half of every move's microsteps are lost: the motor (and so the counters) reach the target,
     // the carriage, which the frame follows, only half way.
     side->set_slip(0, 0.5);
-    const double counts_per_mm = 25600;
+    const double counts_per_mm = 51200;   // the DRV001 on a TST001
     side->move_to(side->position_counts() + 2 * counts_per_mm, counts_per_mm, 2 * counts_per_mm);
     f.rig->clock().advance_ms(10000);
     REQUIRE_FALSE(side->moving());

@@ -24,11 +24,14 @@ constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "kst", "protocol": "apt", "model": "KST101", "firmware": "issue-44.1", "tcp_port": 0,
    "apt": {"stage": "ZST225B"}}]})";
 
-// ZST225B on the later KST101: 16 × 25,600 microsteps per mm; 53.68 per microstep/s and
-// 53.68 × 204.94e-6 per microstep/s² (pyLabLib's KST101 scaling).
-constexpr std::int32_t kPerMm = 409'600;
-const std::int32_t kOneMmPerS = static_cast<std::int32_t>(std::lround(kPerMm * 53.68));
-const std::int32_t kFourMmPerS2 = static_cast<std::int32_t>(std::lround(4.0 * kPerMm * 53.68 * 204.94e-6));
+// ZST225B on the later KST101: 2,008,645.63 microsteps per mm; 53.68 per microstep/s and
+// 53.68 × 204.94e-6 per microstep/s² (pyLabLib's KST101 figures, which a driver sends: 1 mm is
+// 2,008,646 microsteps, 1 mm/s 107,824,097, 4 mm/s² 88,390).
+constexpr double kPerMmExact = 2'008'645.63;
+const std::int32_t kPerMm = static_cast<std::int32_t>(std::lround(kPerMmExact));
+const std::int32_t kOneMmPerS = static_cast<std::int32_t>(std::lround(kPerMmExact * 53.68));
+const std::int32_t kTwoMmPerS = static_cast<std::int32_t>(std::lround(2.0 * kPerMmExact * 53.68));
+const std::int32_t kFourMmPerS2 = static_cast<std::int32_t>(std::lround(4.0 * kPerMmExact * 53.68 * 204.94e-6));
 
 std::string chan1()
 {
@@ -72,7 +75,7 @@ TEST_CASE("apt K-Cube at issue-44.1: a KST101 session over the pty with the late
     auto vel = wait_for(fd, 0x0415);
     REQUIRE(vel);
     CHECK(get32(vel->data, 6) == kFourMmPerS2);
-    CHECK(get32(vel->data, 10) == 2 * kOneMmPerS);
+    CHECK(get32(vel->data, 10) == kTwoMmPerS);
 
     // Set 1 mm/s and 4 mm/s² in the later units; they read back as set.
     c.send(with_data(0x0413, chan1() + le32(0) + le32(kFourMmPerS2) + le32(kOneMmPerS)));

@@ -348,7 +348,7 @@ TEST_CASE("BBD203 bays keep their PMD parameter trios and report their stage", "
 
 TEST_CASE("stepper cubes: microsteps, MOT_GET_STATUSUPDATE, no DC messages", "[device][apt][stepper]")
 {
-    AptHarness h(apt_cube("KST101", "ZST225B"));
+    AptHarness h(apt_cube("KST101", "DRV014"));
     const auto info = bytes(h.send("05 00 00 00 50 01"));
     REQUIRE(info.size() == 90);
     CHECK(get_u32(info, 6) == 26'000'001);
@@ -371,7 +371,7 @@ TEST_CASE("a BSC203 stepper rack: three bays, MOTSTATUS from each bay", "[device
     AptHarness h(apt_rack("BSC203", {"DRV001", "DRV001", "ZST225B"}));
     CHECK(get_u16(bytes(h.send("05 00 00 00 11 01")), 88) == 3);
     CHECK(h.send("60 00 02 00 11 01") == "61 00 02 01 01 11");
-    CHECK(h.send("48 04 06 00 A3 01 01 00 00 64 00 00") == "");     // bay 2 by 1 mm (25600 microsteps)
+    CHECK(h.send("48 04 06 00 A3 01 01 00 00 64 00 00") == "");     // bay 2 (ZST225B) by 25,600 microsteps
     h.advance_ms(2000);
     const auto done = h.take();
     CHECK(done.substr(0, 17) == "64 04 0E 00 81 23");

@@ -66,7 +66,7 @@ std::uint16_t info_word(const std::string& reply_hex, std::size_t offset)
     return get_u16(b, 6 + offset);
 }
 
-// KST101 + ZST225B: 25,600 microsteps/mm in the manual's generation, 16 times that (2048
+// KST101 + DRV014: 25,600 microsteps/mm in the manual's generation, 16 times that (2048
 // microsteps per full step rather than 128) in the later one.
 constexpr std::int32_t kManualPerMm = 25'600;
 constexpr std::int32_t kLaterPerMm = 409'600;
@@ -90,12 +90,12 @@ TEST_CASE("KST101 power-up VELPARAMS: microsteps/s in the manual's generation, 5
           "issue-44.1",
           "[device][apt][firmware]")
 {
-    // ZST225B: 2 mm/s, 4 mm/s².
-    AptHarness manual(cube("KST101", "ZST225B", Firmware::Issue3));
+    // DRV014: 2 mm/s, 4 mm/s².
+    AptHarness manual(cube("KST101", "DRV014", Firmware::Issue3));
     CHECK(manual.send("14 04 01 00 50 01")
           == "15 04 0E 00 81 50 " + vel_params(0, 4 * kManualPerMm, 2 * kManualPerMm));
 
-    AptHarness later(cube("KST101", "ZST225B", Firmware::Issue44_1));
+    AptHarness later(cube("KST101", "DRV014", Firmware::Issue44_1));
     CHECK(later_velocity(2) == 43'974'656);
     CHECK(later_acceleration(4) == 18'024);
     CHECK(later.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(0, 18'024, 43'974'656));
@@ -111,13 +111,13 @@ TEST_CASE("KST101 power-up VELPARAMS: microsteps/s in the manual's generation, 5
 TEST_CASE("BSC203 at issue-44.1: every bay counts the later microsteps and scales VELPARAMS as the KST101",
           "[device][apt][firmware]")
 {
-    auto c = apt_rack("BSC203", {"DRV001", "ZST225B"});
+    auto c = apt_rack("BSC203", {"DRV001", "DRV014"});
     c.firmware = "issue-44.1";
     config_of(c).firmware = Firmware::Issue44_1;
     AptHarness h(c);
     CHECK(h.send("14 04 01 00 22 01") == "15 04 0E 00 81 22 " + vel_params(0, 18'024, 43'974'656));
     // TST001 stays the manual's: it is not one of the later issue's Trinamic steppers.
-    AptHarness tst(cube("TST001", "ZST225B", Firmware::Issue44_1));
+    AptHarness tst(cube("TST001", "DRV014", Firmware::Issue44_1));
     CHECK(tst.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(0, 4 * kManualPerMm, 2 * kManualPerMm));
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("KST101 at issue-44.1: VELPARAMS set in the later units round-trip, an
     for (const auto& k : {Case{Firmware::Issue3, kManualPerMm, 4 * kManualPerMm, kManualPerMm},
                           Case{Firmware::Issue44_1, kLaterPerMm, later_acceleration(4), later_velocity(1)}}) {
         INFO("firmware " << firmware_name(k.fw));
-        AptHarness h(cube("KST101", "ZST225B", k.fw));
+        AptHarness h(cube("KST101", "DRV014", k.fw));
         CHECK(h.send(set_vel_params(k.acceleration, k.velocity)) == "");
         CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(0, k.acceleration, k.velocity));
         CHECK(h.send(move_relative(k.per_mm)) == "");
@@ -150,7 +150,7 @@ TEST_CASE("KST101 at issue-44.1: VELPARAMS set in the later units round-trip, an
 TEST_CASE("KST101 at issue-44.1: VELPARAMS of the manual's units crawl (a microstep/s is 53.68 later units)",
           "[device][apt][firmware]")
 {
-    AptHarness h(cube("KST101", "ZST225B", Firmware::Issue44_1));
+    AptHarness h(cube("KST101", "DRV014", Firmware::Issue44_1));
     // 25,600 "microsteps/s" (and 102,400 /s²) as a manual client means 1 mm/s: on the later unit
     // 25,600 / 53.68 = 476.9 of its microsteps/s, 1.16 µm/s.
     CHECK(h.send(set_vel_params(4 * kManualPerMm, kManualPerMm)) == "");
@@ -185,7 +185,7 @@ TEST_CASE("status updates per model in both generations: K-Cube stepper MOT_GET_
     for (const auto fw : {Firmware::Issue3, Firmware::Issue44_1}) {
         INFO("firmware " << firmware_name(fw));
         const std::int32_t per_mm = fw == Firmware::Issue3 ? kManualPerMm : kLaterPerMm;
-        AptHarness st(cube("KST101", "ZST225B", fw));
+        AptHarness st(cube("KST101", "DRV014", fw));
         CHECK(st.send(move_relative(per_mm / 10)) == "");
         st.advance_ms(3000);
         REQUIRE(frames(st.take()).size() == 1);
