@@ -1,5 +1,6 @@
 #include "emulator/transport/inotify_watcher.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <sys/inotify.h>
@@ -80,6 +81,7 @@ void InotifyWatcher::stop()
         return;
     stopped_ = true;
     handlers_.clear();
+    pending_.clear();
     boost::system::error_code ec;
     fd_.close(ec);
 }
@@ -96,7 +98,7 @@ void InotifyWatcher::wait()
         });
 }
 
-void InotifyWatcher::drain()
+void InotifyWatcher::read_pending()
 {
     if (stopped_)
         return;
@@ -108,14 +110,49 @@ void InotifyWatcher::drain()
         for (std::size_t off = 0; off + sizeof(inotify_event) <= static_cast<std::size_t>(n);) {
             const auto* e = reinterpret_cast<const inotify_event*>(buf + off);
             off += sizeof(inotify_event) + e->len;
-            // Unknown descriptors: IN_IGNORED after remove(), or events queued before it.
-            const auto it = handlers_.find(e->wd);
-            if (it == handlers_.end())
-                continue;
-            const auto handler = it->second;   // a copy: the handler may remove its watch
-            handler(e->mask);
+            pending_.push_back(Event{e->wd, e->mask});
         }
     }
+}
+
+bool InotifyWatcher::has_pending(int wd)
+{
+    read_pending();
+    return std::any_of(pending_.begin(), pending_.end(), [wd](const Event& e) { return e.wd == wd; });
+}
+
+void InotifyWatcher::dispatch(const std::vector<Event>& batch)
+{
+    std::map<int, std::vector<std::uint32_t>> by_watch;
+    for (const auto& e : batch)
+        by_watch[e.wd].push_back(e.mask);
+    for (const auto& [wd, masks] : by_watch) {
+        // Unknown descriptors: IN_IGNORED after remove(), or events queued before it.
+        const auto it = handlers_.find(wd);
+        if (it == handlers_.end())
+            continue;
+        const auto handler = it->second;   // a copy: the handler may remove its watch
+        handler(masks);
+    }
+}
+
+void InotifyWatcher::drain()
+{
+    read_pending();
+    if (dispatching_)
+        return;
+    struct Dispatching {
+        bool& flag;
+        explicit Dispatching(bool& f) : flag(f) { flag = true; }
+        ~Dispatching() { flag = false; }
+    } guard(dispatching_);
+    // Events a handler read (has_pending) follow as the next batch.
+    while (!pending_.empty() && !stopped_) {
+        std::vector<Event> batch;
+        batch.swap(pending_);
+        dispatch(batch);
+    }
+    pending_.clear();
 }
 
 } // namespace rigsim

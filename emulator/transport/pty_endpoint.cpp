@@ -83,10 +83,11 @@ PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symli
     master_.non_blocking(true);
     std::weak_ptr<bool> alive = alive_;
     try {
-        watch_ = watcher_.add(slave_name_, IN_OPEN | IN_CLOSE, [this, alive](std::uint32_t mask) {
-            if (alive.lock())
-                on_open_event(mask);
-        });
+        watch_ = watcher_.add(slave_name_, IN_OPEN | IN_CLOSE,
+                              [this, alive](const std::vector<std::uint32_t>& masks) {
+                                  if (alive.lock())
+                                      on_open_events(masks);
+                              });
         make_parent_dirs(symlink_path_);
         replace_symlink(slave_name_, symlink_path_);
     } catch (...) {
@@ -123,22 +124,38 @@ void PtyEndpoint::start()
     read();
 }
 
-void PtyEndpoint::on_open_event(std::uint32_t mask)
+void PtyEndpoint::on_open_events(const std::vector<std::uint32_t>& masks)
 {
     if (stopped_)
         return;
-    if (mask & IN_OPEN) {
-        if (openers_++ == 0)
-            log_->info("pty {}: opened", symlink_path_);
-        return;
+    for (auto it = masks.begin(); it != masks.end(); ++it) {
+        if (*it & IN_OPEN) {
+            if (openers_++ == 0)
+                log_->info("pty {}: opened", symlink_path_);
+            continue;
+        }
+        if (!(*it & IN_CLOSE))
+            continue;
+        openers_ = std::max(0, openers_ - 1);
+        if (openers_ > 0)
+            continue;
+        const bool reopened = std::any_of(it + 1, masks.end(), [](std::uint32_t m) { return (m & IN_OPEN) != 0; });
+        if (!reopened) {
+            close_port();
+            continue;
+        }
+        // The next process has opened the port already, and its bytes may have been read
+        // and answered before this close was: nothing is flushed, the line carries on.
+        log_->info("pty {}: closed", symlink_path_);
     }
-    if (!(mask & IN_CLOSE))
-        return;
-    openers_ = std::max(0, openers_ - 1);
-    if (openers_ > 0)
-        return;
+}
+
+void PtyEndpoint::close_port()
+{
     // Nobody listens any more: answers not read by now are lost, as on a serial line whose
-    // host port is closed: flushed from the pty, dropped from the queue.
+    // host port is closed: flushed from the pty, dropped from the queue. None of them is a
+    // later opener's: its IN_OPEN would have been queued before its first byte, so it would
+    // be in the batch that ends here.
     ::tcflush(slave_fd_, TCIFLUSH);
     while (queue_.size() > 1) {
         queued_bytes_ -= queue_.back().size() + kQueuedFrameOverhead;
@@ -158,15 +175,18 @@ void PtyEndpoint::on_open_event(std::uint32_t mask)
     // of a pty waits for the line discipline's pending input): take it here, before a next
     // opener's bytes can follow it (logging the close first would let a client that waits
     // for the log line slip in), and hand it to the process's session from the loop (this
-    // may run inside a call into the device).
+    // may run inside a call into the device). If somebody has opened the port since the
+    // batch was read, the bytes may end with that opener's: they keep the session.
+    Leftover left;
     char buf[4096];
-    while (leftover_.size() < kMaxQueuedBytes) {
+    while (left.bytes.size() < kMaxQueuedBytes) {
         const auto n = ::read(master_.native_handle(), buf, sizeof buf);
         if (n <= 0)
             break;
-        leftover_.append(buf, static_cast<std::size_t>(n));
+        left.bytes.append(buf, static_cast<std::size_t>(n));
     }
-    port_closed_ = true;
+    left.replace_session = left.bytes.empty() || !watcher_.has_pending(watch_);
+    leftovers_.push_back(std::move(left));
     log_->info("pty {}: closed", symlink_path_);
     std::weak_ptr<bool> alive = alive_;
     asio::post(master_.get_executor(), [this, alive] {
@@ -187,7 +207,7 @@ void PtyEndpoint::stop()
     pacing_timer_.cancel();
     // The io_context may outlive the device: nothing may reach it after this.
     session_.reset();
-    leftover_.clear();
+    leftovers_.clear();
     queue_.clear();
     queued_bytes_ = 0;
     // Remove the symlink only if it is still ours.
@@ -199,17 +219,16 @@ void PtyEndpoint::stop()
 
 void PtyEndpoint::finish_process()
 {
-    while (!leftover_.empty()) {
-        const auto bytes = std::move(leftover_);
-        leftover_.clear();
-        session_->receive(bytes);
+    while (!leftovers_.empty()) {
+        const auto left = std::move(leftovers_.front());
+        leftovers_.pop_front();
+        if (!left.bytes.empty())
+            session_->receive(left.bytes);
+        // Whatever the process left unfinished in the framer is not the start of the next
+        // opener's frame: the next one starts from an empty framer.
+        if (left.replace_session)
+            open_session();
     }
-    if (!port_closed_)
-        return;
-    // Whatever the process left unfinished in the framer is not the start of the next
-    // opener's frame: the next one starts from an empty framer.
-    port_closed_ = false;
-    open_session();
 }
 
 void PtyEndpoint::read()
@@ -223,7 +242,7 @@ void PtyEndpoint::read()
             if (!alive.lock() || stopped_)
                 return;
             if (ec == asio::error::operation_aborted) {
-                read();   // cancelled with an abandoned write (on_open_event)
+                read();   // cancelled with an abandoned write (close_port)
                 return;
             }
             if (ec) {

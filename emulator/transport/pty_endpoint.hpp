@@ -18,6 +18,19 @@
 // replaced: the next opener starts from an empty framer, its first bytes never glued to a
 // frame or line that the previous process left unfinished.
 //
+// On a real serial port one process's close never takes bytes from the next, and here
+// neither: the events and the bytes come on two descriptors, so a process may open the
+// port, write and even be answered before the daemon has read the previous process's close.
+// The port counts as closed only when the events queued so far leave nobody with it open
+// (InotifyWatcher hands "closed, opened again" over as one batch): then no byte read from the
+// master, and no answer in the pty or the queue, can be the next opener's, since an opener's
+// IN_OPEN is queued before its first byte. A close the next opener has already followed
+// flushes nothing and keeps the Session: the line simply carries on, as a real one does, and
+// the new process may read what the old one left unread. Likewise the bytes read at the last
+// close feed the old Session, which is replaced only if nobody had opened the port again by
+// the time they were read (or they were none): otherwise they may end with the next opener's
+// first request.
+//
 // A real serial line never echoes. A pty slave with ECHO set (a naive client that skips
 // cfmakeraw, `cat`) would send every answer back to the device as input, and the device
 // would answer its own answers: before each write the daemon clears ECHO and ECHONL on the
@@ -35,6 +48,7 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace rigsim {
 
@@ -65,12 +79,15 @@ private:
     /// Reads input into the session, in order with the opens and closes of the port;
     /// false if the pty failed.
     bool take_input();
-    /// Feeds leftover_ and, if the port was closed, replaces the session.
+    /// Feeds the leftovers to the session, replacing it after each where that is due.
     void finish_process();
     void send(std::string_view bytes);
     void write();
-    /// One open or close of the slave device, from the watcher.
-    void on_open_event(std::uint32_t mask);
+    /// The opens and closes of the slave device that one drain of the watcher read, in order.
+    void on_open_events(const std::vector<std::uint32_t>& masks);
+    /// The last client closed the port and nobody has opened it since: flush what it did not
+    /// read and take what it wrote.
+    void close_port();
     void open_session();
     /// A UART does not echo: clears ECHO and ECHONL if the client set them.
     void keep_echo_off();
@@ -87,9 +104,13 @@ private:
     int watch_ = -1;
     boost::asio::steady_timer pacing_timer_;
     std::chrono::steady_clock::time_point line_free_{};
+    /// What the last client wrote, read when it closed the port.
+    struct Leftover {
+        std::string bytes;
+        bool replace_session = false;   ///< then a fresh session for the next opener
+    };
     int openers_ = 0;   ///< client descriptors open on the slave (ours not counted)
-    bool port_closed_ = false;   ///< the last client closed the port: a fresh session is due
-    std::string leftover_;       ///< input of the last client, read when it closed the port
+    std::deque<Leftover> leftovers_;
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;
