@@ -7,6 +7,7 @@
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig.hpp"
 #include "emulator/core/rig_families.hpp"
+#include "emulator/transport/link_lock.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
@@ -24,6 +25,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -74,6 +76,9 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
                          "control": "http://HOST:PORT" when the control API is on
   --pty-dir DIR          put each device's pty symlink at DIR/<name> unless the config
                          names a path (default /tmp/rigsim; created if missing)
+  --replace-links        take over pty symlinks that a running rigsimd holds (it runs on
+                         without them); without it such a link stops start-up (exit 2).
+                         Links left by a daemon that died are replaced either way
   --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port)
   --bind ADDR            listen for TCP on ADDR (default 127.0.0.1)
   --control ADDR:PORT    serve the HTTP control API (docs/control-api.md) on ADDR:PORT;
@@ -118,7 +123,7 @@ at most 10 per second, then a count); the endpoint list goes to standard output.
 SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2 and SIGALRM shut down cleanly: the
 pty symlinks and the --endpoints-json file are removed (SIGHUP reloads nothing).
 Exit status: 0 on success or after a signal, 1 on a run-time failure (e.g. a port in
-use), 2 on a bad flag or config.
+use), 2 on a bad flag or config, or on a pty link that a running rigsimd holds.
 )";
 
 /// Where the control API listens.
@@ -135,6 +140,7 @@ struct Options {
     std::optional<std::string> endpoints_json;
     std::optional<std::uint32_t> tick_hz;
     std::optional<double> time_scale;   ///< --time-scale
+    bool replace_links = false;         ///< --replace-links
     rigsim::RigOptions rig;
 };
 
@@ -235,6 +241,9 @@ void parse_option(const std::string& arg, Value& value, NoValue& no_value, Optio
             throw UsageError{"--pty-dir: expected a directory, got \"\""};
         while (o.rig.pty_dir.size() > 1 && o.rig.pty_dir.back() == '/')
             o.rig.pty_dir.pop_back();
+    } else if (arg == "--replace-links") {
+        no_value();
+        o.replace_links = true;
     } else if (arg == "--ephemeral-ports") {
         no_value();
         o.rig.ephemeral_ports = true;
@@ -317,6 +326,30 @@ std::optional<Options> parse_args(int argc, char** argv)
     if (o.config && o.check_config)
         throw UsageError{"--config and --check-config exclude each other"};
     return o;
+}
+
+/// Locks every device's pty link for the daemon's life (emulator/transport/link_lock.hpp),
+/// before anything is built; the exit status if one is a running daemon's (2) or cannot be
+/// locked (1).
+std::optional<int> lock_pty_links(const rigsim::RigConfig& config, const Options& opts,
+                                  std::vector<rigsim::LinkLock>& links)
+{
+    try {
+        for (const auto& d : config.devices) {
+            links.emplace_back(d.pty, opts.replace_links);
+            if (const auto pid = links.back().replaced_pid())
+                rigsim::make_logger("rigsimd", opts.rig.log_levels)
+                    ->warn("pty link {} taken over from the running rigsimd pid {} (--replace-links): it runs on "
+                           "without it", d.pty, *pid);
+        }
+    } catch (const rigsim::LinkInUse& e) {
+        std::cerr << "rigsimd: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::cerr << "rigsimd: " << e.what() << "\n";
+        return kExitRuntimeError;
+    }
+    return std::nullopt;
 }
 
 /// Where the control API listens, if it is on: --control, else the config's "control" on
@@ -512,5 +545,8 @@ int main(int argc, char** argv)
         config.tick_hz = *opts.tick_hz;
     opts.rig.time_scale = opts.time_scale.value_or(config.clock.time_scale);
     opts.rig.paused = opts.rig.paused || config.clock.paused;
+    std::vector<rigsim::LinkLock> links;   // released after run() has removed the links
+    if (const auto status = lock_pty_links(config, opts, links))
+        return *status;
     return run(config, opts);
 }

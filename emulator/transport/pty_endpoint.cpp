@@ -1,5 +1,7 @@
 #include "emulator/transport/pty_endpoint.hpp"
 
+#include "emulator/transport/link_lock.hpp"
+
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
@@ -25,16 +27,6 @@ namespace {
 [[noreturn]] void throw_errno(const std::string& what)
 {
     throw std::system_error(errno, std::generic_category(), what);
-}
-
-/// mkdir -p for the symlink's directory.
-void make_parent_dirs(const std::string& path)
-{
-    for (auto pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1)) {
-        const auto dir = path.substr(0, pos);
-        if (::mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST)
-            throw_errno("cannot create directory " + dir);
-    }
 }
 
 /// Point `link` at `target` atomically, replacing a stale symlink but never a real file.

@@ -129,7 +129,7 @@ TEST_CASE("cli: --help lists every flag and exits 0", "[e2e][cli]")
     INFO("stdout: " << r.out << "\nstderr: " << r.err);
     REQUIRE(r.exited);
     CHECK(r.exit_code == 0);
-    for (const char* flag : {"--config", "--check-config", "--endpoints-json", "--pty-dir",
+    for (const char* flag : {"--config", "--check-config", "--endpoints-json", "--pty-dir", "--replace-links",
                              "--ephemeral-ports", "--bind", "--max-connections", "--max-connections-per-device",
                              "--time-scale", "--tick-hz", "--state-file",
                              "--log-level", "--help"}) {
