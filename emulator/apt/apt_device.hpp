@@ -53,6 +53,9 @@ public:
     static constexpr std::int64_t kInterByteTimeout_ms = 50;
     /// HW_RICHRESPONSE code of rigsim's one modelled fault (Thorlabs publishes no code list).
     static constexpr std::uint16_t kFaultCodeStalled = 0x0001;
+    /// The serial line of every APT unit: 115200 baud, 8 data bits, 1 stop bit, no parity
+    /// (2.1, the FTDI chip's set-up; 2.3, the RS-232 port): 10 bits a byte.
+    static constexpr std::uint32_t kBaudRate = 115200;
 
     /// The device's bodies join `world` under "<device name>/<bay>". `store` keeps what MOT_SET_EEPROMPARAMS saves (nullptr: nothing survives the device).
     AptDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
@@ -62,6 +65,9 @@ public:
     AptDevice& operator=(const AptDevice&) = delete;
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override;
+    /// With the rig's `faithful_timing`, the pty's line runs at kBaudRate (the link paces it on
+    /// the clock, as for an MCS); without it, 0: unpaced.
+    std::uint32_t serial_baud() const override { return config_.faithful_timing ? kBaudRate : 0; }
     /// After World::link_all(): a piezo driver finds the gauge mounted on its actuator, then the
     /// device replays what the state file holds, as the unit loads its EEPROM at power-up.
     void power_up() override;

@@ -1,6 +1,8 @@
 // APT jog and status-update timing on the stepped clock: what the e2e APT session used to
-// count against the wall clock through the daemon (--time-scale 10).
+// count against the wall clock through the daemon (--time-scale 10); the serial line's pace
+// with the rig's faithful_timing.
 #include "apt_harness.hpp"
+#include "emulator/core/link.hpp"
 
 #include <string>
 #include <vector>
@@ -84,6 +86,40 @@ TEST_CASE("status updates during a move: ten per second of clock, the position i
     h.advance_ms(1000);
     for (const auto& f : frames(h.take()))
         CHECK(f.substr(0, 5) != "91 04");
+}
+
+TEST_CASE("faithful_timing: the pty's line runs at 115200 baud 8N1, a 90-byte HW_GET_INFO arrives after 7.8 ms of clock",
+          "[device][apt][timing]")
+{
+    auto config = tdc001();
+    CHECK(AptHarness(config).device().serial_baud() == 0);   // unpaced without faithful_timing
+    config.faithful_timing = true;
+    Clock clock;   // 1 kHz
+    models::World world{clock};
+    AptDevice device(config, world, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>()));
+    world.link_all();
+    device.power_up();
+    CHECK(device.serial_baud() == AptDevice::kBaudRate);
+    // The daemon's link paces the pty (MCS's mechanism): 90 bytes x 10 bits / 115200 baud = 7.8125 ms.
+    Link link{device, clock};
+    std::string pty_out, tcp_out;
+    auto pty = link.open_session([&](std::string_view b) { pty_out.append(b); }, "pty /tmp/x/tdc001");
+    auto tcp = link.open_session([&](std::string_view b) { tcp_out.append(b); }, "tcp 127.0.0.1:5000");
+    tcp->receive(bytes("05 00 00 00 50 01"));
+    CHECK(tcp_out.size() == 90);   // TCP is never paced
+    pty->receive(bytes("05 00 00 00 50 01"));
+    clock.advance(7);
+    CHECK(pty_out.empty());
+    clock.advance(1);              // the first tick past 7.8125 ms
+    REQUIRE(pty_out.size() == 90);
+    CHECK(pty_out == tcp_out);
+    // Two answers in one read leave one after the other: 12 + 12 bytes, 2.08 ms -> 3 ticks.
+    pty_out.clear();
+    pty->receive(bytes("11 04 01 00 50 01 11 04 01 00 50 01"));
+    clock.advance(2);
+    CHECK(pty_out.size() < 24);
+    clock.advance(1);
+    CHECK(pty_out.size() == 24);
 }
 
 } // namespace test_apt_timing
