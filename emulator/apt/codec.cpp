@@ -64,9 +64,23 @@ template <class T> Message as(const Frame& f)
         std::apply([&](auto&... field) { ((field = params[i++]), ...); }, T::fields(m));
         return m;
     }
-    if (!f.has_data || f.data.size() != data_size<T>())
+    if (!f.has_data)
         return untyped(f);
-    Reader r{f.data};
+    // A packet of another length than the struct's (the header's length is framed, whatever the
+    // table says): bytes past the struct are ignored; a shorter one that still holds the fields
+    // some unit reads (messages.hpp fields_length) has its reserved tail read as zeros.
+    const std::size_t size = data_size<T>();
+    const MessageInfo* info = find_message(T::id);
+    if (f.data.size() < (info ? info->min_data_length() : size))
+        return untyped(f);
+    std::string padded;
+    std::string_view data = f.data;
+    if (data.size() < size) {
+        padded.assign(data);
+        padded.resize(size, '\0');
+        data = padded;
+    }
+    Reader r{data};
     std::apply([&](auto&... field) { (r.get(field), ...); }, T::fields(m));
     return m;
 }

@@ -9,9 +9,9 @@
 // by a SET/REQ/GET trio is one struct (VelParams, ...) wrapped by Set<>, Req<> and Get<>:
 // a SET knows its GET through the block's IDs, so no ID arithmetic is needed.
 //
-// decode() never throws and loses nothing: a message the codec does not type (an ID outside
-// the message table), or one whose data packet has another length than the struct's, is an
-// Untyped holding its ID, params and data packet.
+// decode() never throws: an ID outside the table, or a packet short of the fields any unit reads
+// (messages.hpp fields_length), is an Untyped (ID, params, data); a longer packet's tail is ignored,
+// a shorter one's reserved tail read as zeros (codec.cpp as<T>). Same length: encode gives it back.
 
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/messages.hpp"

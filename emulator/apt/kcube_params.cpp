@@ -270,6 +270,18 @@ void KCubeParams::on(const msg::ReqKCubeKstLoopParams& m, KCubeOutcome& out)
         out.answer = msg::GetKCubeKstLoopParams{kst_loop_};
 }
 
+std::size_t KCubeParams::fields_read(std::uint16_t id) const
+{
+    // The wheel and presets of a motor K-Cube's block run to PresetPos3 (data 28) and
+    // JSSensitivity (32; quantumion kdc.py, the issue 37 client); a KSC101 has neither and reads
+    // the display words at 22..27 (msl-equipment ksc.py "<H20x3H8x"): the table's 28.
+    constexpr std::size_t kMotorMmiFields = 34;
+    if (id == MGMSG_MOT_SET_KCUBEMMIPARAMS && model_ != "KSC101")
+        return kMotorMmiFields;
+    const auto* info = find_message(id);
+    return info ? info->min_data_length() : 0;
+}
+
 bool KCubeParams::saves(std::uint16_t id) const
 {
     return is_set(id) && (blocks_ & block_of(id)) != 0;

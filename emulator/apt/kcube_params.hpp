@@ -52,6 +52,10 @@ public:
     /// SET's param1 and param2 (TSTACTUATORTYPE: the actuator; TRIGGER: channel 1, the mode).
     std::optional<std::string> saved_data(const msg::Message& m) const;
 
+    /// The data bytes of message `id` this model reads (Module::fields_read): a motor K-Cube
+    /// reads KCUBEMMIPARAMS up to JSSensitivity, a KSC101 its display words only (the table's).
+    std::size_t fields_read(std::uint16_t id) const;
+
     /// The last actuator TSTACTUATORTYPE set (it has no GET), or nothing.
     std::optional<std::uint8_t> actuator_ident() const { return actuator_; }
 

@@ -332,21 +332,24 @@ constexpr MessageInfo kTable[] = {
     // JSSensitivity, reserved (words): quantumion/thorlabs_cube kdc.py ("<HHllHllHHHlHH", after
     // protocol issue 38) and MSLNZ/msl-equipment thorlabs/ksc.py ("<H20x3H8x"). yaq's "<HHllHll3H"
     // (28) stops at DispDimLevel: 36 wins (two sources, the later fields named by issue 37 clients).
-    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEMMIPARAMS), 36, M, false, kLaterIssue},
+    // A KSC101 reads the display words only (28 bytes, msl-equipment); the motor K-Cubes read
+    // up to JSSensitivity (34: KCubeParams::fields_read), so yaq's 28 bytes are short for them.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEMMIPARAMS), 36, M, false, kLaterIssue, 28},
     {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEMMIPARAMS), H, M, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEMMIPARAMS), 36, M, false, kLaterIssue},
     // 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity (words), 12 reserved
     // bytes: Thorlabs' own example ("23 05 16 00 D0 01 ...", Thorlabs/Motion_Control_Examples KBD101
     // Python example) and msl-equipment ksc.py ("<5H12x"). Clients disagree on the reserved tail
-    // (pyLabLib 10, yaq 12, quantumion 20 bytes): Thorlabs' example wins.
-    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBETRIGIOCONFIG), 22, M, false, kLaterIssue},
+    // (pyLabLib 10, yaq 12, quantumion 20 bytes): Thorlabs' example wins, and a SET of the 10
+    // bytes before the reserved tail is acted on.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBETRIGIOCONFIG), 22, M, false, kLaterIssue, 10},
     {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBETRIGIOCONFIG), H, M, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBETRIGIOCONFIG), 22, M, false, kLaterIssue},
     // 46 bytes: chan word, StartPosFwd, IntervalFwd, NumPulsesFwd, StartPosRev, IntervalRev,
     // NumPulsesRev, PulseWidth, NumCycles (longs), 12 reserved bytes: Thorlabs' example
     // ("26 05 2E 00 D0 01 ..."). pyLabLib, yaq and quantumion send the 34 bytes before the
-    // reserved tail: Thorlabs' example wins, as for TRIGIOCONFIG.
-    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS), 46, M, false, kLaterIssue},
+    // reserved tail: Thorlabs' example wins, as for TRIGIOCONFIG, and their 34 bytes are acted on.
+    {RIGSIM_APT_MSG(MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS), 46, M, false, kLaterIssue, 34},
     {RIGSIM_APT_MSG(MGMSG_MOT_REQ_KCUBEPOSTRIGPARAMS), H, M, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_MOT_GET_KCUBEPOSTRIGPARAMS), 46, M, false, kLaterIssue},
     // 28 bytes: chan, LoopMode (words), Prop, Int, Diff, PIDClip, PIDTol (longs), EncoderConst
@@ -367,14 +370,16 @@ constexpr MessageInfo kTable[] = {
     // DirSense (word), PresetVolt1, PresetVolt2 (longs), DispBrightness, DispTimeout,
     // DispDimLevel (words), four reserved words (kptrofatter/kcube kcube_message.c writes length
     // 0x22; quantumion/thorlabs_cube driver/kcube/kpz.py packs the same 34 bytes, citing protocol
-    // issue 38). REQ: header-only, param1 = channel.
-    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBEMMIPARAMS), 34, P, false, kLaterIssue},
+    // issue 38). REQ: header-only, param1 = channel. The unit reads the 26 bytes before the
+    // reserved words (yaq's kpz_set_kcubemmiparams, "<HHHLHLLHHH", sends just those).
+    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBEMMIPARAMS), 34, P, false, kLaterIssue, 26},
     {RIGSIM_APT_MSG(MGMSG_KPZ_REQ_KCUBEMMIPARAMS), H, P, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_KPZ_GET_KCUBEMMIPARAMS), 34, P, false, kLaterIssue},
     // KPZ101 trigger ports: 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity,
     // six reserved words (kcube_message.c length 0x16; thorlabs_cube kpz.py 11 words). yaq's
-    // 6-word form (12 bytes) is short of both: 22 wins.
-    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBETRIGIOCONFIG), 22, P, false, kLaterIssue},
+    // 6-word form (12 bytes) is short of both: 22 wins; the unit reads the first 10 bytes, so
+    // yaq's SET is acted on.
+    {RIGSIM_APT_MSG(MGMSG_KPZ_SET_KCUBETRIGIOCONFIG), 22, P, false, kLaterIssue, 10},
     {RIGSIM_APT_MSG(MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG), H, P, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_KPZ_GET_KCUBETRIGIOCONFIG), 22, P, false, kLaterIssue},
     // KSG101 MMI block: 8 bytes: chan, DispIntensity, DispTimeout, DispDimLevel (words)
@@ -385,8 +390,8 @@ constexpr MessageInfo kTable[] = {
     {RIGSIM_APT_MSG(MGMSG_KSG_GET_KCUBEMMIPARAMS), 8, S, false, kLaterIssue},
     // KSG101 trigger ports: 22 bytes: chan, Trig1Mode, Trig1Polarity, Trig2Mode, Trig2Polarity
     // (words), LowerLim, UpperLim (longs), SmoothingSamples, one reserved word (kcube_message.c
-    // length 0x16; yaq "<HHHHHllHH").
-    {RIGSIM_APT_MSG(MGMSG_KSG_SET_KCUBETRIGIOCONFIG), 22, S, false, kLaterIssue},
+    // length 0x16; yaq "<HHHHHllHH"); the unit reads the 20 bytes before the reserved word.
+    {RIGSIM_APT_MSG(MGMSG_KSG_SET_KCUBETRIGIOCONFIG), 22, S, false, kLaterIssue, 20},
     {RIGSIM_APT_MSG(MGMSG_KSG_REQ_KCUBETRIGIOCONFIG), H, S, false, kLaterIssue},
     {RIGSIM_APT_MSG(MGMSG_KSG_GET_KCUBETRIGIOCONFIG), 22, S, false, kLaterIssue},
 };

@@ -6,8 +6,11 @@
 // piezo controllers); then the motor messages of later protocol issues that later clients
 // send (`later_issue`: POWERPARAMS, TRIGGER, the K-Cube blocks, TSTACTUATORTYPE).
 // The frame framer checks every header against it, as MAVLink's framer checks its
-// message-entry table: an ID the table does not know, or a data packet of another length
-// than the table's, is not a frame.
+// message-entry table: an ID the table does not know, or a header-only message with the data
+// flag (a data message without it), or a data packet longer than the table's layout, is not a
+// frame. A shorter packet is one (frame_framer.hpp): a SET as long as the fields a unit reads
+// (`fields_length`) is acted on, its missing reserved tail read as zeros; a shorter one is
+// ignored and logged.
 //
 // IDs and lengths follow the detailed section of each message, corrected by the errata
 // (docs/protocol/errata.md) where that section is itself wrong; every choice made where
@@ -31,14 +34,22 @@ enum class Group : std::uint8_t {
 struct MessageInfo {
     std::uint16_t id;
     std::string_view name;            ///< manual spelling, e.g. "MGMSG_MOT_MOVE_ABSOLUTE"
-    std::int16_t data_length;         ///< -1: header-only; else the exact data packet length
+    std::int16_t data_length;         ///< -1: header-only; else the data packet's length in its layout
     Group group;
     bool header_only_allowed = false; ///< a short header-only form exists beside the data form
     bool later_issue = false;         ///< not in the 2012 manual but in later issues: framed always; acted on
                                       ///< only by units of a later firmware generation (HW_YES/NO_FLASH_PROGRAMMING: all)
+    /// The fewest data bytes any unit reads of it: the fields before a reserved tail that
+    /// clients leave out (0: all data_length bytes). A unit may read more (Module::fields_read).
+    std::int16_t fields_length = 0;
 
     /// True when the message is a 6-byte header without a data packet (in its only form).
     constexpr bool header_only() const { return data_length < 0; }
+    /// The data bytes the codec needs to type the message (fields_length, else data_length).
+    constexpr std::size_t min_data_length() const
+    {
+        return static_cast<std::size_t>(fields_length > 0 ? fields_length : (data_length < 0 ? 0 : data_length));
+    }
 };
 
 /// The message with this ID, or nullptr when the table does not know it.

@@ -103,6 +103,30 @@ bool Module::taken()
     return false;
 }
 
+std::size_t Module::fields_read(std::uint16_t id) const
+{
+    const auto* info = find_message(id);
+    return info ? info->min_data_length() : 0;
+}
+
+bool Module::long_enough()
+{
+    const Frame& f = request_->frame;
+    if (!f.has_data || f.data.size() >= fields_read(f.id))
+        return true;
+    // A later issue's message on a unit of the manual's generation is one it does not know,
+    // whatever its length (KCubeParams::takes says the same of a whole one).
+    if (f.info->later_issue && !later_generation()) {
+        ignore(fmt::format("{}: {} is a message of later protocol issues: a {} of the issue-3 generation (the "
+                           "2012 manual) does not know it: ignored",
+                           request_->peer, f.info->name, unit_.model_name));
+        return false;
+    }
+    ignore(fmt::format("{}: {} with {} data byte(s), short of the {} a {} reads: ignored", request_->peer,
+                       f.info->name, f.data.size(), fields_read(f.id), unit_.model_name));
+    return false;
+}
+
 std::uint16_t Module::channel() const
 {
     const auto sent = sent_channel(request_->frame);

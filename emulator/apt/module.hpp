@@ -104,6 +104,9 @@ public:
     virtual void power_down(bool /*restore_positions*/) {}
     /// Whether this kind's EEPROMPARAMS saves SET message `id`.
     virtual bool saves(std::uint16_t id) const = 0;
+    /// The data bytes of message `id` this unit reads (a shorter packet is ignored and logged):
+    /// the table's fields_length, or more where the model reads more (KCubeParams::fields_read).
+    virtual std::size_t fields_read(std::uint16_t id) const;
     /// The stored form of `m` (SavedSets) if it is a SET this kind saves, else nullopt.
     virtual std::optional<std::string> saved_data(const msg::Message& m) const = 0;
     /// The kind's fields of its channel object in the control API (docs/control-api/apt.md
@@ -153,6 +156,8 @@ protected:
     /// The message is in the model's MessageSet (with the later generation: or in its
     /// later_takes), or the model has none; else logged and ignored.
     bool taken();
+    /// The data packet holds the fields the unit reads (fields_read); else logged and ignored.
+    bool long_enough();
     /// The unit follows a later firmware generation than the manual's (its "firmware").
     bool later_generation() const { return unit_.firmware != Firmware::Issue3; }
     /// The unit takes message `id` only as the later generation does (ControllerModel::later_takes).
@@ -250,7 +255,7 @@ template <class Self, class T> void Module::dispatch(Self& self, const T& m)
     } else if constexpr (family == msg::Family::Bay) {
         self.on(m);
     } else {
-        if (!taken() || (!module_detail::kNoChannelWord<T> && !channel_ok()))
+        if (!taken() || !long_enough() || (!module_detail::kNoChannelWord<T> && !channel_ok()))
             return;
         // Ranges are the acting module's: a unit without the family's module just ignores it.
         if constexpr (Self::handles(family)) {

@@ -36,6 +36,7 @@ public:
     virtual msg::MotorStatus motor_status() const = 0;
 
     bool saves(std::uint16_t id) const override { return Saved::saves(id) || kcube_.saves(id); }
+    std::size_t fields_read(std::uint16_t id) const override { return kcube_.fields_read(id); }
     std::optional<std::string> saved_data(const msg::Message& m) const override
     {
         return Saved::saves(msg::message_id(m)) ? Saved::data(m) : kcube_.saved_data(m);

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -122,12 +123,49 @@ TEST_CASE("the later-issue motor messages are in the table with their lengths, f
     }
 }
 
-TEST_CASE("a later-issue SET of another length than the table's is no frame", "[unit][apt][codec][kcube]")
+TEST_CASE("later-issue SETs with the reserved tails public clients leave out decode, their tail as zeros",
+          "[unit][apt][codec][kcube]")
 {
-    // pyLabLib sends TRIGIOCONFIG as 10 bytes (no reserved tail): not the 22 of Thorlabs' example.
+    // pyLabLib kinesis.py _setup_kcube_trigio: "<HHHHH" (10 bytes, no reserved tail): Trig1 0x0A
+    // active high, Trig2 0x0B active high.
+    auto m = rigsim::test::decode_frame(unhex("23 05 0A 00 D0 01 01 00 0A 00 01 00 0B 00 01 00"));
+    REQUIRE(holds<SetKCubeTrigIoConfig>(m));
+    const auto trig = get_if<SetKCubeTrigIoConfig>(m)->params;
+    CHECK(trig.trig1_mode == 0x0A);
+    CHECK(trig.trig2_mode == 0x0B);
+    CHECK(trig.trig2_polarity == 1);
+    CHECK(trig.reserved == std::array<char, 12>{});
+    // Encoded again it has the table's layout: the reserved tail as zeros.
+    CHECK(hex(encode(m, 0x50, 0x01)) == "23 05 16 00 D0 01 01 00 0A 00 01 00 0B 00 01 00" + kTwelveZeros);
+    // pyLabLib _setup_kcube_trigpos, yaq mot_set_kcubeposttrigparams, quantumion kdc.py: "<H8l" (34).
+    std::string pos = "26 05 22 00 D0 01 01 00";
+    for (int v : {100, 200, 3, -100, 200, 3, 50, 1})
+        pos += " " + hex(std::string{static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+                                     static_cast<char>((v >> 16) & 0xFF), static_cast<char>((v >> 24) & 0xFF)});
+    m = rigsim::test::decode_frame(unhex(pos));
+    REQUIRE(holds<SetKCubePosTrigParams>(m));
+    CHECK(get_if<SetKCubePosTrigParams>(m)->params.start_pos_rev == -100);
+    CHECK(get_if<SetKCubePosTrigParams>(m)->params.num_cycles == 1);
+    // yaq's KCUBEMMIPARAMS, "<HHllHll3H" (28): the display words are there, the rest zeros.
+    m = rigsim::test::decode_frame(unhex("20 05 1C 00 D0 01 01 00 02 00 00 00 00 00 00 00 00 00 01 00 "
+                                         "00 00 00 00 00 00 00 00 32 00 05 00 02 00"));
+    REQUIRE(holds<SetKCubeMmiParams>(m));
+    CHECK(get_if<SetKCubeMmiParams>(m)->params.disp_dim_level == 2);
+    CHECK(get_if<SetKCubeMmiParams>(m)->params.js_sensitivity == 0);
+}
+
+TEST_CASE("a later-issue SET short of the fields any unit reads is Untyped, one longer than its layout no frame",
+          "[unit][apt][codec][kcube]")
+{
+    // TRIGIOCONFIG without Trig2Polarity (8 bytes): no unit reads it as the block.
+    const auto m = rigsim::test::decode_frame(unhex("23 05 08 00 D0 01 01 00 0A 00 01 00 0B 00"));
+    REQUIRE(holds<Untyped>(m));
+    CHECK(get_if<Untyped>(m)->data.size() == 8);
+    // 23 bytes, one past the 22 of Thorlabs' example: not believed, dropped as garbage.
     FrameFramer framer;
-    const auto r = framer.parse(unhex("23 05 0A 00 D0 01 01 00 02 00 01 00 0B 00 01 00"));
+    const auto r = framer.parse(unhex("23 05 17 00 D0 01 01 00 02 00 01 00 0B 00 01 00" + kTwelveZeros + " 00"));
     CHECK(r.status != FrameFramer::Status::Frame);
+    CHECK(r.dropped > 0);
 }
 
 } // namespace test_codec_kcube

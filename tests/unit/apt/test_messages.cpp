@@ -184,8 +184,13 @@ TEST_CASE("apt message table applies the ERRATA to the piezo and strain gauge me
     CHECK(get_i16(p.data[0], 4) == 0x1333);   // Position
     CHECK(get_u32(p.data[0], 6) == 0x00000401);
     check_rejected(unhex("61 06 0E 00 81 50 01 00 77 77 33 13 01 04 00 00 00 00 00 00"));
-    // The OUTPUTLUTPARAMS example's header ("03, 07, 06, 00") over its 30 bytes: no frame.
-    check_rejected(unhex("03 07 06 00 D0 01") + std::string(30, '\0'));
+    // The OUTPUTLUTPARAMS example's header ("03, 07, 06, 00") over its 30 bytes: a frame of 6 data
+    // bytes (the header's length; a unit ignores it as short of the 30 it reads), the other 24 dropped.
+    const auto lut = parse_all(unhex("03 07 06 00 D0 01") + std::string(30, '\0') + kSentinel, 1);
+    REQUIRE(lut.frames.size() == 2);
+    CHECK(lut.frames[0].id == MGMSG_PZ_SET_OUTPUTLUTPARAMS);
+    CHECK(lut.data[0].size() == 6);
+    CHECK(lut.dropped == 24);
     // Examples printed with an impossible address (p.129: source 0x00; p.118: d and s swapped).
     check_rejected(unhex("DE 07 06 00 D0 00 01 00 52 00 50 00"));
     check_rejected(unhex("51 06 04 00 01 A2 01 00 C8 00"));
@@ -346,9 +351,14 @@ TEST_CASE("every apt message round-trips through encode and the framer", "[unit]
             } else {
                 check_rejected(short_form);
             }
+            // One byte short of the layout is a frame (the unit judges its length); one long is not.
             const auto length = static_cast<std::size_t>(m.data_length);
-            if (length > 0)
-                check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(length - 1, '\0')));
+            if (length > 0) {
+                const auto s = parse_all(encode_with_data(m.id, kGenericUsb, kHost, std::string(length - 1, '\0')), 1);
+                REQUIRE(s.frames.size() == 1);
+                CHECK(s.data[0].size() == length - 1);
+                CHECK(s.dropped == 0);
+            }
             if (length < kMaxDataLength)
                 check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(length + 1, '\0')));
         }

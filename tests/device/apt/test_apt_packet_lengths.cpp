@@ -1,0 +1,137 @@
+// Data packets of another length than the table's layout (frame_framer.hpp, messages.hpp
+// fields_length): the public clients' SETs of the later K-Cube blocks without their reserved
+// tails are acted on, as their REQs are answered; a SET short of the fields the unit reads is
+// ignored, and the wire log says so (docs/protocol/apt.md "Framing and bad input").
+#include "apt_harness.hpp"
+
+#include <string>
+#include <vector>
+
+namespace test_apt_packet_lengths {
+
+using namespace rigsim;
+using namespace rigsim::apt;
+using namespace rigsim::test;
+
+namespace {
+
+DeviceConfig later(DeviceConfig c)
+{
+    c.firmware = "issue-44.1";
+    config_of(c).firmware = Firmware::Issue44_1;
+    return c;
+}
+
+/// A single unit `model` without a stage (solenoid, piezo) of the later generation.
+DeviceConfig later_unit(const std::string& model)
+{
+    DeviceConfig c;
+    c.name = "unit";
+    c.protocol = "apt";
+    c.model = model;
+    config_of(c).solenoid.interlock_fitted = true;
+    return later(c);
+}
+
+/// The notes of the wire log's last inbound entry.
+std::vector<std::string> last_inbound_notes(AptDevice& d)
+{
+    const auto log = d.wire_log().to_json(d.wire_log().size());
+    for (auto it = log.rbegin(); it != log.rend(); ++it)
+        if ((*it)["direction"] == "in")
+            return (*it)["notes"].get<std::vector<std::string>>();
+    return {};
+}
+
+const std::string kTwelveZeros = " 00 00 00 00 00 00 00 00 00 00 00 00";
+
+} // namespace
+
+TEST_CASE("apt KDC101 issue-44.1 takes pyLabLib's 10-byte KCUBETRIGIOCONFIG and 34-byte KCUBEPOSTRIGPARAMS",
+          "[device][apt][kcube][lengths]")
+{
+    AptHarness h(later(apt_cube("KDC101", "Z825B")));
+    // pyLabLib kinesis.py _setup_kcube_trigio: "<HHHHH", TRIG1 out_gpio (0x0A) high, TRIG2
+    // out_in_motion (0x0B) low.
+    CHECK(h.send("23 05 0A 00 D0 01 01 00 0A 00 01 00 0B 00 02 00") == "");
+    CHECK(last_inbound_notes(h.device()).empty());
+    // Answered in the table's layout, the reserved tail zero: what pyLabLib reads back (data[2:10]).
+    CHECK(h.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 0A 00 01 00 0B 00 02 00" + kTwelveZeros);
+    // _setup_kcube_trigpos: "<Hiiiiiiii" (34 bytes): start 1000 fwd, 500 apart, 3 pulses; 2000
+    // rev, 250 apart, 2; width 100 us, 4 cycles.
+    const std::string pos = "01 00 E8 03 00 00 F4 01 00 00 03 00 00 00 D0 07 00 00 FA 00 00 00 02 00 00 00 "
+                            "64 00 00 00 04 00 00 00";
+    CHECK(h.send("26 05 22 00 D0 01 " + pos) == "");
+    CHECK(h.send("27 05 01 00 50 01") == "28 05 2E 00 81 50 " + pos + kTwelveZeros);
+    // The saved form is the table's layout: MOT_SET_EEPROMPARAMS then a power cycle restores it.
+    StateStore store;
+    AptHarness s(later(apt_cube("KDC101", "Z825B")), &store);
+    CHECK(s.send("23 05 0A 00 D0 01 01 00 0A 00 01 00 0B 00 02 00") == "");
+    CHECK(s.send("B9 04 04 00 D0 01 01 00 23 05") == "");
+    s.device().power_cycle(PowerCycle{true, false});
+    CHECK(s.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 0A 00 01 00 0B 00 02 00" + kTwelveZeros);
+}
+
+TEST_CASE("apt yaq's and quantumion's K-Cube SETs: the fields the unit reads are taken, a shorter SET is ignored and noted",
+          "[device][apt][kcube][lengths]")
+{
+    AptHarness h(later(apt_cube("KDC101", "Z825B")));
+    // yaq mot_set_kcubetrigioconfig, "<6H" (12 bytes), and quantumion kdc.py, "<HHHHHQH" (20).
+    CHECK(h.send("23 05 0C 00 D0 01 01 00 01 00 01 00 0A 00 02 00 00 00") == "");
+    CHECK(h.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 01 00 01 00 0A 00 02 00" + kTwelveZeros);
+    CHECK(h.send("23 05 14 00 D0 01 01 00 0A 00 02 00 01 00 01 00 00 00 00 00 00 00 00 00 00 00") == "");
+    CHECK(h.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 0A 00 02 00 01 00 01 00" + kTwelveZeros);
+    // yaq mot_set_kcubemmiparams, "<HHllHll3H" (28 bytes), stops at DispDimLevel: a KDC101 reads
+    // PresetPos3 and JSSensitivity too (34), so the SET is ignored, and the log says why.
+    const std::string power_up = h.send("21 05 01 00 50 01");
+    CHECK(h.send("20 05 1C 00 D0 01 01 00 02 00 00 08 00 00 00 01 00 00 01 00 00 00 00 00 00 00 00 00 "
+                 "32 00 05 00 02 00") == "");
+    const auto notes = last_inbound_notes(h.device());
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0] == "ignored by the unit: MGMSG_MOT_SET_KCUBEMMIPARAMS with 28 data byte(s), short of the 34 a "
+                      "KDC101 reads: ignored");
+    CHECK(h.send("21 05 01 00 50 01") == power_up);
+    // A TRIGIOCONFIG without TRIG2's polarity (8 bytes) is short of the 10 every unit reads.
+    CHECK(h.send("23 05 08 00 D0 01 01 00 00 00 01 00 00 00") == "");
+    CHECK(last_inbound_notes(h.device()).at(0).find("with 8 data byte(s), short of the 10 a KDC101 reads")
+          != std::string::npos);
+    CHECK(h.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 0A 00 02 00 01 00 01 00" + kTwelveZeros);
+}
+
+TEST_CASE("apt KPZ101 issue-44.1 takes yaq's 12-byte KPZ_SET_KCUBETRIGIOCONFIG and 26-byte KPZ_SET_KCUBEMMIPARAMS",
+          "[device][apt][kcube][lengths]")
+{
+    AptHarness h(later_unit("KPZ101"));
+    // yaq kpz_set_kcubetrigioconfig, "<6H": TRIG1 voltage step up (2) low, TRIG2 output (0x0A) high.
+    CHECK(h.send("F3 07 0C 00 D0 01 01 00 02 00 02 00 0A 00 01 00 00 00") == "");
+    CHECK(h.send("F4 07 01 00 50 01") == "F5 07 16 00 81 50 01 00 02 00 02 00 0A 00 01 00" + kTwelveZeros);
+    // yaq kpz_set_kcubemmiparams, "<HHHLHLLHHH" (26): JSMode 2, gearbox 3, step 256, DirSense 2,
+    // presets 1000 and 32767, display 40 %, 1 min, dim level 10.
+    const std::string mmi = "01 00 02 00 03 00 00 01 00 00 02 00 E8 03 00 00 FF 7F 00 00 28 00 01 00 0A 00";
+    CHECK(h.send("F0 07 1A 00 D0 01 " + mmi) == "");
+    CHECK(h.send("F1 07 01 00 50 01") == "F2 07 22 00 81 50 " + mmi + " 00 00 00 00 00 00 00 00");
+}
+
+TEST_CASE("apt a manual SET one byte short of its layout is ignored and noted, the next request answered",
+          "[device][apt][lengths]")
+{
+    AptHarness h;   // TDC001
+    const std::string power_up = h.send("14 04 01 00 50 01");
+    // SET_VELPARAMS with 13 of its 14 bytes: a frame at the header's length, short of the fields.
+    CHECK(h.send("13 04 0D 00 D0 01 01 00 00 00 00 00 0A 00 00 00 64 00 00") == "");
+    CHECK(last_inbound_notes(h.device()).at(0)
+          == "ignored by the unit: MGMSG_MOT_SET_VELPARAMS with 13 data byte(s), short of the 14 a TDC001 reads: "
+             "ignored");
+    CHECK(h.send("14 04 01 00 50 01") == power_up);
+    // A long-form MOVE_ABSOLUTE of no data at all, and a SET of no data: ignored, nothing moves.
+    CHECK(h.send("53 04 00 00 D0 01") == "");
+    CHECK(h.send("10 04 00 00 D0 01") == "");
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 00 00 00");
+    // On a KDC101 of the manual's generation a short later-issue SET is a message it does not know.
+    AptHarness old(apt_cube("KDC101", "Z825B"));
+    CHECK(old.send("23 05 08 00 D0 01 01 00 00 00 01 00 00 00") == "");
+    CHECK(last_inbound_notes(old.device()).at(0).find("of the issue-3 generation (the 2012 manual) does not know it")
+          != std::string::npos);
+}
+
+} // namespace test_apt_packet_lengths
