@@ -211,6 +211,13 @@ constexpr std::uint16_t kKsgLaterTakes[]{
     MGMSG_KSG_SET_KCUBETRIGIOCONFIG, MGMSG_KSG_REQ_KCUBETRIGIOCONFIG, MGMSG_KSG_GET_KCUBETRIGIOCONFIG,
 };
 
+// TPZ001, TSG001: PZ_REQ_PZSTATUSUPDATE, which pyLabLib (AlexShkarin/pyLabLib kinesis.py,
+// KinesisPiezoController "TPZ/KPZ series": _pzctl_get_status_n queries 0x0660 and reads the
+// status dword at data 6) sends to the T-Cubes as to the K-Cubes.
+constexpr std::uint16_t kTCubeLaterTakes[]{
+    MGMSG_PZ_REQ_PZSTATUSUPDATE,
+};
+
 template <std::size_t N>
 constexpr MessageSet message_set(const std::uint16_t (&ids)[N])
 {
@@ -226,6 +233,7 @@ constexpr ControllerModel unit_cube(std::string_view name, std::uint32_t serial_
     c.takes = takes;
     if (kind != UnitKind::Solenoid)
         c.ack_id = MGMSG_PZ_ACK_PZSTATUSUPDATE;
+    c.mmi_wheel = kind != UnitKind::Solenoid;
     return c;
 }
 
@@ -257,8 +265,9 @@ constexpr ControllerModel rich(ControllerModel c)
     return c;
 }
 
-/// A K-Cube unit: its T-Cube's set, and `later` with the later firmware generation.
-constexpr ControllerModel kcube_unit(ControllerModel c, MessageSet later)
+/// A unit that takes `later` beyond its set with the later firmware generation (a K-Cube's own
+/// messages; a T-Cube's status request).
+constexpr ControllerModel later_unit(ControllerModel c, MessageSet later)
 {
     c.later_takes = later;
     return c;
@@ -290,15 +299,15 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
 constexpr std::array<ControllerModel, 14> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
-    kcube_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), message_set(kKscLaterTakes)),
-    piezo_cube("TPZ001", 81, "APT Piezo Driver"),
-    kcube_unit(rich(piezo_cube("KPZ101", 29, "Piezo Controller")), message_set(kKpzLaterTakes)),
+    later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), message_set(kKscLaterTakes)),
+    later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), message_set(kTCubeLaterTakes)),
+    later_unit(rich(piezo_cube("KPZ101", 29, "Piezo Controller")), message_set(kKpzLaterTakes)),
     // BPC303: Thorlabs' prefix 71; BPC301: 41 after the 40/70 single/three-channel pattern of
     // 2.2 (the least certain of D-1).
     bpc("BPC301", 41, 1),
     bpc("BPC303", 71, 3),
-    gauge_cube("TSG001", 84, "APT Strain Gauge Reader"),
-    kcube_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), message_set(kKsgLaterTakes)),
+    later_unit(gauge_cube("TSG001", 84, "APT Strain Gauge Reader"), message_set(kTCubeLaterTakes)),
+    later_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), message_set(kKsgLaterTakes)),
 };
 
 // ---- The later generation ("issue-44.1"; docs/protocol/apt.md, "Firmware generations") ----

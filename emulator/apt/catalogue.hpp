@@ -71,6 +71,9 @@ struct ControllerModel {
     std::uint32_t bay_serial_prefix = 0;
     /// S-curve jerk scaling (7.1, PMD "jerk" units per encoder count/s³); 0: no profile modes.
     double jerk_per_count_s3 = 0;
+    /// MOT_SET_KCUBEMMIPARAMS drives a top-panel wheel; false: the unit reads the block's display
+    /// words only (a solenoid cube: Kinesis' KSC_MMIParams calls the wheel words "unused").
+    bool mmi_wheel = true;
     /// Faults go out as HW_RICHRESPONSE (K-Cubes, Thorlabs' later units) rather than the
     /// manual's HW_RESPONSE (p. 19).
     bool rich_fault_reports = false;

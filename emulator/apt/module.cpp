@@ -155,7 +155,7 @@ bool Module::in_range()
     // message the unit does not know, whatever its values.
     if (request_->frame.info->later_issue && !later_generation())
         return true;
-    const auto bad = out_of_range(*message_);
+    const auto bad = out_of_range(*message_, unit_.model.mmi_wheel);
     if (bad)
         ignore(fmt::format("{}: {} with {}: ignored", request_->peer, request_->frame.info->name, *bad));
     return !bad;

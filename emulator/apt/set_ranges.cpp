@@ -175,16 +175,20 @@ Ranges ranges(const msg::PowerParams& p)
     return {{"RestFactor", p.rest_factor, 1, 100}, {"MoveFactor", p.move_factor, 1, 100}};
 }
 
-Ranges ranges(const msg::KCubeMmiParams& p)
+Ranges ranges(const msg::KCubeMmiParams& p, bool wheel)
 {
     // quantumion/thorlabs_cube kdc.py (and the issue 37 client's checks): JSMode 1 velocity,
     // 2 jog, 3 go to position; DirSense 0..2; DispBrightness 0..100; DispTimeout 0..480
     // minutes; DispDimLevel 0..10.
-    return {{"JSMode", p.js_mode, 1, 3},
-            {"DirSense", p.dir_sense, 0, 2},
-            {"DispBrightness", p.disp_brightness, 0, 100},
-            {"DispTimeout", p.disp_timeout, 0, 480},
-            {"DispDimLevel", p.disp_dim_level, 0, 10}};
+    Ranges r{{"DispBrightness", p.disp_brightness, 0, 100},
+             {"DispTimeout", p.disp_timeout, 0, 480},
+             {"DispDimLevel", p.disp_dim_level, 0, 10}};
+    // The wheel's words are the motor cubes'. A KSC101 has no wheel: Kinesis' KSC_MMIParams
+    // calls the ten words before the display "unused", and MSLNZ/msl-equipment thorlabs/ksc.py
+    // sends them as 0 (JSMode 0), which the unit takes.
+    if (wheel)
+        r.insert(r.begin(), {{"JSMode", p.js_mode, 1, 3}, {"DirSense", p.dir_sense, 0, 2}});
+    return r;
 }
 
 Ranges ranges(const msg::KCubeTrigIoConfig& p)
@@ -222,12 +226,14 @@ template <class P> struct IsSet<msg::Set<P>> : std::true_type {};
 
 } // namespace
 
-std::optional<std::string> out_of_range(const msg::Message& m)
+std::optional<std::string> out_of_range(const msg::Message& m, bool mmi_wheel)
 {
     return msg::visit(
-        [](const auto& typed) -> std::optional<std::string> {
+        [mmi_wheel](const auto& typed) -> std::optional<std::string> {
             using T = std::decay_t<decltype(typed)>;
-            if constexpr (IsSet<T>::value)
+            if constexpr (std::is_same_v<T, msg::SetKCubeMmiParams>)
+                return first_out_of_range(ranges(typed.params, mmi_wheel));
+            else if constexpr (IsSet<T>::value)
                 return first_out_of_range(ranges(typed.params));
             else
                 return std::nullopt;

@@ -11,8 +11,10 @@ namespace rigsim::apt {
 
 /// The first field of `m` (a SET) outside its range, as "<name> <value> (<min>..<max>)";
 /// nullopt for a message in range or without ranges. Fields the manual gives no range
-/// (positions, distances, the backlash: signed longs) take any value. Rules that tie two
-/// fields together, and modes whose values are not a range, are the handlers' checks.
-std::optional<std::string> out_of_range(const msg::Message& m);
+/// (positions, distances, the backlash: signed longs) take any value, and so do the fields a
+/// model does not read: without `mmi_wheel` (ControllerModel::mmi_wheel, a KSC101) the wheel
+/// words of MOT_SET_KCUBEMMIPARAMS. Rules that tie two fields together, and modes whose values
+/// are not a range, are the handlers' checks.
+std::optional<std::string> out_of_range(const msg::Message& m, bool mmi_wheel);
 
 } // namespace rigsim::apt

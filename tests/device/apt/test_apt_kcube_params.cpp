@@ -186,8 +186,10 @@ TEST_CASE("issue-44.1: MOT_SET/REQ_KCUBEMMIPARAMS on the K-Cubes, with the wheel
                               "FF FF FF 7F 03 00 00 00";
     CHECK(h.send("20 05 24 00 D0 01 " + block) == "");
     CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 " + block);
-    // JSMode 4, DirSense 3, DispBrightness 101, DispTimeout 481, DispDimLevel 11: each ignored.
-    for (const auto* bad : {"01 00 04 00 00 00 01 00 00 08 00 00 01 00 E8 03 00 00 18 FC FF FF 3C 00 0A 00 02 00 ",
+    // JSMode 0 (the KSC101's msl-equipment SET: a motor cube has a wheel), 4, DirSense 3,
+    // DispBrightness 101, DispTimeout 481, DispDimLevel 11: each ignored.
+    for (const auto* bad : {"01 00 00 00 00 00 01 00 00 08 00 00 01 00 E8 03 00 00 18 FC FF FF 3C 00 0A 00 02 00 ",
+                            "01 00 04 00 00 00 01 00 00 08 00 00 01 00 E8 03 00 00 18 FC FF FF 3C 00 0A 00 02 00 ",
                             "01 00 02 00 00 00 01 00 00 08 00 00 03 00 E8 03 00 00 18 FC FF FF 3C 00 0A 00 02 00 ",
                             "01 00 02 00 00 00 01 00 00 08 00 00 01 00 E8 03 00 00 18 FC FF FF 65 00 0A 00 02 00 ",
                             "01 00 02 00 00 00 01 00 00 08 00 00 01 00 E8 03 00 00 18 FC FF FF 3C 00 E1 01 02 00 ",

@@ -136,9 +136,39 @@ TEST_CASE("apt KPZ101 issue-3 and TPZ001 issue-44.1 ignore the KPZ101's later me
         CHECK(h.send(kReqKpzMmi).empty());
         CHECK(h.send(kSetKpzTrig).empty());
         CHECK(h.send(kReqKpzTrig).empty());
-        CHECK(h.send(kReqPzStatusUpdate).empty());
+        // PZ_REQ_PZSTATUSUPDATE: the later generation's TPZ001 answers it (next test case).
+        CHECK(h.send(kReqPzStatusUpdate).empty() == (firmware == kManual));
         // The unit still answers the manual's messages (PZ_REQ_POSCONTROLMODE).
         CHECK(h.send("41 06 01 00 50 01") == "42 06 01 01 01 50");
+    }
+}
+
+TEST_CASE("apt TPZ001 and TSG001 issue-44.1 answer PZ_REQ_PZSTATUSUPDATE as pyLabLib queries a T-Cube, issue-3 ignore it",
+          "[device][apt][kcube]")
+{
+    // pyLabLib kinesis.py KinesisPiezoController ("TPZ/KPZ series") _pzctl_get_status_n:
+    // query(0x0660, channel), the reply 0x0661, the status dword at data 6..9.
+    AptHarness h(unit("TPZ001", kLater));
+    CHECK(h.send("43 06 04 00 D0 01 01 00 FF 3F").empty());   // PZ_SET_OUTPUTVOLTS 50 %
+    h.advance_ms(50);
+    const auto answer = h.send(kReqPzStatusUpdate);
+    REQUIRE(frames(answer).size() == 1);
+    CHECK(answer.substr(0, 17) == "61 06 0A 00 81 50");
+    // The same bytes as the update the unit sends unprompted at that tick, its bits the TPZ001's
+    // table (p. 103): the actuator connected, nothing more (the channel-enabled bit is the BPC's).
+    CHECK(h.send("11 00 00 00 50 01").empty());
+    h.advance_ms(100);
+    const auto updates = frames(h.take());
+    REQUIRE(!updates.empty());
+    CHECK(updates.front() == answer);
+    CHECK(get_u32(bytes(answer), 12) == 0x00000001u);
+    // A TSG001 with no gauge fitted: OPVoltage 0, Position 0, no status bit (as the KSG101's).
+    AptHarness g(unit("TSG001", kLater));
+    CHECK(g.send(kReqPzStatusUpdate) == "61 06 0A 00 81 50 01 00 00 00 00 00 00 00 00 00");
+    for (const auto* model : {"TPZ001", "TSG001"}) {
+        INFO(model);
+        AptHarness old(unit(model, kManual));
+        CHECK(old.send(kReqPzStatusUpdate).empty());
     }
 }
 
@@ -219,7 +249,7 @@ TEST_CASE("apt KSG101 issue-3 and TSG001 issue-44.1 ignore the KSG101's later me
         CHECK(h.send(kReqKsgMmi).empty());
         CHECK(h.send(kSetKsgTrig).empty());
         CHECK(h.send(kReqKsgTrig).empty());
-        CHECK(h.send(kReqPzStatusUpdate).empty());
+        CHECK(h.send(kReqPzStatusUpdate).empty() == (firmware == kManual));   // a later TSG001 answers it
         CHECK(h.send("DB 07 01 00 50 01").substr(0, 17) == "DC 07 0E 00 81 50");   // the manual's TSG_IOSETTINGS
     }
     // A KPZ101's block sent to a KSG101 of the later generation is not its own.
@@ -290,15 +320,19 @@ TEST_CASE("apt KSC101 issue-44.1: MOT_SET/REQ/GET_KCUBEMMIPARAMS and KCUBETRIGIO
     const std::string zeros8 = "00 00 00 00 00 00 00 00";
     // Power-up (KCubeParams): JSMode 1, the rest 0.
     CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 01 00 01 00 " + zeros20 + " 00 00 00 00 " + zeros8);
-    // The display words of msl-equipment ksc.py set_display_parameters ("<H20x3H8x"), with JSMode 1:
-    // the K-Cube motor ranges (set_ranges.cpp) refuse the JSMode 0 ksc.py leaves there
-    // (docs/protocol/apt.md "K-Cube units").
-    const std::string mmi = "01 00 01 00 " + zeros20.substr(6) + " 32 00 05 00 02 00 " + zeros8;
+    // msl-equipment ksc.py set_display_parameters ("<H20x3H8x"): the display words, JSMode 0 and
+    // the other wheel words 0. A KSC101 has no wheel (Kinesis' KSC_MMIParams: "unused") and takes
+    // it (set_ranges.cpp checks its display words only).
+    const std::string mmi = "01 00 " + zeros20 + " 32 00 05 00 02 00 " + zeros8;
     CHECK(h.send("20 05 24 00 D0 01 " + mmi).empty());
     CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 " + mmi);
     // Brightness 101: out of range (set_ranges.cpp), ignored.
-    CHECK(h.send("20 05 24 00 D0 01 01 00 01 00 " + zeros20.substr(6) + " 65 00 05 00 02 00 " + zeros8).empty());
+    CHECK(h.send("20 05 24 00 D0 01 01 00 " + zeros20 + " 65 00 05 00 02 00 " + zeros8).empty());
     CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 " + mmi);
+    // yaq's 28 bytes (no reserved tail) hold the display words a KSC101 reads: taken.
+    CHECK(h.send("20 05 1C 00 D0 01 01 00 " + zeros20 + " 14 00 0A 00 03 00").empty());
+    CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 01 00 " + zeros20 + " 14 00 0A 00 03 00 " + zeros8);
+    CHECK(h.send("20 05 24 00 D0 01 " + mmi).empty());
     // ksc.py set_trigger_parameters' defaults ("<5H12x"): TRIG1 input, TRIG2 output, both high.
     const std::string trig = "01 00 01 00 01 00 0A 00 01 00 00 00 00 00 00 00 00 00 00 00 00 00";
     CHECK(h.send("23 05 16 00 D0 01 " + trig).empty());
