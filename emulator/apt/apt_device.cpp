@@ -42,12 +42,11 @@ public:
         const Ticks now = device_.clock().now();
         if (framer_.buffered() > 0
             && now - last_byte_ > device_.clock().ticks_from_ms(AptDevice::kInterByteTimeout_ms)) {
+            record_dropped();   // skipped before the unfinished message
             const auto n = framer_.discard_partial();
             log_.warn("{}: dropped {} byte(s) of an unfinished APT message after {} ms without its rest", peer_, n,
                       AptDevice::kInterByteTimeout_ms);
-            device_.record(true, peer_, {},
-                           {std::to_string(n) + " byte(s) of an unfinished message dropped: the rest did not come within "
-                            + std::to_string(AptDevice::kInterByteTimeout_ms) + " ms"});
+            record_dropped(true);
         }
         if (!bytes.empty())
             last_byte_ = now;
@@ -58,18 +57,15 @@ public:
             dropped += r.dropped;
             if (r.status != FrameFramer::Status::Frame)
                 continue;
+            record_dropped();   // the garbage before this frame, in wire order
             std::string reply;
             device_.handle(r.frame, peer_, reply);
             if (!reply.empty())
                 send_(reply);   // one frame, one write
         }
-        if (dropped > 0) {
+        record_dropped();
+        if (dropped > 0)
             log_.warn("{}: skipped {} byte(s) that start no valid APT message", peer_, dropped);
-            // The bytes are gone (the framer resyncs byte by byte); the entry says how many.
-            device_.record(true, peer_, {},
-                           {"ignored by the unit: " + std::to_string(dropped)
-                            + " byte(s) that start no valid message (an unknown message ID, address or data length)"});
-        }
         device_.flush();
     }
 
@@ -77,6 +73,25 @@ public:
     const std::string& peer() const { return peer_; }
 
 private:
+    /// One wire-log entry with the bytes the framer dropped since the last one (the first
+    /// FrameFramer::kKeptDropped of them): skipped as garbage, or an `unfinished` message cut off
+    /// by the inter-byte timeout. None if it dropped nothing.
+    void record_dropped(bool unfinished = false)
+    {
+        const auto d = framer_.take_dropped();
+        if (d.count == 0)
+            return;
+        std::string note = unfinished ? std::to_string(d.count)
+                                            + " byte(s) of an unfinished message dropped: the rest did not come within "
+                                            + std::to_string(AptDevice::kInterByteTimeout_ms) + " ms"
+                                      : "ignored by the unit: " + std::to_string(d.count)
+                                            + " byte(s) that start no valid message (an unknown message ID, address "
+                                              "or data length)";
+        if (d.bytes.size() < d.count)
+            note += " (the first " + std::to_string(d.bytes.size()) + " shown)";
+        device_.record(true, peer_, d.bytes, {std::move(note)});
+    }
+
     AptDevice& device_;
     SendFn send_;
     std::string peer_;
@@ -95,7 +110,9 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
             model_.reports_stage_type ? dc_stage_type(config_of(config).stage.name) : std::uint16_t{0}},
       store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
-    wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_for_log(e.bytes, out); });
+    wire_log_.set_decoder([unit = log_context(model_)](const WireEntry& e, nlohmann::json& out) {
+        decode_for_log(e.bytes, out, unit);
+    });
     // World keys number bays as the APT software does: channel 1 of a single unit, bays 1..n
     // of a rack (addresses 0x21..).
     const auto key = [&](std::size_t bay) { return config.name + "/" + std::to_string(bay + 1); };

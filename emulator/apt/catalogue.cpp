@@ -331,6 +331,11 @@ constexpr bool trinamic_stepper(std::string_view name)
 constexpr ControllerModel later(ControllerModel c)
 {
     c.firmware = Firmware::Issue44_1;
+    // amsikking/thorlabs_KSC101 thorlabs_KSC101.py, written against a unit: its HW_GET_INFO
+    // firmware dword is 65542 (asserted at start-up): 1.0.6. No public source gives another
+    // model's later firmware: they keep 1.0.3.
+    if (c.name == "KSC101")
+        c.firmware_version = 0x00010006;
     c.later_info_fields = true;
     c.reports_stage_type = c.kind == UnitKind::Motor && c.motor == MotorKind::DcServo && !c.rack;
     if (trinamic_stepper(c.name)) {

@@ -50,6 +50,9 @@ struct ControllerModel {
     std::uint32_t loop_rate_hz = 0;
     std::uint32_t serial_prefix = 0;    ///< first two digits of the 8-digit serial number (2.2)
     std::uint16_t hw_type = 0;          ///< HW_GET_INFO "type" field
+    /// HW_GET_INFO firmware version as its 4 bytes read little-endian: minor, interim, major, 0
+    /// (p. 21): 0x00010003 is 1.0.3.
+    std::uint32_t firmware_version = 0x00010003;
     MotorKind motor = MotorKind::DcServo;
     std::string_view notes;         ///< HW_GET_INFO notes
     /// Velocity/acceleration sample-time scaling of 7.1 (APT units per encoder count/s and

@@ -64,14 +64,29 @@ const unsigned char* bytes_of(std::string_view s)
 
 } // namespace
 
-void FrameFramer::drop(Result& r, std::size_t n)
+void FrameFramer::drop(Result& r, char byte)
 {
-    r.dropped += n;
-    dropped_bytes_ += n;
+    ++r.dropped;
+    ++dropped_bytes_;
+    keep_dropped(std::string_view(&byte, 1));
     if (!dropping_) {
         dropping_ = true;
         ++garbage_runs_;
     }
+}
+
+void FrameFramer::keep_dropped(std::string_view bytes)
+{
+    dropped_.count += bytes.size();
+    const std::size_t room = kKeptDropped - std::min(kKeptDropped, dropped_.bytes.size());
+    dropped_.bytes.append(bytes.substr(0, room));
+}
+
+FrameFramer::Dropped FrameFramer::take_dropped()
+{
+    Dropped out = std::move(dropped_);
+    dropped_ = {};
+    return out;
 }
 
 void FrameFramer::emit(Result& r, std::string_view bytes)
@@ -99,6 +114,7 @@ std::size_t FrameFramer::discard_partial()
     const std::size_t n = buffered();
     if (n == 0)
         return 0;
+    keep_dropped(pending_);
     pending_.clear();
     expected_ = 0;
     dropped_bytes_ += n;
@@ -140,8 +156,8 @@ FrameFramer::Result FrameFramer::parse(std::string_view in)
         const HeaderCheck c = check_header(window, held + extra);
         switch (c.verdict) {
         case Verdict::Implausible:
+            drop(r, pending_[0]);
             pending_.erase(0, 1);
-            drop(r, 1);
             break;
         case Verdict::Undecided:   // the input ran out before the header did
             pending_.append(in.substr(i, extra));
@@ -160,8 +176,8 @@ FrameFramer::Result FrameFramer::parse(std::string_view in)
         const std::size_t avail = in.size() - i;
         const HeaderCheck c = check_header(bytes_of(in) + i, std::min(avail, kHeaderSize));
         if (c.verdict == Verdict::Implausible) {
+            drop(r, in[i]);
             ++i;
-            drop(r, 1);
             continue;
         }
         if (c.verdict == Verdict::Plausible) {

@@ -76,19 +76,31 @@ public:
     /// returns the bytes dropped, which count as garbage.
     std::size_t discard_partial();
 
+    /// The bytes dropped since the last take_dropped() (skipped as garbage or discarded): how
+    /// many, and the first kKeptDropped of them, for the wire log.
+    struct Dropped {
+        std::size_t count = 0;
+        std::string bytes;
+    };
+    static constexpr std::size_t kKeptDropped = 256;
+    Dropped take_dropped();
+
     // Counters for logs, since construction.
     std::uint64_t frames() const { return frames_; }                 ///< frames returned
     std::uint64_t dropped_bytes() const { return dropped_bytes_; }   ///< garbage bytes skipped
     std::uint64_t garbage_runs() const { return garbage_runs_; }     ///< resyncs: runs of dropped bytes
 
 private:
-    void drop(Result& r, std::size_t n);
+    void drop(Result& r, char byte);
+    /// Keep `bytes` (dropped) for take_dropped(), up to kKeptDropped of them.
+    void keep_dropped(std::string_view bytes);
     void emit(Result& r, std::string_view bytes);
 
     std::string pending_;             ///< a plausible header prefix, or header + partial data
     std::size_t expected_ = 0;        ///< whole frame size once pending_ holds a plausible header
     bool frame_in_pending_ = false;   ///< the last result's frame lives in pending_
     bool dropping_ = false;           ///< the last byte looked at was dropped
+    Dropped dropped_;                 ///< since the last take_dropped()
     std::uint64_t frames_ = 0;
     std::uint64_t dropped_bytes_ = 0;
     std::uint64_t garbage_runs_ = 0;

@@ -41,7 +41,8 @@ msg::HwGetInfo hw_get_info(const UnitIdentity& unit, std::optional<std::size_t> 
              : unit.serial;
     info.model_number = padded<8>(unit.model_name);
     info.type = card ? model.bay_hw_type : model.hw_type;
-    info.firmware_version = {'\x03', '\x00', '\x01', '\x00'};   // firmware 1.0.3
+    for (std::size_t i = 0; i < info.firmware_version.size(); ++i)   // minor, interim, major, 0 (p. 21)
+        info.firmware_version[i] = static_cast<char>((model.firmware_version >> (8 * i)) & 0xFF);
     info.notes = padded<64>(model.notes);
     info.nchs = static_cast<std::uint16_t>(model.rack && !bay ? unit.built_in_bays : 1);
     if (model.later_info_fields) {

@@ -450,10 +450,16 @@ TEST_CASE("control: wire log notes: ignored messages, out-of-range SETs, moves w
     CHECK(h.send("FF FF FF FF FF FF") == "");   // no message 0xFFFF (the last byte waits for the next)
     REQUIRE(last_notes().size() == 1);
     CHECK(last_notes()[0].find("5 byte(s) that start no valid message") != std::string::npos);
-    CHECK(h.send("11 04 01 00 50 01").size() > 0);   // after its frame, the one byte left is noted
-    REQUIRE(last_notes().size() == 1);
-    CHECK(last_notes()[0].find("byte(s) that start no valid message") != std::string::npos);
-    CHECK(h.device().wire_log().last()->bytes.empty());
+    CHECK(h.device().wire_log().to_json(1)[0]["hex"] == "ff ff ff ff ff");   // the entry carries them
+    CHECK(h.send("11 04 01 00 50 01").size() > 0);   // the one byte left is noted before the frame
+    const auto entries = h.device().wire_log().to_json(3);
+    CHECK(entries[0]["hex"] == "ff");
+    CHECK(entries[0]["decoded"]["name"] == "not a frame");
+    REQUIRE(entries[0]["notes"].size() == 1);
+    CHECK(entries[0]["notes"][0].get<std::string>().find("1 byte(s) that start no valid message") != std::string::npos);
+    CHECK(entries[1]["hex"] == "11 04 01 00 50 01");
+    CHECK(entries[1]["notes"].empty());
+    CHECK(entries[2]["direction"] == "out");
     CHECK(h.send("13 04 0E 00 D0 01 01 00 00 00 00 00 00 00 00 00 00 10 00 00") == "");   // zero acceleration
     REQUIRE(last_notes().size() == 1);
     CHECK(last_notes()[0].find("acceleration") != std::string::npos);

@@ -277,6 +277,32 @@ TEST_CASE("apt KSC101 issue-44.1: MOT_GET_SOL_STATE reports the output off as 0,
     }
 }
 
+TEST_CASE("apt KSC101 issue-44.1 passes amsikking/thorlabs_KSC101's start-up checks: firmware 1.0.6, state 0 or 1",
+          "[device][apt][kcube]")
+{
+    // thorlabs_KSC101.py Controller.__init__ and its calls, byte for byte (channel 0 throughout).
+    AptHarness h(unit("KSC101", kLater));
+    const auto info = bytes(h.send("05 00 00 00 50 01"));                 // _get_info: 90 bytes
+    REQUIRE(info.size() == 90);
+    CHECK(info.substr(10, 8) == std::string("KSC101\0\0", 8));          // assert model_number
+    CHECK(get_u32(info, 20) == 65542u);                                   // assert firmware_v == 65542
+    CHECK(h.send("10 02 00 01 50 01").empty());                           // _set_enable(True)
+    CHECK(h.send("11 02 00 00 50 01") == "12 02 01 01 01 50");            // _get_enable: response[3] 1
+    CHECK(h.send("CB 04 00 02 50 01").empty());                           // set_state('closed')
+    CHECK(h.send("CC 04 00 00 50 01") == "CD 04 01 00 01 50");            // get_state: 0 "closed"
+    CHECK(h.send("C0 04 00 01 50 01").empty());                           // set_mode('manual')
+    CHECK(h.send("C1 04 00 00 50 01") == "C2 04 01 01 01 50");            // get_mode: 1
+    CHECK(h.send("CB 04 00 01 50 01").empty());                           // set_state('open')
+    CHECK(h.send("CC 04 00 00 50 01") == "CD 04 01 01 01 50");            // get_state: 1 "open"
+    // The manual's generation and the TSC001 keep 1.0.3 (bytes 03 00 01 00).
+    for (const auto& [model, firmware] :
+         std::vector<std::pair<std::string, Firmware>>{{"KSC101", kManual}, {"TSC001", kLater}, {"KPZ101", kLater}}) {
+        INFO(model << " " << firmware_name(firmware));
+        AptHarness t(unit(model, firmware));
+        CHECK(get_u32(bytes(t.send("05 00 00 00 50 01")), 20) == 0x00010003u);
+    }
+}
+
 TEST_CASE("apt KSC101 issue-44.1: MOT_REQ_STATUSBITS and MOT_REQ_STATUSUPDATE give the shutter and key bits",
           "[device][apt][kcube]")
 {

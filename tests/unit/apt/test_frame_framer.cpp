@@ -367,18 +367,44 @@ TEST_CASE("apt framer recognises piezo and strain gauge frames", "[unit][apt][fr
     put_i16(status, 0x1333);   // Position
     put_u32(status, 0x00000401);
     const std::string garbage = bytes({0x00, 0x07, 0xFF});
+    // 0x0660 (PZ_REQ_PZSTATUSUPDATE, later issues) is a frame too, 0x0663 is not.
     const std::string input = garbage + encode_header_only(MGMSG_PZ_REQ_OUTPUTVOLTS, 1, 0, kGenericUsb, kHost)
         + encode_with_data(MGMSG_PZ_GET_PZSTATUSUPDATE, kHost, kGenericUsb, status) + garbage
-        + encode_header_only(MGMSG_PZ_REQ_TSG_READING, 1, 0, kGenericUsb, kHost) + kReqInfo;
+        + encode_header_only(MGMSG_PZ_REQ_TSG_READING, 1, 0, kGenericUsb, kHost) + kReqInfo
+        + encode_header_only(MGMSG_PZ_REQ_PZSTATUSUPDATE, 1, 0, kGenericUsb, kHost)
+        + encode_header_only(0x0663, 1, 0, kGenericUsb, kHost);
     const std::vector<std::string> expected{"0644 d=50 s=01 p=01,00",
                                             "0661 d=01 s=50 [01 00 77 77 33 13 01 04 00 00]",
-                                            "07DD d=50 s=01 p=01,00", kReqInfoSeen};
+                                            "07DD d=50 s=01 p=01,00", kReqInfoSeen, "0660 d=50 s=01 p=01,00"};
     for (std::size_t chunk = 1; chunk <= input.size(); ++chunk) {
         INFO("chunk " << chunk);
         std::size_t dropped = 0;
         CHECK(frame(input, chunk, &dropped) == expected);
-        CHECK(dropped == 2 * garbage.size());
+        CHECK(dropped == 2 * garbage.size() + 5);   // 0x0663 is no message; its last byte may start one
     }
+}
+
+TEST_CASE("apt framer keeps the bytes it drops for the wire log, in order, the first 256 of them",
+          "[unit][apt][framer]")
+{
+    FrameFramer f;
+    // "hi" before a frame, held bytes that turn out to be garbage, then a frame.
+    CHECK(frame(f, "hi" + kReqInfo + bytes({0x05, 0x00, 0x00, 0x00}), 100) == std::vector<std::string>{kReqInfoSeen});
+    CHECK(frame(f, bytes({0x30}) + kReqInfo, 100) == std::vector<std::string>{kReqInfoSeen});
+    auto d = f.take_dropped();
+    CHECK(d.count == 7);
+    CHECK(hex(d.bytes) == "68 69 05 00 00 00 30");
+    CHECK(f.take_dropped().count == 0);
+    // A partial frame the session discards (the inter-byte timeout).
+    CHECK(frame(f, bytes({0x13, 0x04, 0x0E, 0x00, 0xD0, 0x01, 0x01}), 100).empty());
+    CHECK(f.discard_partial() == 7);
+    d = f.take_dropped();
+    CHECK(hex(d.bytes) == "13 04 0E 00 D0 01 01");
+    // A long run: counted in full, the first kKeptDropped kept.
+    CHECK(frame(f, std::string(1000, 'Z') + kReqInfo, 64) == std::vector<std::string>{kReqInfoSeen});
+    d = f.take_dropped();
+    CHECK(d.count == 1000);
+    CHECK(d.bytes == std::string(FrameFramer::kKeptDropped, 'Z'));
 }
 
 TEST_CASE("apt framer survives 10 MB of garbage", "[unit][apt][framer]")

@@ -120,6 +120,7 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
     CHECK(all_messages().size() == 166 + 19 + 13);
     CHECK(find_message(0x0000) == nullptr);
     CHECK(find_message(0xFFFF) == nullptr);
+    CHECK(find_message(0x0663) == nullptr);     // docs/protocol/apt.md's unknown ID beside 0x0000, 0xFFFF
     REQUIRE(find_message(0x0660) != nullptr);   // a REQ for PZ_GET_PZSTATUSUPDATE: not in the manual,
     CHECK(find_message(0x0660)->later_issue);   // later issues add it
     CHECK(find_message(0x0640) == &all_messages()[113]);   // the piezo chapter follows the 22 + 79 + 12
