@@ -134,4 +134,37 @@ TEST_CASE("apt a manual SET one byte short of its layout is ignored and noted, t
           != std::string::npos);
 }
 
+TEST_CASE("apt every unit ignores every data message cut short, to every module address, then answers",
+          "[device][apt][lengths]")
+{
+    // Short packets reach the modules' checks before anything reads their fields: an empty
+    // packet, one byte (half a channel word), one byte short of the fields the table names.
+    struct Unit {
+        DeviceConfig config;
+        std::vector<std::uint8_t> addresses;
+    };
+    std::vector<Unit> units{{later(apt_cube("KDC101", "Z825B")), {0x50}},
+                            {later(apt_cube("KST101", "DRV014")), {0x50}},
+                            {apt_rack("BBD203", {"MLS203-X"}), {0x11, 0x21, 0x22}},
+                            {later_unit("KSC101"), {0x50}},
+                            {later_unit("KPZ101"), {0x50}},
+                            {later_unit("KSG101"), {0x50}}};
+    for (auto& u : units) {
+        INFO(u.config.model);
+        AptHarness h(u.config);
+        for (const auto& m : all_messages()) {
+            if (m.header_only())
+                continue;
+            for (const auto dest : u.addresses) {
+                for (const std::size_t n : {std::size_t{0}, std::size_t{1}, m.min_data_length() - 1}) {
+                    INFO(m.name << " with " << n << " data bytes to 0x" << std::hex << int(dest));
+                    CHECK(h.send(hex(encode_with_data(m.id, dest, kHost, std::string(n, '\x01')))).empty());
+                }
+            }
+        }
+        // HW_REQ_INFO answered after all of it (a rack's motherboard at 0x11).
+        CHECK(frames(h.send(hex(encode_header_only(MGMSG_HW_REQ_INFO, 0, 0, u.addresses[0], kHost)))).size() == 1);
+    }
+}
+
 } // namespace test_apt_packet_lengths
