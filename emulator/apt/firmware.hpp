@@ -11,7 +11,7 @@
 namespace rigsim::apt {
 
 enum class Firmware {
-    Issue3,      ///< the manual in ../shared/specs (01-June-2012, "Issue 3"): the default
+    Issue3,      ///< Thorlabs' "APT Communications Protocol", Issue 3 (01-June-2012): the default
     Issue44_1,   ///< the later protocol issue 44.1 that K-Cube drivers cite
 };
 

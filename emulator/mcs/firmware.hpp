@@ -12,7 +12,7 @@
 namespace rigsim::mcs {
 
 enum class Firmware {
-    V1_2_44,   ///< the manual in ../shared/specs (interface version 1.2.44): the default
+    V1_2_44,   ///< SmarAct's "MCS ASCII Programming Interface", interface version 1.2.44: the default
     /// The later generation whose FRM takes the eight search directions of SmarAct's
     /// MCSControl software interface 2.0.1 (MCSControl.h as quoted in nanophotonics/nplab);
     /// no public source names the ASCII interface version that introduced them.
