@@ -356,6 +356,9 @@ void AptDevice::start_updates()
 void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply)
 {
     notes_.clear();
+    if (f.has_data && !f.info->header_only() && f.data.size() > static_cast<std::size_t>(f.info->data_length))
+        note(fmt::format("{} with {} data byte(s), longer than the {} of its layout: the unit ignores the last {}",
+                         f.info->name, f.data.size(), f.info->data_length, f.data.size() - f.info->data_length));
     const std::size_t before = reply.size();
     route(f, peer, reply);
     // The wire log: the frame as it came (re-encoded: the framer keeps no copy), then the answers.

@@ -37,11 +37,11 @@ HeaderCheck check_header(const unsigned char* h, std::size_t n)
     if (!is_valid_address(static_cast<std::uint8_t>(h[4] & ~kDataFlag)))
         return c;
     if (h[4] & kDataFlag) {
-        // Any length up to the table's layout is framed (frame_framer.hpp): the unit decides
-        // what it makes of a packet short of it. A longer one is not believed; no layout
-        // exceeds 255 bytes (section 4).
+        // Any length up to 255 is framed (frame_framer.hpp): the unit decides what it makes of
+        // a packet shorter or longer than the table's layout. A longer one than 255 is not
+        // believed: no packet exceeds it (section 4).
         const std::size_t length = static_cast<std::size_t>(h[2] | (h[3] << 8));
-        if (info->header_only() || length > static_cast<std::size_t>(info->data_length))
+        if (info->header_only() || length > kMaxDataLength)
             return c;
         c.data_length = length;
     } else if (!info->header_only() && !info->header_only_allowed) {

@@ -8,21 +8,19 @@
 //     (0x01, 0x11, 0x21..0x2A, 0x50),
 //   - a header-only message carries no data flag, unless the table lists a long form too
 //     (MOVE_RELATIVE, MOVE_ABSOLUTE), and a message with a data packet carries the flag and a
-//     length of at most the table's (which never exceeds 255, section 4).
+//     length of at most 255 (section 4: "currently no datapacket exceeds 255 bytes").
 // Otherwise the framer drops ONE byte and looks again at the next, so a frame that follows
 // garbage is found whatever the garbage; a header is rejected as soon as its first bytes
 // rule it out, so partial headers of garbage are not kept.
 //
 // Within that bound the length is the header's (section 3: it lets "the receiving process ...
-// keep track of the beginning and the end of messages"): public clients send the later K-Cube
-// blocks without all of the reserved tail of the table's layout, and a unit reads what it
-// needs of them (messages.hpp fields_length; a packet short of that is ignored and logged).
-// Garbage still needs a known ID, a destination of section 4 with bit 7 set, a valid source
-// and a length within the message's layout to be held as a frame, so the framer never waits
-// for more than the longest layout (84 + 6 bytes) on a header it made of noise, and a length
-// that lies is cut off by the session's inter-byte timeout. A length above the layout is no
-// frame: no client sends one, and believing it would let one garbage header swallow up to 255
-// bytes of the requests behind it.
+// keep track of the beginning and the end of messages"), whatever the table's layout: public
+// clients send the later K-Cube blocks without all of their reserved tail, or with more bytes
+// than the layout, and a unit reads what it needs of them (messages.hpp fields_length; a packet
+// short of that is ignored and logged, the tail of a longer one ignored). The price is the real
+// unit's too: a header made of noise (a known ID, a destination of section 4 with bit 7 set, a
+// valid source) holds the next bytes, up to 255 of them, as its data, requests included; a
+// length that lies beyond what follows is cut off by the session's inter-byte timeout.
 //
 // Pure and resumable, with the calling convention of mcs::LineFramer: parse() consumes
 // input up to the end of one frame and says what it found; the caller loops until the input

@@ -7,10 +7,10 @@
 // send (`later_issue`: POWERPARAMS, TRIGGER, the K-Cube blocks, TSTACTUATORTYPE).
 // The frame framer checks every header against it, as MAVLink's framer checks its
 // message-entry table: an ID the table does not know, or a header-only message with the data
-// flag (a data message without it), or a data packet longer than the table's layout, is not a
-// frame. A shorter packet is one (frame_framer.hpp): a SET as long as the fields a unit reads
-// (`fields_length`) is acted on, its missing reserved tail read as zeros; a shorter one is
-// ignored and logged.
+// flag (a data message without it), or a data packet over 255 bytes, is not a frame. A packet
+// of another length than the table's layout is one (frame_framer.hpp): a SET as long as the
+// fields a unit reads (`fields_length`) is acted on, a missing reserved tail read as zeros and
+// bytes past the layout ignored (and noted in the wire log); a shorter one is ignored and logged.
 //
 // IDs and lengths follow the detailed section of each message, corrected by the errata
 // (docs/protocol/errata.md) where that section is itself wrong; every choice made where

@@ -1,7 +1,8 @@
 // Data packets of another length than the table's layout (frame_framer.hpp, messages.hpp
 // fields_length): the public clients' SETs of the later K-Cube blocks without their reserved
 // tails are acted on, as their REQs are answered; a SET short of the fields the unit reads is
-// ignored, and the wire log says so (docs/protocol/apt.md "Framing and bad input").
+// ignored, and the wire log says so; a longer one is acted on, its tail ignored and noted
+// (docs/protocol/apt.md "Framing and bad input").
 #include "apt_harness.hpp"
 
 #include <string>
@@ -132,6 +133,65 @@ TEST_CASE("apt a manual SET one byte short of its layout is ignored and noted, t
     CHECK(old.send("23 05 08 00 D0 01 01 00 00 00 01 00 00 00") == "");
     CHECK(last_inbound_notes(old.device()).at(0).find("of the issue-3 generation (the 2012 manual) does not know it")
           != std::string::npos);
+}
+
+TEST_CASE("apt KSC101 issue-44.1 takes quantumion's 38-byte KCUBEMMIPARAMS at the table's offsets, its tail ignored",
+          "[device][apt][kcube][lengths]")
+{
+    AptHarness h(later_unit("KSC101"));
+    // quantumion/thorlabs_cube kcube/ksc.py set_kcubemmi_params, "<HHLLLHHLLLLH" (38 bytes, the
+    // table's 36): JSMode 1, DirSense 0 as a dword, presets 0, brightness 60, timeout 10, dim
+    // level 2, JSSensitivity 0x7777 as dwords and words of its own. Its DirSense dword moves
+    // every later field 2 bytes on from the table's; the unit reads its own offsets: brightness
+    // 0 (22), timeout 60 (24), dim level 0 (26), PresetPos3 10 (28), JSSensitivity 2 (32); the
+    // last 2 bytes are past the layout.
+    const std::string zeros10 = "00 00 00 00 00 00 00 00 00 00";
+    CHECK(h.send("20 05 26 00 D0 01 01 00 01 00 " + zeros10 + " 00 00 00 00 00 00 00 00 00 00 "
+                 "3C 00 00 00 0A 00 00 00 02 00 00 00 77 77") == "");
+    const auto notes = last_inbound_notes(h.device());
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0] == "MGMSG_MOT_SET_KCUBEMMIPARAMS with 38 data byte(s), longer than the 36 of its layout: the unit "
+                      "ignores the last 2");
+    CHECK(h.send("21 05 01 00 50 01") == "22 05 24 00 81 50 01 00 01 00 " + zeros10 + " 00 00 00 00 00 00 00 00 00 00 "
+                                         "3C 00 00 00 0A 00 00 00 02 00 00 00");
+}
+
+TEST_CASE("apt a manual SET two bytes past its layout is acted on and noted, a long MOVE_ABSOLUTE moves",
+          "[device][apt][lengths]")
+{
+    AptHarness h;   // TDC001, MTS50-Z8
+    // SET_VELPARAMS 0, 500, 1,000,000 and two bytes more.
+    CHECK(h.send("13 04 10 00 D0 01 01 00 00 00 00 00 F4 01 00 00 40 42 0F 00 AA BB") == "");
+    CHECK(last_inbound_notes(h.device())
+          == std::vector<std::string>{"MGMSG_MOT_SET_VELPARAMS with 16 data byte(s), longer than the 14 of its "
+                                      "layout: the unit ignores the last 2"});
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 F4 01 00 00 40 42 0F 00");
+    // The long form of MOVE_ABSOLUTE with two bytes past its 6: to 1 mm (34,304 counts).
+    CHECK(h.send("53 04 08 00 D0 01 01 00 00 86 00 00 EE EE") == "");
+    h.advance_ms(5000);
+    CHECK(frames(h.take()).back().substr(0, 5) == "64 04");   // MOVE_COMPLETED
+    CHECK(h.send("11 04 01 00 50 01") == "12 04 06 00 81 50 01 00 00 86 00 00");
+}
+
+TEST_CASE("apt a garbage header of a plausible length takes the requests behind it as its data, as a unit does",
+          "[device][apt][lengths]")
+{
+    AptHarness h;   // TDC001
+    const std::string req_pos = "11 04 01 00 50 01";
+    const std::string pos = "12 04 06 00 81 50 01 00 00 00 00 00";
+    // Noise reading as SET_VELPARAMS with 12 data bytes: the two REQ_POSCOUNTERs after it are its
+    // packet (short of the 14 the unit reads: ignored and noted), the third is answered.
+    CHECK(h.send("13 04 0C 00 D0 01 " + req_pos + " " + req_pos + " " + req_pos) == pos);
+    // Noise with a length past what follows holds the request after it until the 50 ms
+    // inter-byte timeout drops both; the request sent again is answered.
+    CHECK(h.send("13 04 FF 00 D0 01 " + req_pos) == "");
+    h.advance_ms(AptDevice::kInterByteTimeout_ms + 1);
+    CHECK(h.send(req_pos) == pos);
+    // A header-only REQ with a data packet (quantumion/thorlabs_cube's Message packs the channel
+    // word of its REQs so) is no frame: all of it is dropped, unanswered; the next one is answered.
+    AptHarness k(later_unit("KSC101"));
+    CHECK(k.send("21 05 02 00 D0 01 01 00") == "");
+    CHECK(frames(k.send("21 05 01 00 50 01")).size() == 1);
 }
 
 TEST_CASE("apt every unit ignores every data message cut short, to every module address, then answers",

@@ -154,18 +154,22 @@ TEST_CASE("later-issue SETs with the reserved tails public clients leave out dec
     CHECK(get_if<SetKCubeMmiParams>(m)->params.js_sensitivity == 0);
 }
 
-TEST_CASE("a later-issue SET short of the fields any unit reads is Untyped, one longer than its layout no frame",
+TEST_CASE("a later-issue SET short of the fields any unit reads is Untyped, one longer than its layout decodes",
           "[unit][apt][codec][kcube]")
 {
     // TRIGIOCONFIG without Trig2Polarity (8 bytes): no unit reads it as the block.
     const auto m = rigsim::test::decode_frame(unhex("23 05 08 00 D0 01 01 00 0A 00 01 00 0B 00"));
     REQUIRE(holds<Untyped>(m));
     CHECK(get_if<Untyped>(m)->data.size() == 8);
-    // 23 bytes, one past the 22 of Thorlabs' example: not believed, dropped as garbage.
-    FrameFramer framer;
-    const auto r = framer.parse(unhex("23 05 17 00 D0 01 01 00 02 00 01 00 0B 00 01 00" + kTwelveZeros + " 00"));
-    CHECK(r.status != FrameFramer::Status::Frame);
-    CHECK(r.dropped > 0);
+    // 24 bytes, two past the 22 of Thorlabs' example: a frame of the header's length, decoded
+    // from its first 22 bytes, the other two ignored; encoded again it has the table's layout.
+    const auto longer = rigsim::test::decode_frame(
+        unhex("23 05 18 00 D0 01 01 00 02 00 01 00 0B 00 01 00" + kTwelveZeros + " 7F 7F"));
+    REQUIRE(holds<SetKCubeTrigIoConfig>(longer));
+    CHECK(get_if<SetKCubeTrigIoConfig>(longer)->params.trig1_mode == 0x02);
+    CHECK(get_if<SetKCubeTrigIoConfig>(longer)->params.trig2_polarity == 1);
+    CHECK(get_if<SetKCubeTrigIoConfig>(longer)->params.reserved == std::array<char, 12>{});
+    CHECK(hex(encode(longer, 0x50, 0x01)) == "23 05 16 00 D0 01 01 00 02 00 01 00 0B 00 01 00" + kTwelveZeros);
 }
 
 } // namespace test_codec_kcube

@@ -236,9 +236,10 @@ TEST_CASE("apt framer resyncs past implausible headers", "[unit][apt][framer]")
         {"data message without the data flag", bytes({0x13, 0x04, 0x0E, 0x00, 0x50, 0x01}) + zeros14},
         {"absurd length", bytes({0x13, 0x04, 0xFF, 0xFF, 0xD0, 0x01}) + zeros14},
         {"length over 255", bytes({0x06, 0x00, 0x00, 0x01, 0x81, 0x50}) + zeros14},
-        {"length one long", bytes({0x13, 0x04, 0x0F, 0x00, 0xD0, 0x01}) + zeros14},
         {"MOVE_COMPLETED without its status", bytes({0x64, 0x04, 0x01, 0x00, 0x01, 0x50})},
         {"MOVE_JOG with data", bytes({0x6A, 0x04, 0x06, 0x00, 0xD0, 0x01, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00})},
+        // quantumion/thorlabs_cube's Message packs a REQ's channel word as a data packet.
+        {"REQ_KCUBEMMIPARAMS with a data packet", bytes({0x21, 0x05, 0x02, 0x00, 0xD0, 0x01, 0x01, 0x00})},
     };
     for (const auto& c : cases) {
         INFO(c.what << ": " << hex(c.bad));
@@ -277,13 +278,66 @@ TEST_CASE("apt framer frames a data packet shorter than its table layout, at the
     }
 }
 
-TEST_CASE("apt framer seeds: random frames of every length up to the layout among garbage keep their boundaries",
+TEST_CASE("apt framer frames a data packet longer than its table layout, at the header's length, up to 255",
           "[unit][apt][framer]")
 {
-    // Deterministic fuzzing of the framer's one new case: data messages of the table at random
-    // lengths 0..layout, separated by runs of bytes that can start no header (0x00: ID 0x0000 and
-    // address 0x00 are none), split at random. Every frame comes out whole, in order, nothing
-    // of a frame is dropped, and every garbage byte is.
+    // Section 3: the header says how long the packet is, and the unit consumes that many bytes.
+    // VELPARAMS two bytes past its 14; quantumion/thorlabs_cube kcube/ksc.py's KCUBEMMIPARAMS,
+    // "<HHLLLHHLLLLH" (38 bytes, the table's layout 36); a long-form MOVE_ABSOLUTE two past its 6;
+    // a MOVE_RELATIVE of 255 bytes.
+    const std::string vel16 = bytes({0x13, 0x04, 0x10, 0x00, 0xD0, 0x01}) + std::string(16, '\x02');
+    const std::string mmi38 = bytes({0x20, 0x05, 0x26, 0x00, 0xD0, 0x01}) + std::string(38, '\x03');
+    const std::string abs8 = bytes({0x53, 0x04, 0x08, 0x00, 0xD0, 0x01, 1, 0, 0x10, 0, 0, 0, 0xEE, 0xEE});
+    const std::string rel255 = encode_with_data(MGMSG_MOT_MOVE_RELATIVE, kGenericUsb, kHost, std::string(255, '\x04'));
+    const std::string input = vel16 + kReqInfo + mmi38 + abs8 + rel255 + move_absolute(1);
+    const std::vector<std::string> expected{"0413 d=50 s=01 [" + hex(std::string(16, '\x02')) + "]", kReqInfoSeen,
+                                            "0520 d=50 s=01 [" + hex(std::string(38, '\x03')) + "]",
+                                            "0453 d=50 s=01 [01 00 10 00 00 00 EE EE]",
+                                            "0448 d=50 s=01 [" + hex(std::string(255, '\x04')) + "]",
+                                            "0453 d=50 s=01 [01 00 01 00 00 00]"};
+    for (std::size_t chunk = 1; chunk <= input.size(); ++chunk) {
+        INFO("chunk " << chunk);
+        std::size_t dropped = 0;
+        CHECK(frame(input, chunk, &dropped) == expected);
+        CHECK(dropped == 0);
+    }
+}
+
+TEST_CASE("apt framer takes the bytes after a garbage header of a plausible length as its data, requests included",
+          "[unit][apt][framer]")
+{
+    // Noise that reads as a header (SET_VELPARAMS to 0x50, 12 data bytes) holds the next 12 bytes
+    // as its packet, as a real unit believes the length: the two REQ_INFOs behind it are data,
+    // unanswered; the third is a frame. Before lengths past the layout were framed, the 14 bytes
+    // of VELPARAMS bounded what noise could swallow; now 255 do (frame_framer.hpp).
+    const std::string noise = bytes({0x13, 0x04, 0x0C, 0x00, 0xD0, 0x01});
+    const std::string input = noise + kReqInfo + kReqInfo + kReqInfo;
+    for (std::size_t chunk = 1; chunk <= input.size(); ++chunk) {
+        INFO("chunk " << chunk);
+        std::size_t dropped = 0;
+        CHECK(frame(input, chunk, &dropped)
+              == std::vector<std::string>{"0413 d=50 s=01 [05 00 00 00 50 01 05 00 00 00 50 01]", kReqInfoSeen});
+        CHECK(dropped == 0);
+    }
+    // A length past what follows: the framer waits for the rest with the request inside it,
+    // until the session's inter-byte timeout discards the lot (discard_partial, counted as
+    // garbage); the request sent again is framed.
+    FrameFramer f;
+    CHECK(frame(f, bytes({0x13, 0x04, 0xFF, 0x00, 0xD0, 0x01}) + kReqInfo, 100).empty());
+    CHECK(f.in_frame());
+    CHECK(f.buffered() == 12);
+    CHECK(f.discard_partial() == 12);
+    CHECK(hex(f.take_dropped().bytes) == "13 04 FF 00 D0 01 " + hex(kReqInfo));
+    CHECK(frame(f, kReqInfo, 100) == std::vector<std::string>{kReqInfoSeen});
+}
+
+TEST_CASE("apt framer seeds: random frames of every length up to 255 among garbage keep their boundaries",
+          "[unit][apt][framer]")
+{
+    // Deterministic fuzzing of the header's length: data messages of the table at random lengths,
+    // half of them 0..layout and half past the layout up to 255, separated by runs of bytes that
+    // can start no header (0x00: ID 0x0000 and address 0x00 are none), split at random. Every
+    // frame comes out whole, in order, nothing of a frame is dropped, and every garbage byte is.
     std::mt19937 rng(2024);
     std::vector<const MessageInfo*> data_messages;
     for (const auto& m : all_messages())
@@ -298,7 +352,10 @@ TEST_CASE("apt framer seeds: random frames of every length up to the layout amon
             input.append(run, '\0');
             garbage += run;
             const auto& m = *data_messages[rng() % data_messages.size()];
-            std::string data(rng() % (static_cast<std::size_t>(m.data_length) + 1), '\0');
+            const auto layout = static_cast<std::size_t>(m.data_length);
+            const std::size_t length =
+                rng() % 2 ? rng() % (layout + 1) : layout + 1 + rng() % (kMaxDataLength - layout);
+            std::string data(length, '\0');
             for (auto& c : data)
                 c = static_cast<char>(rng() & 0xFF);
             const std::string f = encode_with_data(m.id, kGenericUsb, kHost, data);

@@ -184,7 +184,12 @@ TEST_CASE("apt message table applies the ERRATA to the piezo and strain gauge me
     CHECK(get_i16(p.data[0], 2) == 0x7777);   // OPVoltage
     CHECK(get_i16(p.data[0], 4) == 0x1333);   // Position
     CHECK(get_u32(p.data[0], 6) == 0x00000401);
-    check_rejected(unhex("61 06 0E 00 81 50 01 00 77 77 33 13 01 04 00 00 00 00 00 00"));
+    // The misprinted length "0E" is a frame of 14 data bytes (the header's length): a reader
+    // takes the 10 of the layout and ignores the other 4.
+    const auto misprinted = parse_all(unhex("61 06 0E 00 81 50 01 00 77 77 33 13 01 04 00 00 00 00 00 00") + kSentinel, 1);
+    REQUIRE(misprinted.frames.size() == 2);
+    CHECK(misprinted.data[0].size() == 14);
+    CHECK(misprinted.dropped == 0);
     // The OUTPUTLUTPARAMS example's header ("03, 07, 06, 00") over its 30 bytes: a frame of 6 data
     // bytes (the header's length; a unit ignores it as short of the 30 it reads), the other 24 dropped.
     const auto lut = parse_all(unhex("03 07 06 00 D0 01") + std::string(30, '\0') + kSentinel, 1);
@@ -352,16 +357,22 @@ TEST_CASE("every apt message round-trips through encode and the framer", "[unit]
             } else {
                 check_rejected(short_form);
             }
-            // One byte short of the layout is a frame (the unit judges its length); one long is not.
+            // One byte short of the layout, one byte past it, 255 bytes: frames (the unit judges
+            // their length); 256 is none.
             const auto length = static_cast<std::size_t>(m.data_length);
-            if (length > 0) {
-                const auto s = parse_all(encode_with_data(m.id, kGenericUsb, kHost, std::string(length - 1, '\0')), 1);
+            for (const std::size_t n : {length - 1, length + 1, kMaxDataLength}) {
+                if (n > kMaxDataLength)   // one short of an empty layout
+                    continue;
+                INFO(n << " data bytes");
+                const auto s = parse_all(encode_with_data(m.id, kGenericUsb, kHost, std::string(n, '\0')), 1);
                 REQUIRE(s.frames.size() == 1);
-                CHECK(s.data[0].size() == length - 1);
+                CHECK(s.data[0].size() == n);
                 CHECK(s.dropped == 0);
             }
-            if (length < kMaxDataLength)
-                check_rejected(encode_with_data(m.id, kGenericUsb, kHost, std::string(length + 1, '\0')));
+            std::string too_long = encode_with_data(m.id, kGenericUsb, kHost, std::string(kMaxDataLength, '\0'));
+            too_long[2] = 0x00;   // length 0x0100
+            too_long[3] = 0x01;
+            check_rejected(too_long + '\0');
         }
     }
 }
