@@ -32,11 +32,12 @@ inline Endpoint control_endpoint(const Daemon& daemon)
     return e;
 }
 
-/// Reads one answer from `c`: the status line, the headers, Content-Length bytes of body.
-inline HttpAnswer read_answer(LineClient& c)
+/// Reads one answer from `c`: the status line (within `timeout`), the headers, Content-Length
+/// bytes of body.
+inline HttpAnswer read_answer(LineClient& c, Millis timeout = kAnswerTimeout)
 {
     HttpAnswer a;
-    const auto status_line = c.read_line();
+    const auto status_line = c.read_line(timeout);
     REQUIRE(status_line);
     REQUIRE(status_line->rfind("HTTP/1.1 ", 0) == 0);
     a.status = std::stoi(status_line->substr(9, 3));
