@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -60,6 +61,10 @@ inline bool read_exact(int fd, std::string& out, std::size_t n, Millis timeout)
             continue;
         char buf[512];
         const auto got = ::read(fd, buf, std::min(sizeof buf, n - out.size()));
+        // A non-blocking pty may answer EAGAIN although poll() saw input (the bytes still on
+        // their way through the line discipline): wait again, as for no input at all.
+        if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
+            continue;
         if (got <= 0)
             return false;
         out.append(buf, static_cast<std::size_t>(got));
