@@ -244,7 +244,7 @@ template <class Self> void Module::visit_as(Self& self, const msg::Message& m, R
     } clear{*this};
     request_ = &r;
     message_ = &m;
-    msg::visit([this, &self](const auto& typed) { dispatch(self, typed); }, m);
+    msg::visit([this, &self](const auto& typed) { this->dispatch(self, typed); }, m);
 }
 
 template <class Self, class T> void Module::dispatch(Self& self, const T& m)

@@ -22,7 +22,8 @@ std::string joined(const std::vector<std::string>& names)
 /// Refuses keys of `params` other than `allowed`.
 void only_keys(const json& params, const std::string& kind, std::initializer_list<const char*> allowed)
 {
-    for (const auto& [key, value] : params.items()) {
+    for (const auto& item : params.items()) {
+        const std::string& key = item.key();
         const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
         if (!known) {
             std::string list;

@@ -174,7 +174,7 @@ private:
 
 TcpEndpoint::TcpEndpoint(asio::io_context& io, Device& device, const asio::ip::address& bind,
                          std::uint16_t port, std::shared_ptr<spdlog::logger> log, TcpConnectionBudget& budget)
-    : io_(io), device_(device), acceptor_(io), log_(std::move(log)), budget_(budget), backoff_timer_(io),
+    : device_(device), acceptor_(io), log_(std::move(log)), budget_(budget), backoff_timer_(io),
       refusal_timer_(io)
 {
     const tcp::endpoint ep(bind, port);

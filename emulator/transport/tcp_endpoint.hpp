@@ -73,7 +73,6 @@ private:
     /// report_refusals() in one second.
     void arm_refusal_timer();
 
-    boost::asio::io_context& io_;
     Device& device_;
     boost::asio::ip::tcp::acceptor acceptor_;
     std::uint16_t port_;

@@ -28,9 +28,14 @@ json unit(const std::string& name, const std::string& model, json apt)
     return {{"name", name}, {"protocol", "apt"}, {"model", model}, {"apt", std::move(apt)}};
 }
 
-json rig_of(json devices)
+/// A rig of `devices` (an initializer list, so that one device still makes an array: a json
+/// built from `{device}` is that object under clang, an array of it under GCC).
+json rig_of(std::initializer_list<json> devices)
 {
-    return {{"devices", std::move(devices)}};
+    json list = json::array();
+    for (const auto& device : devices)
+        list.push_back(device);
+    return {{"devices", list}};
 }
 
 std::string error_of(const json& rig)
