@@ -9,10 +9,12 @@ Standard library only (pyserial where a test opens a device's pty or socket:// U
         rig.step(100)             # exactly 100 ms of clock time
         rig.run_until_idle(30000)
 
-The pytest plugin (rigsim.pytest_plugin) gives tests a `rigsim` fixture factory.
+The pytest plugin (rigsim.pytest_plugin) gives tests the `rigsim` and `rigsim_session` fixture
+factories and the ready `rigsim_rig`. modem_lines_shim() finds the RTS/DTR shim for LD_PRELOAD.
 """
 
-from rigsim.control import ControlClient, ControlError, NotIdle, Placement, Pose
-from rigsim.daemon import Endpoint, Rigsim, RigsimError
+from rigsim.control import DEFAULT_CONTROL, ControlClient, ControlError, NotControlApi, NotIdle, Placement, Pose
+from rigsim.daemon import Endpoint, Noted, Rigsim, RigsimError, modem_lines_preloaded, modem_lines_shim
 
-__all__ = ["ControlClient", "ControlError", "Endpoint", "NotIdle", "Placement", "Pose", "Rigsim", "RigsimError"]
+__all__ = ["DEFAULT_CONTROL", "ControlClient", "ControlError", "Endpoint", "NotControlApi", "NotIdle", "Noted",
+           "Placement", "Pose", "Rigsim", "RigsimError", "modem_lines_preloaded", "modem_lines_shim"]

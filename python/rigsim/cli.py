@@ -6,12 +6,15 @@ import os
 import sys
 import urllib.error
 
-from rigsim.control import ControlClient, ControlError
+from rigsim.control import DEFAULT_CONTROL, ControlClient, ControlError, NotControlApi
+from rigsim.control import control_url as normalize_url
 
-EPILOG = """The control API is found by --control URL, else --endpoints FILE (its "control" key,
-as rigsimd --endpoints-json writes it), else $RIGSIM_CONTROL; a daemon started with --control-token takes --token TOKEN, --token-file FILE
-or $RIGSIM_CONTROL_TOKEN. Answers print as indented JSON
-(--format table: a short table). Errors go to standard error, exit status 1."""
+EPILOG = f"""The control API is found by --control ADDRESS (HOST:PORT as rigsimd --control takes it,
+or http://HOST:PORT), else --endpoints FILE (its "control" key, as rigsimd --endpoints-json
+writes it), else $RIGSIM_CONTROL, else {DEFAULT_CONTROL} (where the built-in default rig
+serves it). A daemon started with --control-token takes --token TOKEN, --token-file FILE or
+$RIGSIM_CONTROL_TOKEN. Answers print as indented JSON (--format table: a short table).
+Errors go to standard error in one line, exit status 1."""
 
 
 class UsageError(Exception):
@@ -37,6 +40,12 @@ def parse_fields(pairs):
 
 
 def control_url(args):
+    """The control API's URL: --control, else --endpoints' "control" key, else $RIGSIM_CONTROL,
+    else the default rig's (each a URL or HOST:PORT)."""
+    return normalize_url(_control_address(args))
+
+
+def _control_address(args):
     if getattr(args, "control", None):
         return args.control
     if getattr(args, "endpoints", None):
@@ -50,7 +59,7 @@ def control_url(args):
         return doc["control"]
     if os.environ.get("RIGSIM_CONTROL"):
         return os.environ["RIGSIM_CONTROL"]
-    raise UsageError("no control API: pass --control URL or --endpoints FILE, or set RIGSIM_CONTROL")
+    return DEFAULT_CONTROL
 
 
 def control_token(args):
@@ -280,8 +289,9 @@ def _common(suppress):
     """The options every sub-command takes too (before or after the sub-command's name)."""
     p = argparse.ArgumentParser(add_help=False)
     default = argparse.SUPPRESS if suppress else None
-    p.add_argument("--control", metavar="URL", default=default,
-                   help="the control API's URL (http://127.0.0.1:PORT)")
+    p.add_argument("--control", metavar="ADDRESS", default=default,
+                   help=f"the control API: HOST:PORT as rigsimd --control takes it, or "
+                        f"http://HOST:PORT (default: $RIGSIM_CONTROL, else {DEFAULT_CONTROL}, the default rig's)")
     p.add_argument("--endpoints", metavar="FILE", default=default,
                    help='the endpoints JSON rigsimd wrote (--endpoints-json); its "control" key')
     p.add_argument("--token", metavar="TOKEN", default=default,
@@ -386,6 +396,13 @@ def build_parser():
     return parser
 
 
+def _default_hint(url):
+    if url != normalize_url(DEFAULT_CONTROL):
+        return ""
+    return (f" ({DEFAULT_CONTROL} is the default rig's; for another daemon pass --control HOST:PORT, "
+            "--endpoints FILE or set RIGSIM_CONTROL)")
+
+
 def main(argv=None, out=None):
     out = out or sys.stdout
     parser = build_parser()
@@ -407,8 +424,12 @@ def main(argv=None, out=None):
     except UsageError as e:
         print(f"rigsimctl: {e}", file=sys.stderr)
         return 1
+    except NotControlApi as e:
+        print(f"rigsimctl: {e}", file=sys.stderr)
+        return 1
     except urllib.error.URLError as e:
-        print(f"rigsimctl: cannot reach the control API at {url}: {e.reason}", file=sys.stderr)
+        print(f"rigsimctl: cannot reach the control API at {url}: {e.reason}"
+              f"{_default_hint(url)}", file=sys.stderr)
         return 1
     except (OSError, ValueError) as e:
         print(f"rigsimctl: {e}", file=sys.stderr)

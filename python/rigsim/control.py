@@ -1,6 +1,7 @@
 """A client of rigsimd's HTTP control API (docs/control-api.md), standard library only."""
 
 import collections
+import http.client
 import json
 import os
 import queue
@@ -53,6 +54,62 @@ def _error_message(text):
     return message
 
 
+# Where the built-in default rig's control API listens (config/default.json "control"): what
+# ControlClient() and rigsimctl reach when given no address.
+DEFAULT_CONTROL = "127.0.0.1:40200"
+
+
+# The control API is reached directly, never through the http_proxy/HTTPS_PROXY of the
+# environment (a lab's proxy cannot reach the daemon on this machine's loopback, and the daemon
+# refuses a Host header it does not serve).
+_DIRECT = urllib.request.build_opener(urllib.request.ProxyHandler({}))
+
+
+class NotControlApi(Exception):
+    """The address answered, but not as rigsimd's control API does (a device's TCP port, another
+    server), or not at all within the timeout: the message says which, in one line."""
+
+
+def control_url(address=None):
+    """The control API's base URL from `address`: "http://HOST:PORT", or "HOST:PORT" and
+    "[IPv6]:PORT" as rigsimd --control takes them (http:// is added); None: the default rig's
+    (DEFAULT_CONTROL)."""
+    text = (address or DEFAULT_CONTROL).strip()
+    if "://" not in text:
+        text = "http://" + text
+    return text.rstrip("/")
+
+
+def _address_of(url):
+    return urllib.parse.urlsplit(url).netloc or url
+
+
+def _answer_text(exc):
+    """What a non-HTTP peer sent, as http.client saw it (BadStatusLine's line), shortened."""
+    line = exc.args[0] if exc.args else ""
+    if isinstance(line, bytes):
+        line = line.decode("latin-1")
+    line = str(line).strip()
+    return line[:40] + ("..." if len(line) > 40 else "")
+
+
+def _not_control_api(url, exc, timeout_s):
+    """A NotControlApi that says what `url` did instead of answering HTTP."""
+    where = _address_of(url)
+    hint = ("the control API's address is the 'control:' line rigsimd prints, the \"control\" key "
+            f"of --endpoints-json, or {DEFAULT_CONTROL} for the default rig")
+    if isinstance(exc, (TimeoutError, socket.timeout)):
+        return NotControlApi(f"no HTTP answer from {where} within {timeout_s:g} s: is it a device's port "
+                             f"(an APT device ignores HTTP) or a busy daemon? {hint}")
+    if isinstance(exc, http.client.RemoteDisconnected):
+        return NotControlApi(f"{where} closed the connection without an HTTP answer: is it a device's "
+                             f"port? {hint}")
+    seen = _answer_text(exc)
+    kind = " (a SmarAct MCS answer)" if seen.startswith(":") else ""
+    return NotControlApi(f"{where} answered {seen!r}{kind}, not HTTP: that is a device's port, not the "
+                         f"control API; {hint}")
+
+
 TraceSample = collections.namedtuple("TraceSample", "tick output_code output_v position_um lut_index")
 TraceSample.__doc__ = """One sample of a piezo channel's trace (docs/control-api.md#traces): the clock tick, the
 output as GET_OUTPUTVOLTS codes it, the output in volts, the actuator's physical extension in um, and
@@ -98,13 +155,16 @@ class Pose(collections.namedtuple("Pose", "name parent tool joint world parent_r
 
 
 class ControlClient:
-    """The routes of the control API at `url` ("http://127.0.0.1:PORT").
+    """The routes of the control API at `url`: "http://127.0.0.1:PORT", or "HOST:PORT" as
+    rigsimd --control takes it; None: the default rig's (DEFAULT_CONTROL, 127.0.0.1:40200).
 
     `token`: the daemon's --control-token, sent as "Authorization: Bearer <token>"; None reads
-    the environment variable RIGSIM_CONTROL_TOKEN (unset or empty: no token)."""
+    the environment variable RIGSIM_CONTROL_TOKEN (unset or empty: no token).
 
-    def __init__(self, url, timeout_s=10.0, token=None):
-        self.url = url.rstrip("/")
+    An address that answers, but not with HTTP (a device's TCP port), raises NotControlApi."""
+
+    def __init__(self, url=None, timeout_s=10.0, token=None):
+        self.url = control_url(url)
         self.timeout_s = timeout_s
         self.token = token if token is not None else os.environ.get("RIGSIM_CONTROL_TOKEN") or None
 
@@ -120,11 +180,13 @@ class ControlClient:
         headers = self._headers({"Content-Type": "application/json"} if data is not None else None)
         req = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
         try:
-            with urllib.request.urlopen(req, timeout=self.timeout_s) as answer:
+            with _DIRECT.open(req, timeout=self.timeout_s) as answer:
                 return json.loads(answer.read() or b"null")
         except urllib.error.HTTPError as e:
             text = e.read().decode(errors="replace")
             raise ControlError(e.code, _error_message(text)) from None
+        except (http.client.HTTPException, TimeoutError, socket.timeout) as e:
+            raise _not_control_api(self.url, e, self.timeout_s) from None
 
     # ---- rig and clock ----
 
@@ -333,9 +395,11 @@ class ControlClient:
         path = "/api/events" + ("?" + "&".join(query) if query else "")
         req = urllib.request.Request(self.url + path, headers=self._headers({"Accept": "text/event-stream"}))
         try:
-            answer = urllib.request.urlopen(req, timeout=self.timeout_s)
+            answer = _DIRECT.open(req, timeout=self.timeout_s)
         except urllib.error.HTTPError as e:
             raise ControlError(e.code, _error_message(e.read().decode(errors="replace"))) from None
+        except (http.client.HTTPException, TimeoutError, socket.timeout) as e:
+            raise _not_control_api(self.url, e, self.timeout_s) from None
         return _event_iterator(answer, timeout)
 
 

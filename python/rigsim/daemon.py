@@ -39,6 +39,30 @@ class Endpoint:
         return host.strip("[]"), int(port)
 
 
+@dataclass(frozen=True)
+class Noted:
+    """One device's noted client mistakes (Rigsim.notes())."""
+
+    device: str
+    noted: int      # noted entries since start-up, reset or clear_log, kept or not
+    entries: list   # the noted wire log entries still kept, oldest first
+
+
+def notes_text(found):
+    """A readable list of Noted records: one line per noted entry with its notes."""
+    total = sum(n.noted for n in found)
+    lines = [f"rigsimd noted {total} client mistake(s):"]
+    for n in found:
+        for e in n.entries:
+            decoded = e.get("decoded") or {}
+            what = decoded.get("text") or decoded.get("name") or e.get("hex", "")
+            lines.append(f"  {n.device} {e.get('time_ms', 0):.3f} ms {e.get('direction', '?')} {what}: "
+                         + "; ".join(e.get("notes", [])))
+        if n.noted > len(n.entries):
+            lines.append(f"  {n.device}: {n.noted - len(n.entries)} more no longer in the wire log")
+    return "\n".join(lines)
+
+
 def find_rigsimd(explicit=None):
     """`explicit`, else $RIGSIMD, else rigsimd on PATH."""
     path = explicit or os.environ.get("RIGSIMD") or shutil.which("rigsimd")
@@ -46,6 +70,44 @@ def find_rigsimd(explicit=None):
         raise RigsimError("rigsimd not found: pass rigsimd=PATH, set RIGSIMD, or put it on PATH")
     # A relative path is taken from where we are now: tests may change directory later.
     return os.path.abspath(path) if os.sep in path else path
+
+
+MODEM_LINES_SHIM = "librigsim_modemlines.so"
+
+
+def modem_lines_shim(rigsimd=None):
+    """The path of the RTS/DTR shim (librigsim_modemlines.so, docs/cli.md "Serial clients that
+    toggle RTS/DTR"): $RIGSIM_MODEMLINES, else beside rigsimd (the build tree: scripts/run.sh
+    builds both), else in ../lib beside it (cmake --install, the Debian layout). rigsimd is found
+    as Rigsim finds it (`rigsimd`, $RIGSIMD, PATH). Raises RigsimError naming where it looked.
+
+    A client that sets RTS or DTR on the pty (pyLabLib's and Thorlabs' APT port set-up) needs the
+    shim preloaded in its own process, so it must be in LD_PRELOAD when that process starts:
+    LD_PRELOAD=$(python3 -m rigsim.modem_lines) python3 -m pytest ..."""
+    explicit = os.environ.get("RIGSIM_MODEMLINES")
+    if explicit:
+        if not os.path.isfile(explicit):
+            raise RigsimError(f"RIGSIM_MODEMLINES names {explicit}, which is not a file")
+        return os.path.abspath(explicit)
+    daemon = find_rigsimd(rigsimd)
+    daemon = shutil.which(daemon) or daemon
+    here = os.path.dirname(os.path.realpath(daemon))
+    candidates = [os.path.join(here, MODEM_LINES_SHIM), os.path.join(here, "..", "lib", MODEM_LINES_SHIM)]
+    for candidate in candidates:
+        if os.path.isfile(candidate):
+            return os.path.normpath(candidate)
+    raise RigsimError(f"{MODEM_LINES_SHIM} not found beside {daemon} (looked at "
+                      f"{', '.join(os.path.normpath(c) for c in candidates)}): build it with scripts/run.sh "
+                      "or `cmake --build BUILD --target rigsim_modemlines`, or set RIGSIM_MODEMLINES")
+
+
+def modem_lines_preloaded():
+    """Whether the shim is loaded in this process (LD_PRELOAD took it when the process started)."""
+    try:
+        with open("/proc/self/maps", encoding="utf-8", errors="replace") as f:
+            return any(line.rstrip().endswith("/" + MODEM_LINES_SHIM) for line in f)
+    except OSError:
+        return MODEM_LINES_SHIM in os.environ.get("LD_PRELOAD", "")
 
 
 class Rigsim:
@@ -219,6 +281,30 @@ class Rigsim:
     def clear_log(self, name):
         """DELETE /api/devices/{name}/log."""
         return self.control.clear_log(name)
+
+    def notes(self, devices=None):
+        """The client mistakes the daemon noted (docs/control-api.md, "The wire log"): a list of
+        Noted(device, noted, entries), one per device with at least one, where `noted` counts the
+        noted entries since start-up, the last reset or clear_log() (also those the log no longer
+        keeps) and `entries` are the noted entries it still keeps. `devices`: a name or a list
+        (None: every device of the rig)."""
+        names = sorted(self.endpoints) if devices is None else (
+            [devices] if isinstance(devices, str) else list(devices))
+        found = []
+        for name in names:
+            answer = self.control.log(name)
+            entries = [e for e in answer.get("entries", []) if e.get("notes")]
+            noted = answer.get("noted", len(entries))
+            if noted or entries:
+                found.append(Noted(name, noted, entries))
+        return found
+
+    def assert_no_notes(self, devices=None):
+        """Raise AssertionError listing every noted client mistake (notes()), if there is one:
+        a test's client sent something the real unit would reject, ignore or take only by luck."""
+        found = self.notes(devices)
+        if found:
+            raise AssertionError(notes_text(found))
 
     def events(self, device=None, timeout=None, type=None):
         """GET /api/events[?device=&type=]: an iterator of event dicts; ends after `timeout` s

@@ -1,4 +1,5 @@
-"""pytest plugin: the `rigsim` fixture factory and its session-scoped variant `rigsim_session`.
+"""pytest plugin: the `rigsim` fixture factory, its session-scoped variant `rigsim_session`, and
+`rigsim_rig`, the session's daemon on the rig the command line or the ini file names.
 
     def test_home(rigsim):
         rig = rigsim("my-rig.json")          # or a dict, or no argument for the default rig
@@ -14,39 +15,122 @@
         rig = rigsim_session("my-rig.json")  # one daemon per rig for the whole session,
         ...                                  # reset() before each test that asks for it
 
-Every daemon `rigsim` started is stopped (its ptys removed) when the test ends; `rigsim_session`
-daemons when the session ends. When a test fails, the report gets each daemon's log (for a
-session daemon: the part written during the test) and the wire log of every device the test
-used (called endpoint(), state(), set(), inject() or log() on). rigsimd is found by
---rigsimd PATH, the `rigsimd` ini key, $RIGSIMD, or PATH, in that order.
+    def test_ready(rigsim_rig):               # --rigsim-rig=FILE or the ini key rigsim_rig
+        port = rigsim_rig.endpoint("kdc101").address
+        ...
 
-A rig's frames and tool points are read through the Rigsim: rig.pose(name) (world and
-parent-relative placement), rig.frames() (all of them).
+Every daemon `rigsim` started is stopped (its ptys removed) when the test ends; `rigsim_session`
+daemons when the session ends. When a test fails, in its setup, body or teardown, the report
+gets each daemon's log (for a session daemon: the part written during the test) and the wire log
+of every device the test used (called endpoint(), state(), set(), inject() or log() on).
+
+Strict mode (--rigsim-strict, or the ini key `rigsim_strict = true`; per test
+@pytest.mark.rigsim_strict or @pytest.mark.rigsim_strict(False)) fails a test whose clients
+made mistakes the daemon noted in a wire log (Rigsim.assert_no_notes() does the same on demand).
+
+rigsimd is found by --rigsimd=PATH (relative to the directory pytest was started in), the
+`rigsimd` ini key (relative to the ini file's directory, pytest's rootdir), $RIGSIMD, or PATH,
+in that order. Give the option with `=`: pytest finds the project's ini file before it knows
+the plugin's options, and reads a separate `--rigsimd PATH` as a path to test, which can move
+the rootdir away from the project.
 
 Enable it with `-p rigsim.pytest_plugin` or `pytest_plugins = ["rigsim.pytest_plugin"]` in a
-conftest.py (an installed package registers it by entry point).
+conftest.py; an installed package (pip install ./python) registers it by its pytest11 entry
+point of the same name, so pytest loads it without either (and both still work).
 """
 
 import json
+import os
 
 import pytest
 
-from rigsim.control import ControlError
-from rigsim.daemon import Rigsim
+from rigsim.control import ControlError, NotControlApi
+from rigsim.daemon import Rigsim, notes_text
 
 # (daemon, offset of its log when the test got it) for every daemon a test used.
 _DAEMONS = pytest.StashKey[list]()
+# Set once the logs were attached to one of the test's reports (setup, call or teardown).
+_ATTACHED = pytest.StashKey[bool]()
 
 WIRE_LOG_LAST = 200   # entries of each device's wire log attached to a failed test's report
 
+_STRICT_HELP = ("fail a test whose clients made mistakes the daemon noted in a wire log "
+                "(Rigsim.assert_no_notes(); per test: @pytest.mark.rigsim_strict(False))")
+
 
 def pytest_addoption(parser):
-    parser.addoption("--rigsimd", default=None, help="path of the rigsimd binary for the rigsim fixtures")
-    parser.addini("rigsimd", default=None, help="path of the rigsimd binary for the rigsim fixtures")
+    group = parser.getgroup("rigsim", "rigsim (rigsimd for tests)")
+    group.addoption("--rigsimd", default=None, metavar="PATH",
+                    help="path of the rigsimd binary for the rigsim fixtures; write it as "
+                         "--rigsimd=PATH (a separate PATH is taken for a test path when pytest "
+                         "looks for its ini file)")
+    parser.addini("rigsimd", default=None,
+                  help="path of the rigsimd binary for the rigsim fixtures (relative: to the ini file's directory)")
+    group.addoption("--rigsim-rig", default=None, metavar="FILE",
+                    help="the rig JSON of the rigsim_rig fixture (default: the ini key rigsim_rig, "
+                         "else the built-in default rig); write it as --rigsim-rig=FILE")
+    parser.addini("rigsim_rig", default=None,
+                  help="the rig JSON of the rigsim_rig fixture (relative: to the ini file's directory)")
+    group.addoption("--rigsim-strict", action="store_true", default=None, help=_STRICT_HELP)
+    parser.addini("rigsim_strict", type="bool", default=False, help=_STRICT_HELP)
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "rigsim_strict(enabled=True): fail (or with False, do not fail) this test when "
+                   "the daemon noted a client mistake, whatever --rigsim-strict and rigsim_strict say")
+
+
+# ---- where things are ----
+
+def _ini_dir(config):
+    """Where relative paths of ini keys are taken from: the ini file's directory (pytest's
+    rootdir), else the rootdir."""
+    inipath = getattr(config, "inipath", None)
+    return str(inipath.parent) if inipath else str(config.rootpath)
+
+
+def _invocation_dir(config):
+    return str(config.invocation_params.dir)
+
+
+def _resolve(path, base):
+    path = os.path.expanduser(path)
+    return path if os.path.isabs(path) else os.path.normpath(os.path.join(base, path))
 
 
 def _rigsimd_path(config):
-    return config.getoption("--rigsimd") or config.getini("rigsimd") or None
+    """--rigsimd (from the invocation directory), else the ini key (from the ini file's
+    directory), else None: Rigsim then tries $RIGSIMD and PATH. A bare name (no '/') is looked
+    up on PATH as given."""
+    option = config.getoption("--rigsimd")
+    if option:
+        return _resolve(option, _invocation_dir(config)) if os.sep in option else option
+    ini = config.getini("rigsimd")
+    if ini:
+        return _resolve(ini, _ini_dir(config)) if os.sep in ini else ini
+    return None
+
+
+def _rig_path(config):
+    """The rigsim_rig fixture's rig: --rigsim-rig, else the ini key rigsim_rig, else None (the
+    built-in default rig)."""
+    option = config.getoption("--rigsim-rig")
+    if option:
+        return _resolve(option, _invocation_dir(config))
+    ini = config.getini("rigsim_rig")
+    if ini:
+        return _resolve(ini, _ini_dir(config))
+    return None
+
+
+def _strict(item):
+    marker = item.get_closest_marker("rigsim_strict")
+    if marker is not None:
+        return bool(marker.args[0]) if marker.args else bool(marker.kwargs.get("enabled", True))
+    if item.config.getoption("--rigsim-strict"):
+        return True
+    return bool(item.config.getini("rigsim_strict"))
 
 
 def _used_by(item):
@@ -54,6 +138,8 @@ def _used_by(item):
         item.stash[_DAEMONS] = []
     return item.stash[_DAEMONS]
 
+
+# ---- the fixtures ----
 
 @pytest.fixture
 def rigsim(request):
@@ -147,10 +233,20 @@ def rigsim_session(request, _rigsim_session_daemons):
     return get
 
 
+@pytest.fixture
+def rigsim_rig(request, rigsim_session):
+    """The session's daemon on the rig --rigsim-rig=FILE or the ini key rigsim_rig names (the
+    built-in default rig without either), reset and its clock restored before each test, as
+    rigsim_session gives it."""
+    return rigsim_session(_rig_path(request.config))
+
+
+# ---- what a report gets ----
+
 def _wire_log_text(daemon, name):
     try:
         answer = daemon.control.log(name, WIRE_LOG_LAST)
-    except (ControlError, OSError) as e:
+    except (ControlError, NotControlApi, OSError) as e:
         return f"(no wire log: {e})"
     lines = []
     for e in answer.get("entries", []):
@@ -164,19 +260,54 @@ def _wire_log_text(daemon, name):
     return "\n".join(lines) or "(empty)"
 
 
-@pytest.hookimpl(hookwrapper=True)
-def pytest_runtest_makereport(item, call):
-    outcome = yield
-    report = outcome.get_result()
-    if report.when != "call" or not report.failed:
-        return
+def _daemons_of(item):
+    """Each daemon the test used once, with the log offset of when it first got it."""
     seen = {}
     for daemon, offset in item.stash.get(_DAEMONS, []):
         seen.setdefault(id(daemon), (daemon, offset))   # a daemon asked for twice: the first offset
-    for i, (daemon, offset) in enumerate(seen.values()):
+    return list(seen.values())
+
+
+def _attach_logs(item, report):
+    for i, (daemon, offset) in enumerate(_daemons_of(item)):
         report.sections.append((f"rigsimd log ({i + 1})", daemon.daemon_log()[offset:]))
         if daemon.control is None:
             continue
         for name in daemon.used:
             report.sections.append((f"wire log {name} ({i + 1}, last {WIRE_LOG_LAST})",
                                     _wire_log_text(daemon, name)))
+
+
+def _noted_mistakes(item):
+    """notes_text() of what the daemons the test used noted, or None."""
+    texts = []
+    for daemon, _ in _daemons_of(item):
+        if daemon.control is None or daemon.process is None or daemon.process.poll() is not None:
+            continue
+        try:
+            found = daemon.notes()
+        except (ControlError, NotControlApi, OSError) as e:
+            texts.append(f"rigsim strict mode: cannot read the wire logs: {e}")
+            continue
+        if found:
+            for n in found:
+                if n.device not in daemon.used:
+                    daemon.used.append(n.device)   # its wire log goes into the report too
+            texts.append(notes_text(found))
+    return "\n".join(texts) or None
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    report = outcome.get_result()
+    if report.when == "call" and report.passed and _strict(item):
+        mistakes = _noted_mistakes(item)
+        if mistakes:
+            report.outcome = "failed"
+            report.longrepr = ("rigsim strict mode (--rigsim-strict, rigsim_strict, "
+                               "@pytest.mark.rigsim_strict): " + mistakes)
+    if not report.failed or item.stash.get(_ATTACHED, False):
+        return
+    item.stash[_ATTACHED] = True
+    _attach_logs(item, report)

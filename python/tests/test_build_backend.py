@@ -35,7 +35,7 @@ def test_the_wheel_holds_the_package_metadata_entry_points_and_a_correct_record(
     assert name == "rigsim-0.1.0-py3-none-any.whl"
     with zipfile.ZipFile(tmp_path / name) as wheel:
         names = wheel.namelist()
-        for module in ("__init__", "cli", "control", "daemon", "pytest_plugin"):
+        for module in ("__init__", "cli", "control", "daemon", "modem_lines", "pytest_plugin"):
             assert f"rigsim/{module}.py" in names
         assert not [n for n in names if "__pycache__" in n or n.endswith(".pyc")]
         info = "rigsim-0.1.0.dist-info"
@@ -45,7 +45,7 @@ def test_the_wheel_holds_the_package_metadata_entry_points_and_a_correct_record(
         assert "Root-Is-Purelib: true" in wheel.read(f"{info}/WHEEL").decode()
         entry_points = wheel.read(f"{info}/entry_points.txt").decode()
         assert "[console_scripts]\nrigsimctl = rigsim.cli:main\n" in entry_points
-        assert "[pytest11]\nrigsim = rigsim.pytest_plugin\n" in entry_points
+        assert "[pytest11]\nrigsim.pytest_plugin = rigsim.pytest_plugin\n" in entry_points
         rows = list(csv.reader(io.StringIO(wheel.read(f"{info}/RECORD").decode())))
         assert sorted(r[0] for r in rows) == sorted(names)
         for path, digest, size in rows:

@@ -12,7 +12,8 @@ import time
 import pytest
 
 from fake_control import FakeControl
-from rigsim.cli import main
+from rigsim.cli import _default_hint, build_parser, control_url, main
+from rigsim.control import DEFAULT_CONTROL, ControlClient
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LAUNCHER = os.environ.get("RIGSIMCTL") or os.path.join(HERE, "..", "..", "scripts", "rigsimctl")
@@ -249,10 +250,29 @@ def test_control_from_the_environment(fake, monkeypatch):
     assert main(["clock"], out=out) == 0
 
 
-def test_no_control_is_an_error(monkeypatch, capsys):
+def test_without_an_address_the_default_rig_is_asked(monkeypatch):
     monkeypatch.delenv("RIGSIM_CONTROL", raising=False)
-    assert main(["rig"], out=io.StringIO()) == 1
-    assert "--control URL" in capsys.readouterr().err
+    args = build_parser().parse_args(["rig"])
+    assert control_url(args) == "http://127.0.0.1:40200"   # config/default.json "control"
+    assert "127.0.0.1:40200 is the default rig's" in _default_hint(control_url(args))
+    assert _default_hint("http://127.0.0.1:1") == ""
+
+
+def test_the_default_rig_serves_control_where_rigsimctl_looks():
+    with open(os.path.join(HERE, "..", "..", "config", "default.json")) as f:
+        rig = json.load(f)
+    assert f"127.0.0.1:{rig['control']['port']}" == DEFAULT_CONTROL
+
+
+@pytest.mark.parametrize("form", ["{host}:{port}", "http://{host}:{port}", "http://{host}:{port}/"])
+def test_control_takes_host_port_as_rigsimd_does(fake, form):
+    host, _, port = fake.url[len("http://"):].rpartition(":")
+    assert ctl_json(form.format(host=host, port=port), "clock")["tick_hz"] == 1000
+
+
+def test_host_port_forms_are_urls():
+    assert control_url(build_parser().parse_args(["--control", "[::1]:8080", "rig"])) == "http://[::1]:8080"
+    assert control_url(build_parser().parse_args(["--control", "127.0.0.1:0", "rig"])) == "http://127.0.0.1:0"
 
 
 def test_an_endpoints_file_without_control_is_an_error(tmp_path, capsys):
@@ -418,3 +438,37 @@ def test_real_frames(rigsim):
     assert lines[-1] == "collisions: none"
     result = launch(rig, "--control", rig.control.url, "frames", "nope")
     assert result.returncode == 1 and result.stderr == 'rigsimctl: 404: no frame named "nope"\n'
+
+
+# ---- pointed at a device's port ----
+
+def _one_line_error(capsys, argv):
+    status = main(argv, out=io.StringIO())
+    err = capsys.readouterr().err
+    assert status == 1
+    assert "Traceback" not in err and err.count("\n") == 1, err
+    return err
+
+
+def test_real_an_mcs_device_port_is_named_in_one_line(rigsim, capsys):
+    rig = rigsim()
+    err = _one_line_error(capsys, ["--control", rig.endpoint("mcs0").tcp, "rig"])
+    assert err.startswith(f"rigsimctl: {rig.endpoint('mcs0').tcp} answered ':E")
+    assert "(a SmarAct MCS answer), not HTTP: that is a device's port, not the control API" in err
+
+
+def test_real_an_apt_device_port_is_named_in_one_line(rigsim, capsys, monkeypatch):
+    rig = rigsim()
+    monkeypatch.setattr("rigsim.cli.ControlClient",
+                        lambda url, token=None: ControlClient(url, timeout_s=0.5, token=token))
+    err = _one_line_error(capsys, ["--control", rig.endpoint("tdc001").tcp, "rig"])
+    assert err.startswith(f"rigsimctl: no HTTP answer from {rig.endpoint('tdc001').tcp} within 0.5 s: "
+                          "is it a device's port (an APT device ignores HTTP)")
+
+
+def test_the_launcher_pointed_at_a_device_port_prints_one_line(rigsim):
+    rig = rigsim()
+    result = run_launcher("--control", rig.endpoint("mcs0").tcp, "clock")
+    assert result.returncode == 1
+    assert result.stderr.count("\n") == 1 and "Traceback" not in result.stderr
+    assert "that is a device's port" in result.stderr

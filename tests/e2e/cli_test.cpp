@@ -32,7 +32,8 @@ TEST_CASE("cli: --check-config accepts valid rigs", "[e2e][cli]")
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/apt_stages.json"),
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/xyz_on_rotation.json"),
                                       std::string(RIGSIM_SOURCE_DIR "/config/examples/fibre_alignment.json"),
-                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/goniometer_pair.json"));
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/goniometer_pair.json"),
+                                      std::string(RIGSIM_SOURCE_DIR "/config/examples/current_units.json"));
     const auto r = run_rigsimd({"--check-config", file});
     INFO(file << "\nstdout: " << r.out << "\nstderr: " << r.err);
     REQUIRE(r.exited);

@@ -76,10 +76,21 @@ TEST_CASE("control: pause holds an MCS move, step_ms finishes it, a bad request 
     CHECK(daemon.running());
 }
 
-TEST_CASE("control: off by default, the endpoints file has no control key", "[e2e][control]")
+TEST_CASE("control: off for a rig without \"control\", the endpoints file has no control key", "[e2e][control]")
 {
-    Daemon daemon;
+    Daemon daemon(Daemon::Options{{}, fixture("two_channel_rig.json"), {}});
     CHECK(daemon.endpoints_json().find("\"control\"") == std::string::npos);
+}
+
+TEST_CASE("control: the built-in default rig serves it (on an ephemeral port under --ephemeral-ports)",
+          "[e2e][control]")
+{
+    Daemon daemon;   // config/default.json: "control": {"port": 40200}, made ephemeral here
+    const auto control = control_endpoint(daemon);
+    CHECK(control.host == "127.0.0.1");
+    CHECK(control.port != 40200);
+    TcpClient api(control);
+    CHECK(http(api, "GET", "/api/clock").status == 200);
 }
 
 TEST_CASE("control: --control refuses a host name and a missing port", "[e2e][control][cli]")

@@ -125,9 +125,13 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
     CHECK(c1.max_speed_nm_per_s == 1);
 }
 
-TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100", "[unit][config]")
+TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100, control on 40200", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
+    // The control API on loopback at the port rigsimctl and the Python client ask by default
+    // (python/rigsim/control.py DEFAULT_CONTROL), so the README's rig can be steered at once.
+    REQUIRE(rig.control);
+    CHECK(rig.control->port == 40200);
     REQUIRE(rig.devices.size() == 14);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
