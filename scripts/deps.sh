@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# Install the Debian packages rigsim builds and tests with (python3-serial: the pyserial e2e
-# test; python3-pytest: the tests of python/rigsim and its pytest plugin; python3-venv: the
-# offline `pip install ./python` test), if any is missing (apt-get, as root or with sudo).
-# Sourced by scripts/run.sh and scripts/test.sh; safe to run again.
+# Install the Debian packages rigsim builds and tests with, if any is missing (apt-get, as root
+# or with sudo). Run by scripts/run.sh and scripts/test.sh; safe to run again.
+#   scripts/deps.sh          what building and running rigsimd needs (g++, CMake, Ninja, the
+#                            libraries)
+#   scripts/deps.sh --test   that and what the test suite needs: clang with its sanitizer
+#                            runtime (libclang-rt-14-dev) and symbolizer (llvm) for the ASan +
+#                            UBSan pass, python3-serial (the pyserial e2e test), python3-pytest
+#                            (the tests of python/rigsim and its plugin), python3-venv (the
+#                            offline `pip install ./python` test)
 set -euo pipefail
 
-packages=(g++ make cmake libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
-  python3 python3-serial python3-pytest python3-venv)
+packages=(g++ make cmake ninja-build libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
+  python3)
+if [ "${1:-}" = "--test" ]; then
+  packages+=(clang libclang-rt-14-dev llvm python3-serial python3-pytest python3-venv)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -6,6 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/release -j"$jobs" --target rigsimd
+bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release
+# rigsimctl and the RTS/DTR shim (librigsim_modemlines.so, for serial clients that toggle
+# RTS/DTR: docs/cli.md) beside the daemon.
+cmake --build build/release -j"$jobs" --target rigsimd rigsim_modemlines
 exec build/release/rigsimd "$@"
