@@ -66,7 +66,8 @@ private:
 
 constexpr std::string_view kUsage = R"(Usage: rigsimd [OPTION]...
 Emulate SmarAct MCS and Thorlabs APT motion controllers on pseudo-terminals and TCP
-sockets. Without --config, runs the built-in default rig (config/default.json).
+sockets. Without --config, runs the built-in default rig (config/default.json), with
+its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
 
   --config FILE          run the rig described in FILE (JSON, see docs/config.md)
   --check-config FILE    validate FILE and exit: 0 if valid, 2 with a message naming the
@@ -84,7 +85,8 @@ sockets. Without --config, runs the built-in default rig (config/default.json).
   --control ADDR:PORT    serve the HTTP control API (docs/control-api.md) on ADDR:PORT;
                          ADDR an IP address ([::1] for IPv6), PORT 0 picks a free port;
                          wins over the config's "control" (default: off unless the
-                         config has "control", then on 127.0.0.1)
+                         config has "control", then on 127.0.0.1; the default rig's
+                         is port 40200)
   --control-token TOKEN  the control API takes only requests carrying the header
                          "Authorization: Bearer TOKEN" (401 otherwise); TOKEN printable
                          ASCII without spaces, at most 1024 characters

@@ -3,8 +3,12 @@
 
 Usage: scripts/apt_coverage.py [--manual PATH] [--check DOC] [SOURCE_DIR]
 
-The manual (not in the repository) is read from --manual, else $RIGSIM_APT_MANUAL, else
-SOURCE_DIR/../shared/specs/thorlabs-apt-protocol.md; without it the script exits 77 (skipped).
+The manual (Thorlabs' "APT Communications Protocol", issue 3 of 2012, pp.131-138, as Markdown
+text; not part of the repository, docs/protocol/apt.md says where to obtain it) is read from
+--manual PATH, else $RIGSIM_APT_MANUAL. Without it, --check checks what the sources alone decide:
+every message of messages.hpp has its row in DOC's per-message tables and no row names an ID
+the table lacks, with each row's "kinds" cell as the sources give it; the per-unit table between
+the markers is left as it is.
 
 Reads the cross-reference tables (manual pp.131-138) from the manual's text, and what rigsim
 does from its sources: the message IDs (emulator/apt/messages.hpp), each model's kind, `takes`
@@ -15,9 +19,10 @@ unit's table counts as implemented when the unit acts on it (host->unit: a handl
 model's `takes` list or the generic set) or sends it (unit->host: the answer to a request it
 acts on, a GET of its `takes` list, or an unsolicited message of its kind).
 
-Prints the Markdown table of docs/protocol/apt.md ("Coverage per unit"). With --check DOC, exits 1
-(and prints the difference) when DOC's table between the markers differs from the output.
-Standard library only. Exit 2 on unreadable input or a bad argument.
+Prints the Markdown table of docs/protocol/apt.md ("Coverage per unit"; needs the manual). With
+--check DOC, exits 1 (and prints the difference) when DOC's tables differ from what the manual
+and the sources give; --write DOC rewrites them. Standard library only. Exit 2 on unreadable
+input or a bad argument, 77 when the table is asked for without a manual.
 """
 import os
 import re
@@ -25,9 +30,7 @@ import sys
 
 BEGIN = "<!-- apt_coverage.py: begin -->"
 END = "<!-- apt_coverage.py: end -->"
-# The manual is not part of the repository: beside it, as the issues cite it, or $RIGSIM_APT_MANUAL.
-MANUAL_BESIDE = os.path.join("..", "shared", "specs", "thorlabs-apt-protocol.md")
-SKIP = 77   # CTest SKIP_RETURN_CODE: no manual to read
+SKIP = 77   # no manual to print the per-unit table from
 
 # The cross-reference table each emulated model is counted against (the K-Cubes take their
 # T-Cube's table: the manual predates them), and the page it starts on.
@@ -296,13 +299,12 @@ def main(argv):
         else:
             sys.stderr.write(f"apt_coverage.py: unknown argument {a}\n")
             return 2
-    manual = manual or os.path.join(root, MANUAL_BESIDE)
-    if not os.path.exists(manual):
-        print(f"apt_coverage.py: no manual at {manual} (set RIGSIM_APT_MANUAL): skipped")
-        return SKIP
     src = Sources(root)
-    table = markdown(coverage(src, read(manual)))
+    table = markdown(coverage(src, read(manual))) if manual else None
     if check is None and write is None:
+        if table is None:
+            sys.stderr.write("apt_coverage.py: the per-unit table needs the manual: --manual PATH or $RIGSIM_APT_MANUAL\n")
+            return SKIP
         sys.stdout.write(table)
         return 0
     path = check or write
@@ -311,7 +313,8 @@ def main(argv):
     if start < 0 or end < 0:
         sys.stderr.write(f"apt_coverage.py: {path} has no {BEGIN} ... {END} block\n")
         return 1
-    expected, unknown, rowless = rows_with_kinds(doc[:start] + table[:-1] + doc[end + len(END):], kind_cells(src))
+    with_table = doc if table is None else doc[:start] + table[:-1] + doc[end + len(END):]
+    expected, unknown, rowless = rows_with_kinds(with_table, kind_cells(src))
     if unknown or rowless:
         sys.stderr.write(f"apt_coverage.py: {path}: rows of IDs not in messages.hpp: {unknown}; "
                          f"messages without a row: {[f'0x{i:04X}' for i in rowless]}\n")
@@ -326,7 +329,8 @@ def main(argv):
         sys.stderr.write(f"apt_coverage.py: {path} is out of date (regenerate with scripts/apt_coverage.py --write "
                          f"{path}); {len(diff)} line(s) differ:\n" + "\n".join(diff[:20]) + "\n")
         return 1
-    print(f"apt_coverage.py: {path} agrees with the manual and the sources")
+    print(f"apt_coverage.py: {path} agrees with " + ("the sources (no manual: the per-unit table not checked)"
+                                                      if table is None else "the manual and the sources"))
     return 0
 
 

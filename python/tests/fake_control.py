@@ -63,11 +63,11 @@ class FakeControl:
         self.clock = {"now_ticks": 0, "now_ms": 0.0, "tick_hz": 1000, "time_scale": 1.0, "paused": False}
         self.devices = {
             "mcs0": {"name": "mcs0", "protocol": "mcs", "model": "MCS-3D", "firmware": "1.2.44",
-                     "endpoints": {"tcp": "127.0.0.1:1", "pty": "/tmp/x/mcs0"},
+                     "endpoints": {"tcp": "127.0.0.1:1", "pty": "/dev/pts/1"},
                      "channels": [_channel(i) for i in range(3)], "faults": [],
                      "link": {"unplugged": False}},
             "apt0": {"name": "apt0", "protocol": "apt", "model": "TDC001", "firmware": "issue-3",
-                     "endpoints": {"tcp": "127.0.0.1:2", "pty": "/tmp/x/apt0"},
+                     "endpoints": {"tcp": "127.0.0.1:2", "pty": "/dev/pts/2"},
                      "channels": [_channel(0)], "faults": [], "link": {"unplugged": False}},
         }
         self.logs = {name: [{"seq": 1, "time_ms": 5.0, "direction": "in", "peer": "tcp",
