@@ -12,7 +12,7 @@ namespace rigsim::models {
 
 namespace {
 
-int sign(double x)
+int sign_of(double x)
 {
     return (x > 0) - (x < 0);
 }
@@ -160,9 +160,9 @@ void CollisionWatch::on_event(Ticks now)
     std::fill(pair_due_.begin(), pair_due_.end(), first);
     for (const std::size_t f : watched_) {
         const double q = kinematics_.joint_position(f);
-        int dir = consecutive ? sign(q - last_q_[f]) : 0;
+        int dir = consecutive ? sign_of(q - last_q_[f]) : 0;
         if (dir == 0 && drives_[f].velocity)
-            dir = sign(drives_[f].velocity());
+            dir = sign_of(drives_[f].velocity());
         direction_[f] = dir;
         moving = moving || dir != 0;
         if (q != last_q_[f])

@@ -19,8 +19,10 @@ jobs=$(nproc 2>/dev/null || echo 2)
 mark "release build (GCC, -Werror)"
 bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release -DRIGSIM_WERROR=ON
 cmake --build build/release -j"$jobs"
+# The tests wait on sockets, ptys and child processes more than they compute: twice as many at
+# once as there are cores keeps the cores busy (release: 21 s against 31 s at -j2).
 mark "release tests: unit, device, e2e, python"
-ctest --test-dir build/release -j"$jobs" --output-on-failure --no-tests=error
+ctest --test-dir build/release -j"$((jobs * 2))" --output-on-failure --no-tests=error
 
 mark "sanitizer build (clang, ASan + UBSan, -Werror)"
 bash scripts/configure.sh build/asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
@@ -28,6 +30,6 @@ bash scripts/configure.sh build/asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_
 cmake --build build/asan -j"$jobs" --target unit_tests device_tests rigsimd e2e_tests rigsim_modemlines
 mark "sanitizer tests: unit, device, e2e"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build/asan -j"$jobs" --output-on-failure --no-tests=error -L 'unit|device|e2e'
+  ctest --test-dir build/asan -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'unit|device|e2e'
 
 mark "all tests passed"

@@ -6,7 +6,6 @@ namespace rigsim::apt {
 
 namespace {
 
-constexpr std::uint16_t kChan1 = 0x01;
 
 /// Parameters as the module keeps them: for its channel 1, whatever channel word came.
 template <class P> P for_chan1(P p)

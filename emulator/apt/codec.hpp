@@ -1071,6 +1071,12 @@ struct PzGetPzStatusBits {
     std::uint32_t status_bits = 0;
     template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.status_bits); }
 };
+/// PZSTATUSBITS (p. 101-102) that the piezo and the strain gauge units both report.
+inline constexpr std::uint32_t kPzConnected = 0x00000001;
+inline constexpr std::uint32_t kPzZeroed = 0x00000010;
+inline constexpr std::uint32_t kPzZeroing = 0x00000020;
+/// Full scale of the piezo units' 16-bit outputs and readings (OUTPUTVOLTS, OUTPUTPOS, readings).
+inline constexpr double kPzFullScale = 32767.0;
 /// MGMSG_PZ_GET_PZSTATUSUPDATE (p. 103; 10 bytes, ERRATA).
 struct PzGetPzStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSUPDATE, false, UnitToHost);

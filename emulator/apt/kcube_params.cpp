@@ -8,7 +8,6 @@ namespace rigsim::apt {
 
 namespace {
 
-constexpr std::uint16_t kChan1 = 0x01;
 
 /// The blocks of the KCubeMotor family (codec_kcube.hpp).
 enum Block : unsigned {

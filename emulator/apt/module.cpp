@@ -11,7 +11,6 @@ namespace rigsim::apt {
 namespace {
 
 /// The only channel of a module: P_MOD_CHAN1.
-constexpr std::uint16_t kChan1 = 0x01;
 
 template <std::size_t N> std::array<char, N> padded(std::string_view s)
 {

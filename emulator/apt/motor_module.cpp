@@ -7,7 +7,6 @@ namespace rigsim::apt {
 namespace {
 
 /// The only channel of a module: P_MOD_CHAN1.
-constexpr std::uint16_t kChan1 = 0x01;
 
 } // namespace
 

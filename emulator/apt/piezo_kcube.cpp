@@ -11,7 +11,6 @@
 namespace rigsim::apt {
 
 namespace {
-constexpr std::uint16_t kChan1 = 0x01;
 } // namespace
 
 bool PiezoModule::saves(std::uint16_t id) const

@@ -10,8 +10,6 @@ namespace rigsim::apt {
 
 namespace {
 
-constexpr std::uint16_t kChan1 = 0x01;
-constexpr double kFullScale = 32767.0;
 /// p. 100's example: the power-up PI constants.
 constexpr int kPowerUpProp = 100;
 constexpr int kPowerUpInt = 15;
@@ -20,10 +18,7 @@ constexpr int kSmoothMs = 500;
 /// p. 123: slew rate in V/ms = value × Vmax / 19000.
 constexpr double kSlewDivisor = 19000.0;
 
-// PZSTATUSBITS (p. 101-102).
-constexpr std::uint32_t kConnected = 0x00000001;
-constexpr std::uint32_t kZeroed = 0x00000010;
-constexpr std::uint32_t kZeroing = 0x00000020;
+// PZSTATUSBITS (p. 101-102) besides codec.hpp's msg::kPzConnected, msg::kPzZeroed, msg::kPzZeroing.
 constexpr std::uint32_t kGaugeConnected = 0x00000100;
 constexpr std::uint32_t kClosedLoop = 0x00000400;
 constexpr std::uint32_t kHw75V = 0x00001000;
@@ -111,14 +106,14 @@ void PiezoModule::demand(double v, Ticks now)
 
 double PiezoModule::volts_of(std::int16_t code) const
 {
-    return code / kFullScale * max_v_;
+    return code / msg::kPzFullScale * max_v_;
 }
 
 std::int16_t PiezoModule::code_of(double v) const
 {
     if (max_v_ <= 0)   // OUTPUTMAXVOLTS 0 (p. 121 allows it): the output is 0 V, 0 % of any maximum
         return 0;
-    return static_cast<std::int16_t>(std::clamp(std::lround(v / max_v_ * kFullScale), -32768L, 32767L));
+    return static_cast<std::int16_t>(std::clamp(std::lround(v / max_v_ * msg::kPzFullScale), -32768L, 32767L));
 }
 
 std::optional<double> PiezoModule::fed_back_um(Ticks t) const
@@ -143,7 +138,7 @@ std::uint16_t PiezoModule::position_word(Ticks t) const
 {
     if (!has_feedback())
         return position_code_;
-    return static_cast<std::uint16_t>(std::clamp(std::lround(position_frac(t) * kFullScale), 0L, 32767L));
+    return static_cast<std::uint16_t>(std::clamp(std::lround(position_frac(t) * msg::kPzFullScale), 0L, 32767L));
 }
 
 double PiezoModule::smoothed(double v, Ticks now) const
@@ -156,7 +151,7 @@ double PiezoModule::smoothed(double v, Ticks now) const
 
 void PiezoModule::apply_closed_loop(Ticks now, Ticks elapsed)
 {
-    const double out = pi_.run(position_code_ / kFullScale, position_frac(now), elapsed, clock_.tick_hz());
+    const double out = pi_.run(position_code_ / msg::kPzFullScale, position_frac(now), elapsed, clock_.tick_hz());
     demand(smoothed(out * max_v_, now), now);
 }
 
@@ -204,7 +199,7 @@ bool PiezoModule::busy(Ticks now) const
         return output_at(now) != ramp_.target_v;
     // Settled: the position read is the demand to the count, or the output stands at a rail.
     const double out = output_at(now);
-    const long error = std::lround(position_frac(now) * kFullScale) - static_cast<long>(position_code_);
+    const long error = std::lround(position_frac(now) * msg::kPzFullScale) - static_cast<long>(position_code_);
     return std::abs(error) > 1 && out > 0 && out < max_v_;
 }
 
@@ -213,7 +208,7 @@ void PiezoModule::resume_loop(Ticks now)
     const bool fed = has_feedback();
     if (closed_loop() && fed && !fed_) {
         last_tick_ = now;
-        pi_.reset(output_at(now) / max_v_, position_code_ / kFullScale, position_frac(now));
+        pi_.reset(output_at(now) / max_v_, position_code_ / msg::kPzFullScale, position_frac(now));
     }
     fed_ = fed;
 }
@@ -254,11 +249,11 @@ void PiezoModule::power_down(bool)
 
 std::uint32_t PiezoModule::status_bits() const
 {
-    std::uint32_t bits = kConnected;
+    std::uint32_t bits = msg::kPzConnected;
     if (zeroed_)
-        bits |= kZeroed;
+        bits |= msg::kPzZeroed;
     if (zero_end_ != kNever)
-        bits |= kZeroing;
+        bits |= msg::kPzZeroing;
     if (has_feedback())
         bits |= kGaugeConnected;
     if (closed_loop())
@@ -502,7 +497,7 @@ void PiezoModule::on(const msg::SetTpzIoSettings& m)
     // integrating the time it stood.
     if (closed_loop() && has_feedback() != fed) {
         last_tick_ = now;
-        pi_.reset(output_at(now) / max_v_, position_code_ / kFullScale, position_frac(now));
+        pi_.reset(output_at(now) / max_v_, position_code_ / msg::kPzFullScale, position_frac(now));
     }
     fed_ = has_feedback();
 }

@@ -10,7 +10,6 @@ namespace rigsim::apt {
 namespace {
 
 /// The only channel of a module: P_MOD_CHAN1.
-constexpr std::uint8_t kChan1 = 0x01;
 
 /// MOT_GET_STATUSUPDATE bits (D-4): the output, as Kinesis reads a KSC101's status word.
 constexpr std::uint32_t kOutputOn = 0x00000001;

@@ -10,18 +10,6 @@
 
 namespace rigsim::apt {
 
-namespace {
-
-constexpr std::uint16_t kChan1 = 0x01;
-constexpr double kFullScale = 32767.0;
-
-// PZ_GET_PZSTATUSUPDATE status bits (p. 101-104).
-constexpr std::uint32_t kConnected = 0x00000001;
-constexpr std::uint32_t kZeroed = 0x00000010;
-constexpr std::uint32_t kZeroing = 0x00000020;
-
-} // namespace
-
 const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator)
 {
     for (const auto& key : world.keys())
@@ -76,7 +64,7 @@ std::int16_t StrainGaugeModule::code_of(double um, std::uint16_t mode) const
     double frac = um / travel_um();
     if (mode == 3)
         frac = um * stiffness_n_per_um_ / (force_calib_ * 0.001);
-    return static_cast<std::int16_t>(std::clamp(std::lround(frac * kFullScale), -32767L, 32767L));
+    return static_cast<std::int16_t>(std::clamp(std::lround(frac * msg::kPzFullScale), -32767L, 32767L));
 }
 
 std::int16_t StrainGaugeModule::reading_code(Ticks now) const
@@ -86,11 +74,11 @@ std::int16_t StrainGaugeModule::reading_code(Ticks now) const
 
 std::uint32_t StrainGaugeModule::status_bits() const
 {
-    std::uint32_t bits = linked() ? kConnected : 0;
+    std::uint32_t bits = linked() ? msg::kPzConnected : 0;
     if (zeroed_)
-        bits |= kZeroed;
+        bits |= msg::kPzZeroed;
     if (zero_end_ != kNever)
-        bits |= kZeroing;
+        bits |= msg::kPzZeroing;
     return bits;
 }
 
@@ -133,7 +121,7 @@ void StrainGaugeModule::describe(nlohmann::json& out) const
     const double um = linked() ? gauge_->reading_um(now) : 0.0;
     // The reading as the display mode shows it (D-15): µm from the zero, the ±10 V output, or
     // the force through the rig's stiffness.
-    const double value = display_mode_ == 2 ? code / kFullScale * 10.0 : display_mode_ == 3 ? um * stiffness_n_per_um_ : um;
+    const double value = display_mode_ == 2 ? code / msg::kPzFullScale * 10.0 : display_mode_ == 3 ? um * stiffness_n_per_um_ : um;
     out["display_mode"] = display_mode_;
     out["reading_code"] = code;
     out["reading"] = {{"value", value}, {"unit", kUnits[std::clamp<int>(display_mode_, 1, 3) - 1]}};

@@ -28,6 +28,9 @@ inline constexpr std::uint8_t kBay0 = 0x21;         ///< bay 0 of a card-slot sy
 inline constexpr std::uint8_t kBay9 = 0x2A;         ///< the last bay
 inline constexpr std::uint8_t kGenericUsb = 0x50;   ///< generic USB hardware unit
 
+/// Chan Ident of channel 1, the one channel a single unit or a rack's bay answers for.
+inline constexpr std::uint16_t kChan1 = 0x01;
+
 /// True for the addresses of section 4 (without the data flag).
 constexpr bool is_valid_address(std::uint8_t a)
 {

@@ -44,7 +44,7 @@ bool is_ip_literal(const std::string& host)
 }
 
 /// `s` quoted for a message, cut to a sane length (a header may be 8 KiB).
-std::string quoted(std::string_view s)
+std::string in_quotes(std::string_view s)
 {
     constexpr std::size_t kMax = 80;
     std::string out = "\"";
@@ -79,13 +79,13 @@ std::optional<AccessRefusal> check_host(const HttpAccess& access, const RequestH
     }
     const auto name = host_name_of(*head.host);
     if (!name)
-        return AccessRefusal{400, "Host " + quoted(*head.host) + ": expected host[:port]"};
+        return AccessRefusal{400, "Host " + in_quotes(*head.host) + ": expected host[:port]"};
     if (*name == "localhost" || is_ip_literal(*name))
         return std::nullopt;
     for (const auto& allowed : access.allowed_hosts)
         if (lower(allowed) == *name)
             return std::nullopt;
-    return AccessRefusal{403, "Host " + quoted(*head.host)
+    return AccessRefusal{403, "Host " + in_quotes(*head.host)
                                   + ": not an IP address, localhost or a name allowed with --control-allow-host "
                                     "(a page that reaches the daemon through another name is refused)"};
 }
@@ -95,7 +95,7 @@ std::optional<AccessRefusal> check_origin(const RequestHead& head)
     if (head.sec_fetch_site) {
         const auto site = lower(trim(*head.sec_fetch_site));
         if (site != "same-origin" && site != "none")
-            return AccessRefusal{403, "Sec-Fetch-Site " + quoted(site)
+            return AccessRefusal{403, "Sec-Fetch-Site " + in_quotes(site)
                                           + ": requests from other sites' pages are refused"};
     }
     if (!head.origin)
@@ -103,7 +103,7 @@ std::optional<AccessRefusal> check_origin(const RequestHead& head)
     const auto origin = lower(trim(*head.origin));
     if (head.host && origin == "http://" + lower(trim(*head.host)))
         return std::nullopt;
-    return AccessRefusal{403, "Origin " + quoted(*head.origin) + ": cross-origin requests are refused"};
+    return AccessRefusal{403, "Origin " + in_quotes(*head.origin) + ": cross-origin requests are refused"};
 }
 
 std::optional<AccessRefusal> check_token(const HttpAccess& access, const RequestHead& head)
@@ -174,7 +174,7 @@ std::optional<AccessRefusal> check_access(const HttpAccess& access, const Reques
     const bool bodyless_read = head.method == "GET" || head.method == "HEAD";
     if (head.content_type ? !is_json_media_type(*head.content_type) && (head.has_body || !bodyless_read)
                           : head.has_body)
-        return AccessRefusal{415, "Content-Type " + (head.content_type ? quoted(*head.content_type) : "absent")
+        return AccessRefusal{415, "Content-Type " + (head.content_type ? in_quotes(*head.content_type) : "absent")
                                       + ": a request body must be application/json"};
     return std::nullopt;
 }

@@ -15,7 +15,7 @@ namespace rigsim {
 
 namespace {
 
-[[noreturn]] void fail(int error, const std::string& what)
+[[noreturn]] void fail_with(int error, const std::string& what)
 {
     throw std::system_error(error, std::generic_category(), what);
 }
@@ -66,12 +66,12 @@ void sync_directory(const std::string& dir)
 {
     const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0)
-        fail(errno, "cannot open directory " + dir + " to sync it");
+        fail_with(errno, "cannot open directory " + dir + " to sync it");
     // EINVAL: a file system that cannot sync directories (nothing more to do there).
     const int rc = ::fsync(fd) == 0 || errno == EINVAL ? 0 : errno;
     ::close(fd);
     if (rc != 0)
-        fail(rc, "cannot sync directory " + dir);
+        fail_with(rc, "cannot sync directory " + dir);
 }
 
 /// Opens `path` for a new file (O_EXCL|O_NOFOLLOW: an existing file or link is not touched);
@@ -116,18 +116,18 @@ std::string resolve_symlinks(const std::string& path)
         if (::lstat(p.c_str(), &st) != 0) {
             if (errno == ENOENT)
                 return p;   // the file a write creates
-            fail(errno, "cannot examine " + p);
+            fail_with(errno, "cannot examine " + p);
         }
         if (!S_ISLNK(st.st_mode))
             return p;
         std::string target(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 255) + 1, '\0');
         const auto n = ::readlink(p.c_str(), target.data(), target.size());
         if (n < 0)
-            fail(errno, "cannot read the symlink " + p);
+            fail_with(errno, "cannot read the symlink " + p);
         target.resize(static_cast<std::size_t>(n));
         p = !target.empty() && target[0] == '/' ? target : directory_of(p) + "/" + target;
     }
-    fail(ELOOP, "cannot follow the symlink " + path);
+    fail_with(ELOOP, "cannot follow the symlink " + path);
 }
 
 void write_file_atomically(const std::string& path, const std::string& text)
@@ -139,10 +139,10 @@ void write_file_atomically(const std::string& path, const std::string& text)
         tmp = dest + ".tmp" + std::to_string(::getpid()) + "." + random_suffix();
         fd = create_new(tmp);
         if (fd < 0 && errno != EEXIST)
-            fail(errno, "cannot create " + tmp);
+            fail_with(errno, "cannot create " + tmp);
     }
     if (fd < 0)
-        fail(EEXIST, "cannot create a temporary file beside " + dest);
+        fail_with(EEXIST, "cannot create a temporary file beside " + dest);
 
     // A replaced file keeps its permissions (a lab may have made it group-writable).
     struct stat existing {};
@@ -157,7 +157,7 @@ void write_file_atomically(const std::string& path, const std::string& text)
         rc = errno;
     if (rc != 0) {
         ::unlink(tmp.c_str());
-        fail(rc, "cannot write " + dest + " (through " + tmp + ")");
+        fail_with(rc, "cannot write " + dest + " (through " + tmp + ")");
     }
     sync_directory(directory_of(dest));
 }
@@ -197,19 +197,19 @@ std::string write_new_file(const std::string& base, const std::string& text)
         if (fd < 0) {
             if (errno == EEXIST)
                 continue;
-            fail(errno, "cannot create " + path);
+            fail_with(errno, "cannot create " + path);
         }
         int rc = write_and_sync(fd, text);
         if (::close(fd) != 0 && rc == 0)
             rc = errno;
         if (rc != 0) {
             ::unlink(path.c_str());
-            fail(rc, "cannot write " + path);
+            fail_with(rc, "cannot write " + path);
         }
         sync_directory(directory_of(path));
         return path;
     }
-    fail(EEXIST, "cannot create " + base + " or " + base + ".1 to .999");
+    fail_with(EEXIST, "cannot create " + base + " or " + base + ".1 to .999");
 }
 
 } // namespace rigsim

@@ -105,7 +105,7 @@ std::string tcp_address_text(const boost::asio::ip::address& address, std::uint1
 struct Rig::Entry {
     std::unique_ptr<Device> device;
     std::unique_ptr<Link> link;
-    std::unique_ptr<PacedDevice> paced;
+    std::unique_ptr<Device> paced;   ///< a PacedDevice around the link
     std::unique_ptr<TcpEndpoint> tcp;
     std::unique_ptr<PtyEndpoint> pty;
 };

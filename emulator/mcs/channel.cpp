@@ -24,7 +24,7 @@ models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
 
 Channel::Channel(int index, const McsChannelConfig& config, Firmware firmware, models::World& world,
                  const std::string& key)
-    : index_(index), firmware_(firmware), clock_(world.clock()),
+    : firmware_(firmware), clock_(world.clock()),
       body_(world.emplace<models::StickSlipPositioner>(key, world.clock(), stick_slip_config(index, config))),
       config_(config),
       sensor_(config.sensor_type == "none" ? nullptr : sensor_type_by_symbol(config.sensor_type)),

@@ -272,7 +272,6 @@ private:
     /// A burst ended (body outcome BurstDone or LimitMet).
     void end_burst(bool limit_met);
 
-    int index_;
     Firmware firmware_;
     const Clock& clock_;
     models::StickSlipPositioner& body_;

@@ -89,7 +89,8 @@ struct Fixture {
     {
         Eigen::Isometry3d up = Eigen::Isometry3d::Identity();
         up.translation() = Eigen::Vector3d(0, 0, 10);
-        kinematics.add_frame("x", 0, up, models::Joint{models::JointType::Prismatic, Eigen::Vector3d::UnitX(), {}},
+        kinematics.add_frame("x", 0, up,
+                             models::Joint{models::JointType::Prismatic, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero()},
                              [this] { return stage.position_m * 1000; });
         Eigen::Isometry3d above = Eigen::Isometry3d::Identity();
         above.translation() = Eigen::Vector3d(0, 0, 5);
