@@ -4,8 +4,8 @@
 #   scripts/deps.sh          what building and running rigsimd needs (g++, CMake, Ninja, the
 #                            libraries)
 #   scripts/deps.sh --test   that and what the test suite needs: clang with its sanitizer
-#                            runtime (libclang-rt-14-dev) and symbolizer (llvm) for the ASan +
-#                            UBSan pass, python3-serial (the pyserial e2e test), python3-pytest
+#                            runtime (libclang-rt-14-dev), symbolizer (llvm) and linker (lld)
+#                            for the ASan + UBSan pass, python3-serial (the pyserial e2e test), python3-pytest
 #                            (the tests of python/rigsim and its plugin), python3-venv (the
 #                            offline `pip install ./python` test)
 set -euo pipefail
@@ -13,7 +13,7 @@ set -euo pipefail
 packages=(g++ make cmake ninja-build libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
   python3)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(clang libclang-rt-14-dev llvm python3-serial python3-pytest python3-venv)
+  packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv)
 fi
 
 missing=()
