@@ -13,8 +13,9 @@ The pytest plugin (rigsim.pytest_plugin) gives tests the `rigsim` and `rigsim_se
 factories and the ready `rigsim_rig`. modem_lines_shim() finds the RTS/DTR shim for LD_PRELOAD.
 """
 
-from rigsim.control import DEFAULT_CONTROL, ControlClient, ControlError, NotControlApi, NotIdle, Placement, Pose
+from rigsim.control import (DEFAULT_CONTROL, ControlClient, ControlError, NoControlAnswer, NotControlApi, NotIdle,
+                            Placement, Pose)
 from rigsim.daemon import Endpoint, Noted, Rigsim, RigsimError, modem_lines_preloaded, modem_lines_shim
 
-__all__ = ["DEFAULT_CONTROL", "ControlClient", "ControlError", "Endpoint", "NotControlApi", "NotIdle", "Noted",
-           "Placement", "Pose", "Rigsim", "RigsimError", "modem_lines_preloaded", "modem_lines_shim"]
+__all__ = ["DEFAULT_CONTROL", "ControlClient", "ControlError", "Endpoint", "NoControlAnswer", "NotControlApi",
+           "NotIdle", "Noted", "Placement", "Pose", "Rigsim", "RigsimError", "modem_lines_preloaded", "modem_lines_shim"]

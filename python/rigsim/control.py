@@ -65,9 +65,14 @@ DEFAULT_CONTROL = "127.0.0.1:40200"
 _DIRECT = urllib.request.build_opener(urllib.request.ProxyHandler({}))
 
 
-class NotControlApi(Exception):
+class NotControlApi(OSError):
     """The address answered, but not as rigsimd's control API does (a device's TCP port, another
-    server), or not at all within the timeout: the message says which, in one line."""
+    server): the message says so, in one line. An OSError, as the connection's other failures."""
+
+
+class NoControlAnswer(NotControlApi, TimeoutError):
+    """No HTTP answer within the client's timeout: an APT device's port (which ignores HTTP), or a
+    daemon too busy to answer. A TimeoutError too, as before the message named the port."""
 
 
 def control_url(address=None):
@@ -99,8 +104,8 @@ def _not_control_api(url, exc, timeout_s):
     hint = ("the control API's address is the 'control:' line rigsimd prints, the \"control\" key "
             f"of --endpoints-json, or {DEFAULT_CONTROL} for the default rig")
     if isinstance(exc, (TimeoutError, socket.timeout)):
-        return NotControlApi(f"no HTTP answer from {where} within {timeout_s:g} s: is it a device's port "
-                             f"(an APT device ignores HTTP) or a busy daemon? {hint}")
+        return NoControlAnswer(f"no HTTP answer from {where} within {timeout_s:g} s: is it a device's port "
+                               f"(an APT device ignores HTTP) or a busy daemon? {hint}")
     if isinstance(exc, http.client.RemoteDisconnected):
         return NotControlApi(f"{where} closed the connection without an HTTP answer: is it a device's "
                              f"port? {hint}")

@@ -233,8 +233,9 @@ def test_the_control_client_on_a_device_port_says_so(rigsim):
     rig = rigsim()
     with pytest.raises(NotControlApi, match=r"answered ':E-1,.*\(a SmarAct MCS answer\), not HTTP"):
         ControlClient(rig.endpoint("mcs0").tcp).rig()
-    with pytest.raises(NotControlApi, match=r"no HTTP answer from .* within 0.3 s"):
+    with pytest.raises(NotControlApi, match=r"no HTTP answer from .* within 0.3 s") as silent:
         ControlClient(rig.endpoint("kdc101").tcp, timeout_s=0.3).rig()
+    assert isinstance(silent.value, TimeoutError)   # as a timeout always was
     # the devices are none the worse for it
     with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s:
         s.sendall(b":GNC\n")
