@@ -2,6 +2,7 @@
 // Flags, config, the rig, the loop; exceptions stop here.
 
 #include "emulator/control/control_api.hpp"
+#include "emulator/core/log_format.hpp"
 #include "emulator/control/http_server.hpp"
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/logging.hpp"
@@ -11,7 +12,6 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
-#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>

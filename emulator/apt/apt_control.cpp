@@ -3,6 +3,7 @@
 // the power cycle, the wire log and the events.
 
 #include "emulator/apt/apt_device.hpp"
+#include "emulator/core/log_format.hpp"
 #include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/stage_file.hpp"
 #include "emulator/apt/wire_decode.hpp"
@@ -11,7 +12,6 @@
 #include "models/axis.hpp"
 
 #include <nlohmann/json.hpp>
-#include <spdlog/logger.h>
 
 #include <cmath>
 #include <cstdio>

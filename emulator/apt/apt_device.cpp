@@ -1,4 +1,5 @@
 #include "emulator/apt/apt_device.hpp"
+#include "emulator/core/log_format.hpp"
 #include "emulator/apt/config.hpp"
 #include "emulator/core/state_store.hpp"
 
@@ -11,7 +12,6 @@
 #include "emulator/apt/wire.hpp"
 #include "emulator/apt/wire_decode.hpp"
 
-#include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 #include "emulator/apt/module.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/apt/set_ranges.hpp"
 
-#include <spdlog/spdlog.h>
 
 #include <cassert>
 

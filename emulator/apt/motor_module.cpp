@@ -1,6 +1,6 @@
 #include "emulator/apt/motor_module.hpp"
+#include "emulator/core/log_format.hpp"
 
-#include <spdlog/spdlog.h>
 
 namespace rigsim::apt {
 

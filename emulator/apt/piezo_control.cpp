@@ -1,9 +1,9 @@
 // The piezo module's face to the control API: describe (GET), PATCH of TRIG IN and the trace
 // query. What a LUT run does on the wire stays in piezo_module.cpp.
 #include "emulator/apt/piezo_module.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 
 namespace rigsim::apt {

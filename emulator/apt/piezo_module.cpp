@@ -1,7 +1,7 @@
 #include "emulator/apt/piezo_module.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>

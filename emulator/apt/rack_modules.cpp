@@ -1,6 +1,6 @@
 #include "emulator/apt/rack_modules.hpp"
+#include "emulator/core/log_format.hpp"
 
-#include <spdlog/spdlog.h>
 
 #include <type_traits>
 

@@ -1,4 +1,5 @@
 #include "emulator/control/http_server.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/transport/tcp_endpoint.hpp"
 

@@ -1,4 +1,5 @@
 #include "emulator/core/rig.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/core/rig_families.hpp"
 #include "emulator/core/rig_kinematics.hpp"

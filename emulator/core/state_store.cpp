@@ -1,9 +1,9 @@
 #include "emulator/core/state_store.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/device.hpp"
 
-#include <spdlog/spdlog.h>
 
 #include <fcntl.h>
 #include <sys/stat.h>

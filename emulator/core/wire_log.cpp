@@ -1,9 +1,9 @@
 #include "emulator/core/wire_log.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/core/event_bus.hpp"
 
 #include <nlohmann/json.hpp>
-#include <spdlog/logger.h>
 
 #include <algorithm>
 

@@ -1,4 +1,5 @@
 #include "emulator/mcs/mcs_device.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/core/event_bus.hpp"
 #include "emulator/mcs/line_framer.hpp"
@@ -6,7 +7,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <spdlog/logger.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>

@@ -1,4 +1,5 @@
 #include "emulator/transport/pty_endpoint.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include "emulator/transport/link_lock.hpp"
 

@@ -1,4 +1,5 @@
 #include "emulator/transport/tcp_endpoint.hpp"
+#include "emulator/core/log_format.hpp"
 
 #include <boost/asio/write.hpp>
 
