@@ -6,8 +6,8 @@
 #include "emulator/control/http_server.hpp"
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/logging.hpp"
-#include "emulator/core/rig.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/transport/link_lock.hpp"
 
 #include <boost/asio/io_context.hpp>

@@ -7,8 +7,8 @@
 #include "emulator/control/frame_book.hpp"
 #include "emulator/control/http_server.hpp"
 #include "emulator/core/event_bus.hpp"
-#include "emulator/core/rig.hpp"
-#include "emulator/core/ticker.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/ticker.hpp"
 #include "models/clock.hpp"
 
 #include <functional>

@@ -3,7 +3,7 @@
 // GET /api/faults lists, and where each kind acts: the device (ControlSurface::add_fault), the
 // link between the device and its clients (Link), or a power cycle.
 
-#include "emulator/core/rig.hpp"
+#include "emulator/daemon/rig.hpp"
 #include "models/clock.hpp"
 
 #include <nlohmann/json.hpp>

@@ -5,7 +5,7 @@
 
 #include "emulator/control/frames_json.hpp"
 #include "emulator/core/control_surface.hpp"
-#include "emulator/core/rig.hpp"
+#include "emulator/daemon/rig.hpp"
 #include "models/kinematics.hpp"
 
 #include <Eigen/Geometry>

@@ -1,7 +1,7 @@
 #pragma once
 // The protocol families a rig may name ("mcs", "apt"), as core sees them: a name, the loader
 // of a device's section and the factory of its Device. Core knows no family; the daemon layer
-// (emulator/core/rig_families.cpp) registers them.
+// (emulator/daemon/rig_families.cpp) registers them.
 
 #include "emulator/core/rig_config.hpp"
 

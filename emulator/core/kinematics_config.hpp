@@ -4,7 +4,7 @@
 // pairs of frames checked for collisions, as plain data. The loader checks the tree (one
 // root, known parents, no cycle, no name twice, limits) and every vector, and lists the
 // frames parent first; the rig builds models::Kinematics from it and binds each joint to its
-// device's channel (emulator/core/rig_kinematics.cpp), where the checks that need the devices
+// device's channel (emulator/daemon/rig_kinematics.cpp), where the checks that need the devices
 // (channel range, what the channel moves) run.
 
 #include <nlohmann/json_fwd.hpp>

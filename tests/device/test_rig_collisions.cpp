@@ -6,8 +6,8 @@
 #include "apt/apt_harness.hpp"
 
 #include "emulator/core/event_bus.hpp"
-#include "emulator/core/rig.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 #include "tests/support/temp_dir.hpp"
 

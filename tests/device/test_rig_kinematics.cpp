@@ -1,10 +1,10 @@
-// A rig's frames bound to its devices' channels (emulator/core/rig_kinematics.cpp and each
+// A rig's frames bound to its devices' channels (emulator/daemon/rig_kinematics.cpp and each
 // family's ControlSurface::joint): moving a channel on the stepped clock moves its frame and
 // everything on it; a channel that cannot drive its joint is a config error when the rig is built
 // (and in --check-config), naming the frame's pointer.
 #include "emulator/apt/apt_device.hpp"
-#include "emulator/core/rig.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/mcs/mcs_device.hpp"
 #include "models/axis.hpp"
 #include "models/piezo_actuator.hpp"

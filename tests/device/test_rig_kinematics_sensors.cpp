@@ -2,8 +2,8 @@
 // world"): a TSG001 on a TPZ001 that a KDC101 carries reads the actuator's own extension in the
 // world, whatever the coarse stage under it does, while the frames follow both; a stepper's lost
 // microsteps move its counters, not its frame.
-#include "emulator/core/rig.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "models/axis.hpp"
 #include "models/piezo_actuator.hpp"
 #include "models/strain_gauge.hpp"

@@ -43,7 +43,7 @@ TEST_CASE("lifecycle: SIGTERM or SIGINT with clients connected exits 0 and remov
 TEST_CASE("lifecycle: --time-scale 10 is accepted and the clock runs: a move completes",
           "[e2e][lifecycle]")
 {
-    // How fast the scaled clock runs is unit-tested on the Ticker (tests/unit/core/test_ticker.cpp)
+    // How fast the scaled clock runs is unit-tested on the Ticker (tests/unit/daemon/test_ticker.cpp)
     // and the move's timing on the stepped clock (tests/device/mcs/test_mcs_timing.cpp): here
     // only that the daemon takes the flag and its clock carries a move to the end.
     Daemon daemon({"", fixture("long_travel_rig.json"), {"--time-scale", "10"}});

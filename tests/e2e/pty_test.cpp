@@ -86,7 +86,7 @@ TEST_CASE("pty: faithful timing paces answers at the controller's baud rate", "[
 {
     // The rate the device asks for (9600 baud from the factory, CB + R) is tested on the
     // device (tests/device/mcs/test_mcs_timing.cpp "faithful_timing: ..."). The pacing itself
-    // is the link's (emulator/core/link.hpp), in clock time at scale 1: only lower bounds, which a
+    // is the link's (emulator/daemon/link.hpp), in clock time at scale 1: only lower bounds, which a
     // busy machine cannot break.
     Daemon::Options options;
     options.config_json = R"({"devices":[{"name":"mcs0","protocol":"mcs","faithful_timing":true,

@@ -3,7 +3,7 @@
 // stage's limit switches and home direction are its power-up LIMSWITCHPARAMS and HOMEPARAMS.
 #include "apt_harness.hpp"
 
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // count against the wall clock through the daemon (--time-scale 10); the serial line's pace
 // with the rig's faithful_timing.
 #include "apt_harness.hpp"
-#include "emulator/core/link.hpp"
+#include "emulator/daemon/link.hpp"
 
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 // out on the stepped clock. The rigs go through the loader, as rigsimd reads them.
 #include "mcs_harness.hpp"
 
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -2,7 +2,7 @@
 // FRM, CS, GPPK, SP/SSC after referencing, MAA/MAR/GA, SPL/GPL, SAL/GAL.
 #include "mcs_harness.hpp"
 
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -11,7 +11,7 @@
 // unprompted messages (asynchronous mode) appear before the answers of the next '>' line.
 #include "mcs_harness.hpp"
 
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 

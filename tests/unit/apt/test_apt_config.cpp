@@ -4,7 +4,7 @@
 #include "emulator/apt/config.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/family_registry.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/core/state_store.hpp"
 #include "models/clock.hpp"
 #include "models/world.hpp"

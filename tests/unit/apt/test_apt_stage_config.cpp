@@ -1,7 +1,7 @@
 // A motor controller's stage in the rig (docs/config.md, "APT stages"): a shipped stage's name or
 // an inline stage object, on a single unit and in a rack bay; each refusal names its JSON pointer.
 #include "emulator/apt/config.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

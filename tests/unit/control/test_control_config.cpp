@@ -1,6 +1,6 @@
 // The rig JSON's "control" object and the endpoints document's "control" URL.
-#include "emulator/core/rig.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 // The rig JSON's "kinematics" section (emulator/core/kinematics_config.cpp): a valid tree read
 // parent first with its pointers, and every check with its exact pointer and message.
 #include "emulator/core/kinematics_config.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

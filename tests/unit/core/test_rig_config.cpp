@@ -1,5 +1,5 @@
 #include "emulator/apt/config.hpp"
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/mcs/config.hpp"
 
 #include <catch2/catch.hpp>

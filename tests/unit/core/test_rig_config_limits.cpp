@@ -1,6 +1,6 @@
 // Config loader limits and messages: what a file may be, how big, which names, and how much
 // of a bad value an error echoes.
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // MCS firmware generations in the rig: "firmware" picks the generation (the manual's without it);
 // "mcs.interface_version" given beside it must belong to it (docs/config.md).
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/firmware.hpp"
 

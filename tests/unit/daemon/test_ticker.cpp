@@ -3,7 +3,7 @@
 // time has to pass, on relations to wall time measured around the call (a tick k is never
 // run before start + k / (tick_hz * time_scale), and never later than the tick due at the
 // last measurement), which scheduling noise cannot break.
-#include "emulator/core/ticker.hpp"
+#include "emulator/daemon/ticker.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -2,7 +2,7 @@
 // is done in slices with other handlers run between them, jobs run in order, and stop() or
 // drop_jobs() end them without a call back. A slice of zero wall time makes every slice one
 // piece of work, so the assertions are on ticks and on the order of handlers, never on wall time.
-#include "emulator/core/ticker.hpp"
+#include "emulator/daemon/ticker.hpp"
 
 #include <catch2/catch.hpp>
 

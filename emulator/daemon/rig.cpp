@@ -1,8 +1,8 @@
-#include "emulator/core/rig.hpp"
+#include "emulator/daemon/rig.hpp"
 #include "emulator/core/log_format.hpp"
 
-#include "emulator/core/rig_families.hpp"
-#include "emulator/core/rig_kinematics.hpp"
+#include "emulator/daemon/rig_families.hpp"
+#include "emulator/daemon/rig_kinematics.hpp"
 
 #include <nlohmann/json.hpp>
 

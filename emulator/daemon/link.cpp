@@ -1,4 +1,4 @@
-#include "emulator/core/link.hpp"
+#include "emulator/daemon/link.hpp"
 
 #include <algorithm>
 #include <cmath>

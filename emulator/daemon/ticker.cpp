@@ -1,4 +1,4 @@
-#include "emulator/core/ticker.hpp"
+#include "emulator/daemon/ticker.hpp"
 
 #include <boost/asio/post.hpp>
 

@@ -1,9 +1,9 @@
-// build_kinematics (emulator/core/rig_kinematics.cpp) on frames the loader let through but
+// build_kinematics (emulator/daemon/rig_kinematics.cpp) on frames the loader let through but
 // models::Kinematics refuses: a ConfigError at the frame's pointer, not a bare
 // std::invalid_argument (which --check-config and the rig's start-up would not report as a
 // config error).
 #include "emulator/core/config_reader.hpp"
-#include "emulator/core/rig_kinematics.hpp"
+#include "emulator/daemon/rig_kinematics.hpp"
 
 #include <catch2/catch.hpp>
 

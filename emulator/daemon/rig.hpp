@@ -6,11 +6,11 @@
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/device.hpp"
 #include "emulator/core/event_bus.hpp"
-#include "emulator/core/link.hpp"
+#include "emulator/daemon/link.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"
-#include "emulator/core/ticker.hpp"
+#include "emulator/daemon/ticker.hpp"
 #include "emulator/transport/inotify_watcher.hpp"
 #include "emulator/transport/pty_endpoint.hpp"
 #include "emulator/transport/tcp_endpoint.hpp"
@@ -118,7 +118,7 @@ private:
 
 /// What --check-config checks beyond the loader when the rig has frames: every device built in
 /// a world of its own (no endpoints, no state file, nothing served) and every joint bound to its
-/// channel (emulator/core/rig_kinematics.hpp). Throws ConfigError.
+/// channel (emulator/daemon/rig_kinematics.hpp). Throws ConfigError.
 void check_rig_devices(const RigConfig& config);
 
 /// The address a client on this machine connects to for a socket bound to `bound`: loopback

@@ -1,4 +1,4 @@
-#include "emulator/core/rig_families.hpp"
+#include "emulator/daemon/rig_families.hpp"
 
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/apt/config.hpp"

@@ -1,6 +1,6 @@
-// Faults on the wire (emulator/core/link.hpp): unplugged, dropped and corrupted bytes, late
+// Faults on the wire (emulator/daemon/link.hpp): unplugged, dropped and corrupted bytes, late
 // answers. The device behind the link echoes; the clock is stepped.
-#include "emulator/core/link.hpp"
+#include "emulator/daemon/link.hpp"
 
 #include <catch2/catch.hpp>
 

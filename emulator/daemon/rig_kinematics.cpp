@@ -1,4 +1,4 @@
-#include "emulator/core/rig_kinematics.hpp"
+#include "emulator/daemon/rig_kinematics.hpp"
 
 #include "emulator/core/config_reader.hpp"
 #include "emulator/core/event_bus.hpp"
