@@ -53,6 +53,13 @@ enum class Family {
     Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };
 
+/// Lists a struct's fields in wire order, once: `fields(s)` ties them for encode and decode, and
+/// `field_names` is the same list as text ("s.chan_ident, s.position"), from which the wire log
+/// takes the names it shows (wire_decode.cpp). The members are named as `s.<member>`.
+#define RIGSIM_APT_FIELDS(...)                                                                                        \
+    template <class S> static auto fields(S& s) { return std::tie(__VA_ARGS__); }                                     \
+    static constexpr std::string_view field_names = #__VA_ARGS__
+
 /// SET of a parameter trio: the host sets the block.
 template <class P> struct Set {
     static constexpr std::uint16_t id = P::set_id;
@@ -61,6 +68,7 @@ template <class P> struct Set {
     using Params = P;
     P params;
     template <class S> static auto fields(S& s) { return P::fields(s.params); }
+    static constexpr std::string_view field_names = P::field_names;
 };
 
 /// REQ of a parameter trio: header only, the channel in param1.
@@ -70,7 +78,7 @@ template <class P> struct Req {
     static constexpr Family family = P::family;
     using Params = P;
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 
 /// GET of a parameter trio: the unit's answer to the REQ.
@@ -81,6 +89,7 @@ template <class P> struct Get {
     using Params = P;
     P params;
     template <class S> static auto fields(S& s) { return P::fields(s.params); }
+    static constexpr std::string_view field_names = P::field_names;
 };
 
 // ---- The macros of the messages of one struct each (the chapter files below use them) ----
@@ -96,6 +105,7 @@ template <class P> struct Get {
     struct NAME {                                                                                                     \
         RIGSIM_APT_MESSAGE(ID, true, FAMILY);                                                                         \
         template <class S> static auto fields(S&) { return std::tuple<>(); }                                          \
+        static constexpr std::string_view field_names = "";                                                          \
     }
 
 } // namespace msg
@@ -124,13 +134,14 @@ struct Untyped {
     std::uint8_t param2 = 0;
     bool has_data = false;
     std::string data;   ///< the data packet
-    template <class S> static auto fields(S& s) { return std::tie(s.id, s.param1, s.param2, s.has_data, s.data); }
+    RIGSIM_APT_FIELDS(s.id, s.param1, s.param2, s.has_data, s.data);
 };
 
 } // namespace msg
 } // namespace rigsim::apt
 
 #include "emulator/apt/codec_kcube.hpp"
+#undef RIGSIM_APT_FIELDS
 
 namespace rigsim::apt {
 namespace msg {

@@ -20,7 +20,7 @@ struct PowerParams {
     std::uint16_t chan_ident = 1;
     std::uint16_t rest_factor = 0;   ///< 1..100 %
     std::uint16_t move_factor = 0;   ///< 1..100 %
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.rest_factor, s.move_factor); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.rest_factor, s.move_factor);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEMMIPARAMS: the K-Cube's top-panel wheel and display.
@@ -42,12 +42,9 @@ struct KCubeMmiParams {
     std::int32_t preset_pos3 = 0;
     std::uint16_t js_sensitivity = 0;
     std::uint16_t reserved = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.js_mode, s.js_max_vel, s.js_accn, s.dir_sense, s.preset_pos1, s.preset_pos2,
-                        s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.preset_pos3, s.js_sensitivity,
-                        s.reserved);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.js_mode, s.js_max_vel, s.js_accn, s.dir_sense, s.preset_pos1, s.preset_pos2,
+                      s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.preset_pos3, s.js_sensitivity,
+                      s.reserved);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBETRIGIOCONFIG: what the TRIG1 and TRIG2 ports do.
@@ -62,10 +59,7 @@ struct KCubeTrigIoConfig {
     std::uint16_t trig2_mode = 0;
     std::uint16_t trig2_polarity = 1;
     std::array<char, 12> reserved{};
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEPOSTRIGPARAMS: the output pulses at positions of a trigger port
@@ -85,11 +79,8 @@ struct KCubePosTrigParams {
     std::int32_t pulse_width = 0;       ///< us, 1..1,000,000
     std::int32_t num_cycles = 0;
     std::array<char, 12> reserved{};
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.start_pos_fwd, s.interval_fwd, s.num_pulses_fwd, s.start_pos_rev,
-                        s.interval_rev, s.num_pulses_rev, s.pulse_width, s.num_cycles, s.reserved);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.start_pos_fwd, s.interval_fwd, s.num_pulses_fwd, s.start_pos_rev,
+                      s.interval_rev, s.num_pulses_rev, s.pulse_width, s.num_cycles, s.reserved);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEKSTLOOPPARAMS: a KST101's position loop (encoded stages).
@@ -106,11 +97,7 @@ struct KCubeKstLoopParams {
     std::int32_t pid_clip = 0;
     std::int32_t pid_tol = 0;
     std::uint32_t encoder_const = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.loop_mode, s.prop, s.integral, s.diff, s.pid_clip, s.pid_tol,
-                        s.encoder_const);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.loop_mode, s.prop, s.integral, s.diff, s.pid_clip, s.pid_tol, s.encoder_const);
 };
 
 using SetPowerParams = Set<PowerParams>;
@@ -136,7 +123,7 @@ struct MotSetTrigger {
     static constexpr Family family = Family::KCubeMotor;
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;   ///< bits 0-7 (their meaning differs for brushless and stepper racks)
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_MOT_REQ_TRIGGER (issue 16 p. 103).
 struct MotReqTrigger {
@@ -144,7 +131,7 @@ struct MotReqTrigger {
     static constexpr bool header_only = true;
     static constexpr Family family = Family::KCubeMotor;
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_TRIGGER (issue 16 p. 103).
 struct MotGetTrigger {
@@ -153,7 +140,7 @@ struct MotGetTrigger {
     static constexpr Family family = Family::UnitToHost;
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_MOT_SET_TSTACTUATORTYPE (issue 16 p. 94): the actuator a stepper drives, header only:
 /// param1 is the actuator, not a channel. Its fields are a block without a channel word (as
@@ -166,7 +153,7 @@ struct MotSetTstActuatorType {
         std::uint8_t actuator_ident = 0;   ///< 0x20-0x22 ZST legacy, 0x30-0x32 ZST, 0x40-0x42 ZFS, ...
         std::uint8_t unused = 0;
     } params;
-    template <class S> static auto fields(S& s) { return std::tie(s.params.actuator_ident, s.params.unused); }
+    RIGSIM_APT_FIELDS(s.params.actuator_ident, s.params.unused);
 };
 
 /// The motor messages of later protocol issues (after the manual's chapters).

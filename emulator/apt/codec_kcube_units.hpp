@@ -30,12 +30,9 @@ struct KpzMmiParams {
     std::uint16_t reserved2 = 0;
     std::uint16_t reserved3 = 0;
     std::uint16_t reserved4 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.js_mode, s.js_volt_gearbox, s.js_volt_step, s.dir_sense, s.preset_volt1,
-                        s.preset_volt2, s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.reserved1, s.reserved2,
-                        s.reserved3, s.reserved4);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.js_mode, s.js_volt_gearbox, s.js_volt_step, s.dir_sense, s.preset_volt1,
+                      s.preset_volt2, s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.reserved1, s.reserved2,
+                      s.reserved3, s.reserved4);
 };
 
 /// MGMSG_KPZ_SET/REQ/GET_KCUBETRIGIOCONFIG (later issue, 22 bytes): the KPZ101's TRIG1/TRIG2 ports.
@@ -55,11 +52,8 @@ struct KpzTrigIoConfig {
     std::uint16_t reserved4 = 0;
     std::uint16_t reserved5 = 0;
     std::uint16_t reserved6 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved1,
-                        s.reserved2, s.reserved3, s.reserved4, s.reserved5, s.reserved6);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved1,
+                      s.reserved2, s.reserved3, s.reserved4, s.reserved5, s.reserved6);
 };
 
 /// MGMSG_KSG_SET/REQ/GET_KCUBEMMIPARAMS (later issue, 8 bytes): the KSG101's display.
@@ -72,10 +66,7 @@ struct KsgMmiParams {
     std::uint16_t disp_intensity = 0;   ///< 0..100 %
     std::uint16_t disp_timeout = 0;     ///< minutes, 0..480 (0: never dims)
     std::uint16_t disp_dim_level = 0;   ///< 0..10
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.disp_intensity, s.disp_timeout, s.disp_dim_level);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.disp_intensity, s.disp_timeout, s.disp_dim_level);
 };
 
 /// MGMSG_KSG_SET/REQ/GET_KCUBETRIGIOCONFIG (later issue, 22 bytes): the KSG101's TRIG1/TRIG2
@@ -94,18 +85,15 @@ struct KsgTrigIoConfig {
     std::int32_t upper_lim = 0;
     std::uint16_t smoothing_samples = 1;
     std::uint16_t reserved = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.lower_lim,
-                        s.upper_lim, s.smoothing_samples, s.reserved);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.lower_lim,
+                      s.upper_lim, s.smoothing_samples, s.reserved);
 };
 
 /// MGMSG_PZ_REQ_PZSTATUSUPDATE (later issue): answered by MGMSG_PZ_GET_PZSTATUSUPDATE.
 struct PzReqPzStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSUPDATE, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 
 using SetKpzMmiParams = Set<KpzMmiParams>;

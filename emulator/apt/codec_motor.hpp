@@ -19,7 +19,7 @@ struct PosCounter {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::int32_t position = 0;   ///< encoder counts (7.1)
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.position); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.position);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_ENCCOUNTER (p. 29).
@@ -30,7 +30,7 @@ struct EncCounter {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::int32_t encoder_count = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.encoder_count); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.encoder_count);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_VELPARAMS (p. 30): trapezoidal velocity profile, APT units (7.1).
@@ -43,10 +43,7 @@ struct VelParams {
     std::int32_t min_velocity = 0;
     std::int32_t acceleration = 0;
     std::int32_t max_velocity = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.min_velocity, s.acceleration, s.max_velocity);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.min_velocity, s.acceleration, s.max_velocity);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_JOGPARAMS (p. 32).
@@ -62,11 +59,8 @@ struct JogParams {
     std::int32_t jog_acceleration = 0;
     std::int32_t jog_max_velocity = 0;
     std::uint16_t jog_stop_mode = 0;   ///< 1 immediate, 2 profiled
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.jog_mode, s.jog_step_size, s.jog_min_velocity, s.jog_acceleration,
-                        s.jog_max_velocity, s.jog_stop_mode);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.jog_mode, s.jog_step_size, s.jog_min_velocity, s.jog_acceleration,
+                      s.jog_max_velocity, s.jog_stop_mode);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_GENMOVEPARAMS (p. 34): the backlash.
@@ -77,7 +71,7 @@ struct GenMoveParams {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::int32_t backlash_distance = 0;   ///< encoder counts
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.backlash_distance); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.backlash_distance);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_MOVERELPARAMS (p. 35): the distance of the short MOVE_RELATIVE.
@@ -88,7 +82,7 @@ struct MoveRelParams {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::int32_t relative_distance = 0;   ///< encoder counts
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.relative_distance); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.relative_distance);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_MOVEABSPARAMS (p. 36): the target of the short MOVE_ABSOLUTE.
@@ -99,7 +93,7 @@ struct MoveAbsParams {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::int32_t absolute_position = 0;   ///< encoder counts
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.absolute_position); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.absolute_position);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_HOMEPARAMS (p. 37).
@@ -113,10 +107,7 @@ struct HomeParams {
     std::uint16_t limit_switch = 0;     ///< 1 hardware reverse, 4 hardware forward
     std::int32_t home_velocity = 0;
     std::int32_t offset_distance = 0;   ///< encoder counts
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.home_direction, s.limit_switch, s.home_velocity, s.offset_distance);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.home_direction, s.limit_switch, s.home_velocity, s.offset_distance);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_LIMSWITCHPARAMS (p. 39; 16-byte packet, ERRATA).
@@ -131,11 +122,8 @@ struct LimSwitchParams {
     std::int32_t cw_soft_limit = 0;     ///< position steps
     std::int32_t ccw_soft_limit = 0;
     std::uint16_t soft_limit_mode = 0;  ///< 1 ignore, 2 immediate stop, 3 profiled stop
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.cw_hard_limit, s.ccw_hard_limit, s.cw_soft_limit, s.ccw_soft_limit,
-                        s.soft_limit_mode);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.cw_hard_limit, s.ccw_hard_limit, s.cw_soft_limit, s.ccw_soft_limit,
+                      s.soft_limit_mode);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_DCPIDPARAMS (p. 51; longs as the field list says, ERRATA).
@@ -150,11 +138,7 @@ struct DcPidParams {
     std::int32_t differential = 0;
     std::int32_t integral_limit = 0;
     std::uint16_t filter_control = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.proportional, s.integral, s.differential, s.integral_limit,
-                        s.filter_control);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.proportional, s.integral, s.differential, s.integral_limit, s.filter_control);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_AVMODES (p. 53): the LED modes.
@@ -165,7 +149,7 @@ struct AvModes {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;
     std::uint16_t mode_bits = 0;   ///< 1 ident, 2 limit switch, 8 moving
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode_bits); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode_bits);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_POTPARAMS (p. 55): windows in ADC counts, velocities in counts/s.
@@ -183,10 +167,7 @@ struct PotParams {
     std::int32_t vel3 = 0;
     std::uint16_t wnd3 = 0;
     std::int32_t vel4 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.zero_wnd, s.vel1, s.wnd1, s.vel2, s.wnd2, s.vel3, s.wnd3, s.vel4);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.zero_wnd, s.vel1, s.wnd1, s.vel2, s.wnd2, s.vel3, s.wnd3, s.vel4);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_BUTTONPARAMS (p. 58; 16-byte packet, ERRATA).
@@ -201,10 +182,7 @@ struct ButtonParams {
     std::int32_t position2 = 0;
     std::uint16_t time_out_ms = 0;
     std::uint16_t not_used = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.mode, s.position1, s.position2, s.time_out_ms, s.not_used);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode, s.position1, s.position2, s.time_out_ms, s.not_used);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDPOSITIONLOOPPARAMS (p. 61).
@@ -225,11 +203,8 @@ struct PmdPositionLoopParams {
     std::uint32_t pos_err_lim = 0;
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.kp_pos, s.ki_pos, s.integral_limit, s.kd_pos, s.kd_time_pos, s.kout_pos,
-                        s.kvff_pos, s.kaff_pos, s.pos_err_lim, s.not_used1, s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.kp_pos, s.ki_pos, s.integral_limit, s.kd_pos, s.kd_time_pos, s.kout_pos,
+                      s.kvff_pos, s.kaff_pos, s.pos_err_lim, s.not_used1, s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDMOTOROUTPUTPARAMS (p. 64).
@@ -245,11 +220,8 @@ struct PmdMotorOutputParams {
     std::int16_t motor_bias = 0;
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.cont_current_lim, s.energy_lim, s.motor_lim, s.motor_bias, s.not_used1,
-                        s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.cont_current_lim, s.energy_lim, s.motor_lim, s.motor_bias, s.not_used1,
+                      s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDTRACKSETTLEPARAMS (p. 66).
@@ -264,10 +236,7 @@ struct PmdTrackSettleParams {
     std::uint16_t track_window = 0;
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.time_cycles, s.settle_window, s.track_window, s.not_used1, s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.time_cycles, s.settle_window, s.track_window, s.not_used1, s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDPROFILEMODEPARAMS (p. 69).
@@ -281,10 +250,7 @@ struct PmdProfileModeParams {
     std::uint32_t jerk = 0;      ///< PMD jerk units (7.1)
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.mode, s.jerk, s.not_used1, s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode, s.jerk, s.not_used1, s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDCURRENTLOOPPARAMS (p. 71).
@@ -302,11 +268,8 @@ struct PmdCurrentLoopParams {
     std::uint16_t kff = 0;
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.phase, s.kp_current, s.ki_current, s.i_lim_current, s.i_dead_band, s.kff,
-                        s.not_used1, s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.phase, s.kp_current, s.ki_current, s.i_lim_current, s.i_dead_band, s.kff,
+                      s.not_used1, s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDSETTLEDCURRENTLOOPPARAMS (p. 73).
@@ -324,11 +287,8 @@ struct PmdSettledCurrentLoopParams {
     std::uint16_t kff_settled = 0;
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.phase, s.kp_settled, s.ki_settled, s.i_lim_settled, s.i_dead_band_settled,
-                        s.kff_settled, s.not_used1, s.not_used2);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.phase, s.kp_settled, s.ki_settled, s.i_lim_settled, s.i_dead_band_settled,
+                      s.kff_settled, s.not_used1, s.not_used2);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDSTAGEAXISPARAMS (p. 75): 74 bytes; the field list omits the
@@ -350,11 +310,8 @@ struct PmdStageAxisParams {
     std::int32_t max_dec = 0;
     std::int32_t max_vel = 0;
     std::array<char, 24> reserved{};
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.stage_id, s.axis_id, s.part_no_axis, s.serial_num, s.cnts_per_unit, s.min_pos,
-                        s.max_pos, s.max_accn, s.max_dec, s.max_vel, s.reserved);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.stage_id, s.axis_id, s.part_no_axis, s.serial_num, s.cnts_per_unit, s.min_pos,
+                      s.max_pos, s.max_accn, s.max_dec, s.max_vel, s.reserved);
 };
 
 
@@ -425,13 +382,13 @@ using GetPmdStageAxisParams = Get<PmdStageAxisParams>;
 struct MoveHome {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOME, true, Motor);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_MOVE_HOMED (p. 41).
 struct MoveHomed {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOMED, true, UnitToHost);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_MOVE_RELATIVE (p. 42): the short form (no distance) moves by MOVERELPARAMS.
 struct MoveRelative {
@@ -439,7 +396,7 @@ struct MoveRelative {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;                     ///< param1 in the short form
     std::optional<std::int32_t> relative_distance;   ///< encoder counts; the long form only
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.relative_distance); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.relative_distance);
 };
 /// MGMSG_MOT_MOVE_ABSOLUTE (p. 45): the short form (no position) moves to MOVEABSPARAMS.
 struct MoveAbsolute {
@@ -447,28 +404,28 @@ struct MoveAbsolute {
     static constexpr Family family = Family::Motor;
     std::uint16_t chan_ident = 1;                     ///< param1 in the short form
     std::optional<std::int32_t> absolute_distance;   ///< encoder counts; the long form only
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.absolute_distance); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.absolute_distance);
 };
 /// MGMSG_MOT_MOVE_JOG (p. 47).
 struct MoveJog {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_JOG, true, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t direction = 1;   ///< 1 forward, 2 reverse
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.direction); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.direction);
 };
 /// MGMSG_MOT_MOVE_VELOCITY (p. 48).
 struct MoveVelocity {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_VELOCITY, true, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t direction = 1;   ///< 1 forward, 2 reverse
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.direction); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.direction);
 };
 /// MGMSG_MOT_MOVE_STOP (p. 49).
 struct MoveStop {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOP, true, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t stop_mode = 2;   ///< 1 immediate, 2 profiled
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.stop_mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.stop_mode);
 };
 
 /// The 14-byte status of MOT_GET_STATUSUPDATE (p. 77): steppers.
@@ -477,7 +434,7 @@ struct MotStatus {
     std::int32_t position = 0;
     std::int32_t enc_count = 0;
     std::uint32_t status_bits = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.position, s.enc_count, s.status_bits); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.position, s.enc_count, s.status_bits);
 };
 /// The 14-byte status of MOT_GET_DCSTATUSUPDATE (p. 79): DC servo and brushless units.
 struct DcStatus {
@@ -486,10 +443,7 @@ struct DcStatus {
     std::int16_t velocity = 0;   ///< APT velocity units / 65536 (a word, signed by direction)
     std::uint16_t reserved = 0;
     std::uint32_t status_bits = 0;
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.position, s.velocity, s.reserved, s.status_bits);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.position, s.velocity, s.reserved, s.status_bits);
 };
 /// What MOVE_COMPLETED and MOVE_STOPPED carry (p. 44, ERRATA): the status structure of the
 /// unit's own update message. decode() reads it as DcStatus (the bytes alone cannot tell).
@@ -499,44 +453,46 @@ using MotorStatus = std::variant<DcStatus, MotStatus>;
 struct MoveCompleted {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_COMPLETED, false, UnitToHost);
     MotorStatus status;
-    template <class S> static auto fields(S& s) { return std::tie(s.status); }
+    RIGSIM_APT_FIELDS(s.status);
 };
 /// MGMSG_MOT_MOVE_STOPPED (p. 50): 14 bytes of status (ERRATA).
 struct MoveStopped {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOPPED, false, UnitToHost);
     MotorStatus status;
-    template <class S> static auto fields(S& s) { return std::tie(s.status); }
+    RIGSIM_APT_FIELDS(s.status);
 };
 /// MGMSG_MOT_SET_EEPROMPARAMS (p. 60): save the parameters of message msg_id.
 struct SetEepromParams {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_EEPROMPARAMS, false, Motor);
     std::uint16_t chan_ident = 1;
     std::uint16_t msg_id = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.msg_id); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.msg_id);
 };
 /// MGMSG_MOT_REQ_STATUSUPDATE (p. 78).
 struct ReqStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSUPDATE, true, Motor);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_STATUSUPDATE (p. 77).
 struct GetStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSUPDATE, false, UnitToHost);
     MotStatus status;
     template <class S> static auto fields(S& s) { return MotStatus::fields(s.status); }
+    static constexpr std::string_view field_names = MotStatus::field_names;
 };
 /// MGMSG_MOT_REQ_DCSTATUSUPDATE (p. 80).
 struct ReqDcStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_DCSTATUSUPDATE, true, DcServo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_DCSTATUSUPDATE (p. 79).
 struct GetDcStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_DCSTATUSUPDATE, false, UnitToHost);
     DcStatus status;
     template <class S> static auto fields(S& s) { return DcStatus::fields(s.status); }
+    static constexpr std::string_view field_names = DcStatus::field_names;
 };
 /// MGMSG_MOT_ACK_DCSTATUSUPDATE (p. 80): "server alive" (0x0492, ERRATA).
 RIGSIM_APT_BARE_MESSAGE(AckDcStatusUpdate, MGMSG_MOT_ACK_DCSTATUSUPDATE, System);
@@ -544,14 +500,14 @@ RIGSIM_APT_BARE_MESSAGE(AckDcStatusUpdate, MGMSG_MOT_ACK_DCSTATUSUPDATE, System)
 struct ReqStatusBits {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSBITS, true, Motor);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_STATUSBITS (p. 81).
 struct GetStatusBits {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSBITS, false, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint32_t status_bits = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.status_bits); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.status_bits);
 };
 /// MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS (p. 82).
 RIGSIM_APT_BARE_MESSAGE(SuspendEndOfMoveMsgs, MGMSG_MOT_SUSPEND_ENDOFMOVEMSGS, System);

@@ -19,7 +19,7 @@ struct PzOutputVolts {
     static constexpr Family family = Family::Piezo;
     std::uint16_t chan_ident = 1;
     std::int16_t voltage = 0;   ///< -32767..32767: -100..100 % of the maximum output voltage
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.voltage); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.voltage);
 };
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTPOS (p. 97).
 struct PzOutputPos {
@@ -29,7 +29,7 @@ struct PzOutputPos {
     static constexpr Family family = Family::Piezo;
     std::uint16_t chan_ident = 1;
     std::uint16_t position_sw = 0;   ///< 0..32767: 0..100 % of the travel (ERRATA)
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.position_sw); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.position_sw);
 };
 /// MGMSG_PZ_SET/REQ/GET_INPUTVOLTSSRC (p. 98).
 struct PzInputVoltsSrc {
@@ -39,7 +39,7 @@ struct PzInputVoltsSrc {
     static constexpr Family family = Family::Piezo;
     std::uint16_t chan_ident = 1;
     std::uint16_t volt_src = 0;   ///< the SET table's PositionSW (ERRATA)
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.volt_src); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.volt_src);
 };
 /// MGMSG_PZ_SET/REQ/GET_PICONSTS (p. 100).
 struct PzPiConsts {
@@ -50,7 +50,7 @@ struct PzPiConsts {
     std::uint16_t chan_ident = 1;
     std::uint16_t prop_const = 0;
     std::uint16_t int_const = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.prop_const, s.int_const); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.prop_const, s.int_const);
 };
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTLUT (p. 106).
 struct PzOutputLut {
@@ -61,7 +61,7 @@ struct PzOutputLut {
     std::uint16_t chan_ident = 1;
     std::uint16_t index = 0;
     std::int16_t output = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.index, s.output); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.index, s.output);
 };
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTLUTPARAMS (p. 108).
 struct PzOutputLutParams {
@@ -79,7 +79,8 @@ struct PzOutputLutParams {
     std::uint16_t op_trig_start = 0;
     std::int32_t op_trig_width = 0;
     std::uint16_t trig_repeat_cycle = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode, s.cycle_length, s.num_cycles, s.delay_time, s.pre_cycle_rest, s.post_cycle_rest, s.op_trig_start, s.op_trig_width, s.trig_repeat_cycle); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode, s.cycle_length, s.num_cycles, s.delay_time, s.pre_cycle_rest,
+                      s.post_cycle_rest, s.op_trig_start, s.op_trig_width, s.trig_repeat_cycle);
 };
 /// MGMSG_PZ_SET/REQ/GET_TPZ_DISPSETTINGS (p. 114, no channel word).
 struct TpzDispSettings {
@@ -88,7 +89,7 @@ struct TpzDispSettings {
     static constexpr std::uint16_t get_id = MGMSG_PZ_GET_TPZ_DISPSETTINGS;
     static constexpr Family family = Family::Piezo;
     std::uint16_t disp_intensity = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.disp_intensity); }
+    RIGSIM_APT_FIELDS(s.disp_intensity);
 };
 /// MGMSG_PZ_SET/REQ/GET_TPZ_IOSETTINGS (p. 115).
 struct TpzIoSettings {
@@ -101,7 +102,7 @@ struct TpzIoSettings {
     std::uint16_t hub_analog_input = 0;
     std::uint16_t future_use1 = 0;
     std::uint16_t future_use2 = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.voltage_limit, s.hub_analog_input, s.future_use1, s.future_use2); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.voltage_limit, s.hub_analog_input, s.future_use1, s.future_use2);
 };
 /// MGMSG_PZ_SET/REQ/GET_IOSETTINGS (p. 119).
 struct PzIoSettings {
@@ -114,7 +115,7 @@ struct PzIoSettings {
     std::uint16_t amp_lp_filter = 0;
     std::uint16_t feedback_sig = 0;
     std::uint16_t bnc_trig_or_lv_out = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.amp_current_lim, s.amp_lp_filter, s.feedback_sig, s.bnc_trig_or_lv_out); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.amp_current_lim, s.amp_lp_filter, s.feedback_sig, s.bnc_trig_or_lv_out);
 };
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTMAXVOLTS (p. 121).
 struct PzOutputMaxVolts {
@@ -125,7 +126,7 @@ struct PzOutputMaxVolts {
     std::uint16_t chan_ident = 1;
     std::uint16_t voltage = 0;   ///< 0.1 V steps
     std::uint16_t flags = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.voltage, s.flags); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.voltage, s.flags);
 };
 /// MGMSG_PZ_SET/REQ/GET_TPZ_SLEWRATES (p. 123).
 struct TpzSlewRates {
@@ -136,7 +137,7 @@ struct TpzSlewRates {
     std::uint16_t chan_ident = 1;
     std::uint16_t slew_open = 0;
     std::uint16_t slew_closed = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.slew_open, s.slew_closed); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.slew_open, s.slew_closed);
 };
 /// MGMSG_PZ_SET/REQ/GET_TSG_IOSETTINGS (p. 127).
 struct TsgIoSettings {
@@ -151,87 +152,89 @@ struct TsgIoSettings {
     std::uint16_t future_use1 = 0;
     std::uint16_t future_use2 = 0;
     std::uint16_t future_use3 = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.hub_analogue_output, s.display_mode, s.force_calib, s.future_use1, s.future_use2, s.future_use3); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.hub_analogue_output, s.display_mode, s.force_calib, s.future_use1,
+                      s.future_use2, s.future_use3);
 };
 /// MGMSG_PZ_SET_POSCONTROLMODE (p. 94).
 struct PzSetPosControlMode {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_POSCONTROLMODE, true, Piezo);
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;   ///< 1: open loop, 2: closed loop, 3/4: smoothed
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_PZ_REQ_POSCONTROLMODE (p. 94).
 struct PzReqPosControlMode {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_POSCONTROLMODE, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_GET_POSCONTROLMODE (p. 94).
 struct PzGetPosControlMode {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_POSCONTROLMODE, true, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_PZ_REQ_PZSTATUSBITS (p. 101).
 struct PzReqPzStatusBits {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSBITS, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_ACK_PZSTATUSUPDATE (p. 105).
 struct PzAckPzStatusUpdate {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_ACK_PZSTATUSUPDATE, true, Piezo);
     template <class S> static auto fields(S&) { return std::tuple<>(); }
+    static constexpr std::string_view field_names = "";
 };
 /// MGMSG_PZ_START_LUTOUTPUT (p. 112).
 struct PzStartLutOutput {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_START_LUTOUTPUT, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_STOP_LUTOUTPUT (p. 112).
 struct PzStopLutOutput {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_STOP_LUTOUTPUT, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_SET_ZERO (p. 117).
 struct PzSetZero {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_ZERO, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_REQ_MAXTRAVEL (p. 118).
 struct PzReqMaxTravel {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_MAXTRAVEL, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS (p. 125).
 struct MotSetPzStageParamDefaults {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS, true, Piezo);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_SET_LUTVALUETYPE (p. 126).
 struct PzSetLutValueType {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_LUTVALUETYPE, true, Piezo);
     std::uint8_t lut_type = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.lut_type); }
+    RIGSIM_APT_FIELDS(s.lut_type);
 };
 /// MGMSG_PZ_REQ_TSG_READING (p. 129).
 struct TsgReqReading {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_TSG_READING, true, StrainGauge);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_GET_PZSTATUSBITS (p. 101).
 struct PzGetPzStatusBits {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSBITS, false, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint32_t status_bits = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.status_bits); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.status_bits);
 };
 /// PZSTATUSBITS (p. 101-102) that the piezo and the strain gauge units both report.
 inline constexpr std::uint32_t kPzConnected = 0x00000001;
@@ -246,21 +249,21 @@ struct PzGetPzStatusUpdate {
     std::int16_t op_voltage = 0;
     std::int16_t position = 0;
     std::uint32_t status_bits = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.op_voltage, s.position, s.status_bits); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.op_voltage, s.position, s.status_bits);
 };
 /// MGMSG_PZ_SET_EEPROMPARAMS (p. 113).
 struct PzSetEepromParams {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_EEPROMPARAMS, false, Piezo);
     std::uint16_t chan_ident = 1;
     std::uint16_t msg_id = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.msg_id); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.msg_id);
 };
 /// MGMSG_PZ_GET_MAXTRAVEL (p. 118).
 struct PzGetMaxTravel {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_MAXTRAVEL, false, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint16_t travel = 0;   ///< 100 nm steps
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.travel); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.travel);
 };
 /// MGMSG_PZ_GET_TSG_READING (p. 129).
 struct TsgGetReading {
@@ -268,7 +271,7 @@ struct TsgGetReading {
     std::uint16_t chan_ident = 1;
     std::int16_t reading = 0;   ///< -32767..32767: -100..100 % of the range
     std::uint16_t smoothed = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.reading, s.smoothed); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.reading, s.smoothed);
 };
 
 using SetPzOutputVolts = Set<PzOutputVolts>;

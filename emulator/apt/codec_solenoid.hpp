@@ -15,20 +15,20 @@ struct SolSetOperatingMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_OPERATINGMODE, true, Solenoid);
     std::uint8_t chan_ident = 1;
     std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.operating_mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.operating_mode);
 };
 /// MGMSG_MOT_REQ_SOL_OPERATINGMODE (p. 85).
 struct SolReqOperatingMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_OPERATINGMODE, true, Solenoid);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_OPERATINGMODE (p. 85).
 struct SolGetOperatingMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_OPERATINGMODE, true, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.operating_mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.operating_mode);
 };
 
 /// MGMSG_MOT_SET/REQ/GET_SOL_CYCLEPARAMS (p. 87): the on/off cycle of the non-manual modes.
@@ -41,10 +41,7 @@ struct SolCycleParams {
     std::int32_t on_time_250us = 0;     ///< OnTime: 250 us steps, 100 ms..10,000 s (4000 = 1 s)
     std::int32_t off_time_250us = 0;    ///< OffTime: 250 us steps, 100 ms..10,000 s
     std::int32_t num_cycles = 0;        ///< 'Auto' mode only: 0..1,000,000, 0 cycles indefinitely
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.chan_ident, s.on_time_250us, s.off_time_250us, s.num_cycles);
-    }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.on_time_250us, s.off_time_250us, s.num_cycles);
 };
 
 /// MGMSG_MOT_SET_SOL_INTERLOCKMODE (p. 89).
@@ -52,20 +49,20 @@ struct SolSetInterlockMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_INTERLOCKMODE, true, Solenoid);
     std::uint8_t chan_ident = 1;
     std::uint8_t interlock_mode = 1;   ///< 1 enabled (the interlock plug is required), 2 disabled
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.interlock_mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.interlock_mode);
 };
 /// MGMSG_MOT_REQ_SOL_INTERLOCKMODE (p. 89).
 struct SolReqInterlockMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_INTERLOCKMODE, true, Solenoid);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_INTERLOCKMODE (p. 89).
 struct SolGetInterlockMode {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_INTERLOCKMODE, true, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t interlock_mode = 1;   ///< 1 enabled, 2 disabled
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.interlock_mode); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.interlock_mode);
 };
 
 /// MGMSG_MOT_SET_SOL_STATE (p. 91): overrides the operating mode.
@@ -75,20 +72,20 @@ struct SolSetState {
     // The data structure table labels param2 "Interlock Mode" (copied from p. 89); the
     // header diagram and the values name it the state.
     std::uint8_t state = 2;   ///< 1 on (solenoid active), 2 off
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.state); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.state);
 };
 /// MGMSG_MOT_REQ_SOL_STATE (p. 91).
 struct SolReqState {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_STATE, true, Solenoid);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_STATE (p. 91).
 struct SolGetState {
     RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_STATE, true, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t state = 2;   ///< 1 on, 2 off
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.state); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.state);
 };
 
 using SetSolCycleParams = Set<SolCycleParams>;

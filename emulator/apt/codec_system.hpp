@@ -12,27 +12,27 @@ namespace rigsim::apt::msg {
 struct ModIdentify {
     RIGSIM_APT_MESSAGE(MGMSG_MOD_IDENTIFY, true, System);
     std::uint8_t chan_ident = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOD_SET_CHANENABLESTATE (p. 17).
 struct ModSetChanEnableState {
     RIGSIM_APT_MESSAGE(MGMSG_MOD_SET_CHANENABLESTATE, true, Bay);
     std::uint8_t chan_ident = 1;
     std::uint8_t enable_state = 1;   ///< 1 enabled, 2 disabled
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.enable_state); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.enable_state);
 };
 /// MGMSG_MOD_REQ_CHANENABLESTATE (p. 17).
 struct ModReqChanEnableState {
     RIGSIM_APT_MESSAGE(MGMSG_MOD_REQ_CHANENABLESTATE, true, Bay);
     std::uint8_t chan_ident = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident); }
+    RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOD_GET_CHANENABLESTATE (p. 17).
 struct ModGetChanEnableState {
     RIGSIM_APT_MESSAGE(MGMSG_MOD_GET_CHANENABLESTATE, true, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t enable_state = 1;
-    template <class S> static auto fields(S& s) { return std::tie(s.chan_ident, s.enable_state); }
+    RIGSIM_APT_FIELDS(s.chan_ident, s.enable_state);
 };
 /// MGMSG_HW_DISCONNECT (p. 19).
 RIGSIM_APT_BARE_MESSAGE(HwDisconnect, MGMSG_HW_DISCONNECT, System);
@@ -44,13 +44,13 @@ struct HwRichResponse {
     std::uint16_t msg_ident = 0;   ///< the message that caused it
     std::uint16_t code = 0;
     std::array<char, 64> notes{};
-    template <class S> static auto fields(S& s) { return std::tie(s.msg_ident, s.code, s.notes); }
+    RIGSIM_APT_FIELDS(s.msg_ident, s.code, s.notes);
 };
 /// MGMSG_HW_START_UPDATEMSGS (p. 20).
 struct HwStartUpdateMsgs {
     RIGSIM_APT_MESSAGE(MGMSG_HW_START_UPDATEMSGS, true, System);
     std::uint8_t update_rate = 0;   ///< ignored by the units (fixed 10 Hz)
-    template <class S> static auto fields(S& s) { return std::tie(s.update_rate); }
+    RIGSIM_APT_FIELDS(s.update_rate);
 };
 /// MGMSG_HW_STOP_UPDATEMSGS (p. 20; 0x0012, ERRATA).
 RIGSIM_APT_BARE_MESSAGE(HwStopUpdateMsgs, MGMSG_HW_STOP_UPDATEMSGS, System);
@@ -65,23 +65,20 @@ struct HwGetInfo {
     std::array<char, 4> firmware_version{};        ///< minor, interim, major, unused
     std::array<char, 64> notes{};
     std::uint16_t nchs = 0;                        ///< number of channels
-    template <class S> static auto fields(S& s)
-    {
-        return std::tie(s.serial_number, s.model_number, s.type, s.firmware_version, s.notes, s.nchs);
-    }
+    RIGSIM_APT_FIELDS(s.serial_number, s.model_number, s.type, s.firmware_version, s.notes, s.nchs);
 };
 /// MGMSG_RACK_REQ_BAYUSED (p. 23).
 struct RackReqBayUsed {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_REQ_BAYUSED, true, Rack);
     std::uint8_t bay_ident = 0;   ///< from 0
-    template <class S> static auto fields(S& s) { return std::tie(s.bay_ident); }
+    RIGSIM_APT_FIELDS(s.bay_ident);
 };
 /// MGMSG_RACK_GET_BAYUSED (p. 23).
 struct RackGetBayUsed {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_GET_BAYUSED, true, UnitToHost);
     std::uint8_t bay_ident = 0;
     std::uint8_t bay_state = 0;   ///< 1 occupied, 2 empty
-    template <class S> static auto fields(S& s) { return std::tie(s.bay_ident, s.bay_state); }
+    RIGSIM_APT_FIELDS(s.bay_ident, s.bay_state);
 };
 /// MGMSG_HUB_REQ_BAYUSED (p. 24).
 RIGSIM_APT_BARE_MESSAGE(HubReqBayUsed, MGMSG_HUB_REQ_BAYUSED, Bay);
@@ -89,7 +86,7 @@ RIGSIM_APT_BARE_MESSAGE(HubReqBayUsed, MGMSG_HUB_REQ_BAYUSED, Bay);
 struct HubGetBayUsed {
     RIGSIM_APT_MESSAGE(MGMSG_HUB_GET_BAYUSED, true, UnitToHost);
     std::uint8_t bay_ident = 0;   ///< 0xFF (-1): standalone
-    template <class S> static auto fields(S& s) { return std::tie(s.bay_ident); }
+    RIGSIM_APT_FIELDS(s.bay_ident);
 };
 /// MGMSG_RACK_REQ_STATUSBITS (p. 25).
 RIGSIM_APT_BARE_MESSAGE(RackReqStatusBits, MGMSG_RACK_REQ_STATUSBITS, Rack);
@@ -97,28 +94,28 @@ RIGSIM_APT_BARE_MESSAGE(RackReqStatusBits, MGMSG_RACK_REQ_STATUSBITS, Rack);
 struct RackGetStatusBits {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_GET_STATUSBITS, false, UnitToHost);
     std::uint32_t status_bits = 0;   ///< digital inputs of the USER IO connector
-    template <class S> static auto fields(S& s) { return std::tie(s.status_bits); }
+    RIGSIM_APT_FIELDS(s.status_bits);
 };
 /// MGMSG_RACK_SET_DIGOUTPUTS (p. 26): header only, the outputs and the bay address.
 struct RackSetDigOutputs {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_SET_DIGOUTPUTS, true, Rack);
     std::uint8_t dig_outputs = 0;   ///< bits 0..3: outputs 1..4
     std::uint8_t bay_ident = 0;     ///< bay address (0x21 + n) or 0: the motherboard
-    template <class S> static auto fields(S& s) { return std::tie(s.dig_outputs, s.bay_ident); }
+    RIGSIM_APT_FIELDS(s.dig_outputs, s.bay_ident);
 };
 /// MGMSG_RACK_REQ_DIGOUTPUTS (p. 26).
 struct RackReqDigOutputs {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_REQ_DIGOUTPUTS, true, Rack);
     std::uint8_t dig_outputs = 0;   ///< unused
     std::uint8_t bay_ident = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.dig_outputs, s.bay_ident); }
+    RIGSIM_APT_FIELDS(s.dig_outputs, s.bay_ident);
 };
 /// MGMSG_RACK_GET_DIGOUTPUTS (p. 26).
 struct RackGetDigOutputs {
     RIGSIM_APT_MESSAGE(MGMSG_RACK_GET_DIGOUTPUTS, true, UnitToHost);
     std::uint8_t dig_outputs = 0;
     std::uint8_t bay_ident = 0;
-    template <class S> static auto fields(S& s) { return std::tie(s.dig_outputs, s.bay_ident); }
+    RIGSIM_APT_FIELDS(s.dig_outputs, s.bay_ident);
 };
 /// MGMSG_HW_YES_FLASH_PROGRAMMING (later issues).
 RIGSIM_APT_BARE_MESSAGE(HwYesFlashProgramming, MGMSG_HW_YES_FLASH_PROGRAMMING, System);

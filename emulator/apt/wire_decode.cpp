@@ -10,159 +10,62 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
 #include <unordered_map>
+#include <utility>
+#include <variant>
+#include <vector>
 
 namespace rigsim::apt {
 
 namespace {
 
-// The codec structs' member names (codec.hpp, each struct's fields()), by message ID, as one
-// space-separated list each: constant data, which compiles in no time, where a table of vectors
-// written out as initializer lists took GCC -O3 six seconds. names_table() splits them once; an
-// ID given twice would get both lists, which tests/unit/apt/test_apt_wire_decode.cpp (each
-// count against the struct's fields) refuses.
-struct FieldNames {
-    std::uint16_t id;
-    std::string_view names;
-};
-constexpr FieldNames kFieldNames[] = {
-    {MGMSG_MOT_SET_POSCOUNTER, "chan_ident position"},
-    {MGMSG_MOT_GET_POSCOUNTER, "chan_ident position"},
-    {MGMSG_MOT_SET_ENCCOUNTER, "chan_ident encoder_count"},
-    {MGMSG_MOT_GET_ENCCOUNTER, "chan_ident encoder_count"},
-    {MGMSG_MOT_SET_VELPARAMS, "chan_ident min_velocity acceleration max_velocity"},
-    {MGMSG_MOT_GET_VELPARAMS, "chan_ident min_velocity acceleration max_velocity"},
-    {MGMSG_MOT_SET_JOGPARAMS, "chan_ident jog_mode jog_step_size jog_min_velocity jog_acceleration jog_max_velocity jog_stop_mode"},
-    {MGMSG_MOT_GET_JOGPARAMS, "chan_ident jog_mode jog_step_size jog_min_velocity jog_acceleration jog_max_velocity jog_stop_mode"},
-    {MGMSG_MOT_SET_GENMOVEPARAMS, "chan_ident backlash_distance"},
-    {MGMSG_MOT_GET_GENMOVEPARAMS, "chan_ident backlash_distance"},
-    {MGMSG_MOT_SET_MOVERELPARAMS, "chan_ident relative_distance"},
-    {MGMSG_MOT_GET_MOVERELPARAMS, "chan_ident relative_distance"},
-    {MGMSG_MOT_SET_MOVEABSPARAMS, "chan_ident absolute_position"},
-    {MGMSG_MOT_GET_MOVEABSPARAMS, "chan_ident absolute_position"},
-    {MGMSG_MOT_SET_HOMEPARAMS, "chan_ident home_direction limit_switch home_velocity offset_distance"},
-    {MGMSG_MOT_GET_HOMEPARAMS, "chan_ident home_direction limit_switch home_velocity offset_distance"},
-    {MGMSG_MOT_SET_LIMSWITCHPARAMS, "chan_ident cw_hard_limit ccw_hard_limit cw_soft_limit ccw_soft_limit soft_limit_mode"},
-    {MGMSG_MOT_GET_LIMSWITCHPARAMS, "chan_ident cw_hard_limit ccw_hard_limit cw_soft_limit ccw_soft_limit soft_limit_mode"},
-    {MGMSG_MOT_SET_DCPIDPARAMS, "chan_ident proportional integral differential integral_limit filter_control"},
-    {MGMSG_MOT_GET_DCPIDPARAMS, "chan_ident proportional integral differential integral_limit filter_control"},
-    {MGMSG_MOT_SET_AVMODES, "chan_ident mode_bits"},
-    {MGMSG_MOT_GET_AVMODES, "chan_ident mode_bits"},
-    {MGMSG_MOT_SET_POTPARAMS, "chan_ident zero_wnd vel1 wnd1 vel2 wnd2 vel3 wnd3 vel4"},
-    {MGMSG_MOT_GET_POTPARAMS, "chan_ident zero_wnd vel1 wnd1 vel2 wnd2 vel3 wnd3 vel4"},
-    {MGMSG_MOT_SET_BUTTONPARAMS, "chan_ident mode position1 position2 time_out_ms not_used"},
-    {MGMSG_MOT_GET_BUTTONPARAMS, "chan_ident mode position1 position2 time_out_ms not_used"},
-    {MGMSG_MOT_SET_PMDPOSITIONLOOPPARAMS, "chan_ident kp_pos ki_pos integral_limit kd_pos kd_time_pos kout_pos kvff_pos kaff_pos pos_err_lim not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDPOSITIONLOOPPARAMS, "chan_ident kp_pos ki_pos integral_limit kd_pos kd_time_pos kout_pos kvff_pos kaff_pos pos_err_lim not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDMOTOROUTPUTPARAMS, "chan_ident cont_current_lim energy_lim motor_lim motor_bias not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDMOTOROUTPUTPARAMS, "chan_ident cont_current_lim energy_lim motor_lim motor_bias not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDTRACKSETTLEPARAMS, "chan_ident time_cycles settle_window track_window not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDTRACKSETTLEPARAMS, "chan_ident time_cycles settle_window track_window not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDPROFILEMODEPARAMS, "chan_ident mode jerk not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDPROFILEMODEPARAMS, "chan_ident mode jerk not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDCURRENTLOOPPARAMS, "chan_ident phase kp_current ki_current i_lim_current i_dead_band kff not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDCURRENTLOOPPARAMS, "chan_ident phase kp_current ki_current i_lim_current i_dead_band kff not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDSETTLEDCURRENTLOOPPARAMS, "chan_ident phase kp_settled ki_settled i_lim_settled i_dead_band_settled kff_settled not_used1 not_used2"},
-    {MGMSG_MOT_GET_PMDSETTLEDCURRENTLOOPPARAMS, "chan_ident phase kp_settled ki_settled i_lim_settled i_dead_band_settled kff_settled not_used1 not_used2"},
-    {MGMSG_MOT_SET_PMDSTAGEAXISPARAMS, "chan_ident stage_id axis_id part_no_axis serial_num cnts_per_unit min_pos max_pos max_accn max_dec max_vel reserved"},
-    {MGMSG_MOT_GET_PMDSTAGEAXISPARAMS, "chan_ident stage_id axis_id part_no_axis serial_num cnts_per_unit min_pos max_pos max_accn max_dec max_vel reserved"},
-    {MGMSG_MOT_SET_POWERPARAMS, "chan_ident rest_factor move_factor"},
-    {MGMSG_MOT_GET_POWERPARAMS, "chan_ident rest_factor move_factor"},
-    {MGMSG_MOT_SET_TSTACTUATORTYPE, "actuator_ident unused"},
-    {MGMSG_MOT_SET_TRIGGER, "chan_ident mode"},
-    {MGMSG_MOT_GET_TRIGGER, "chan_ident mode"},
-    {MGMSG_MOT_SET_KCUBEMMIPARAMS, "chan_ident js_mode js_max_vel js_accn dir_sense preset_pos1 preset_pos2 disp_brightness disp_timeout disp_dim_level preset_pos3 js_sensitivity reserved"},
-    {MGMSG_MOT_GET_KCUBEMMIPARAMS, "chan_ident js_mode js_max_vel js_accn dir_sense preset_pos1 preset_pos2 disp_brightness disp_timeout disp_dim_level preset_pos3 js_sensitivity reserved"},
-    {MGMSG_MOT_SET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity reserved"},
-    {MGMSG_MOT_GET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity reserved"},
-    {MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS, "chan_ident start_pos_fwd interval_fwd num_pulses_fwd start_pos_rev interval_rev num_pulses_rev pulse_width num_cycles reserved"},
-    {MGMSG_MOT_GET_KCUBEPOSTRIGPARAMS, "chan_ident start_pos_fwd interval_fwd num_pulses_fwd start_pos_rev interval_rev num_pulses_rev pulse_width num_cycles reserved"},
-    {MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS, "chan_ident loop_mode prop integral diff pid_clip pid_tol encoder_const"},
-    {MGMSG_MOT_GET_KCUBEKSTLOOPPARAMS, "chan_ident loop_mode prop integral diff pid_clip pid_tol encoder_const"},
-    {MGMSG_MOD_SET_CHANENABLESTATE, "chan_ident enable_state"},
-    {MGMSG_MOD_GET_CHANENABLESTATE, "chan_ident enable_state"},
-    {MGMSG_HW_RICHRESPONSE, "msg_ident code notes"},
-    {MGMSG_HW_START_UPDATEMSGS, "update_rate"},
-    {MGMSG_HW_GET_INFO, "serial_number model_number type firmware_version notes nchs"},
-    {MGMSG_RACK_REQ_BAYUSED, "bay_ident"},
-    {MGMSG_RACK_GET_BAYUSED, "bay_ident bay_state"},
-    {MGMSG_HUB_GET_BAYUSED, "bay_ident"},
-    {MGMSG_RACK_GET_STATUSBITS, "status_bits"},
-    {MGMSG_RACK_SET_DIGOUTPUTS, "dig_outputs bay_ident"},
-    {MGMSG_RACK_REQ_DIGOUTPUTS, "dig_outputs bay_ident"},
-    {MGMSG_RACK_GET_DIGOUTPUTS, "dig_outputs bay_ident"},
-    {MGMSG_MOT_MOVE_RELATIVE, "chan_ident relative_distance"},
-    {MGMSG_MOT_MOVE_ABSOLUTE, "chan_ident absolute_distance"},
-    {MGMSG_MOT_MOVE_JOG, "chan_ident direction"},
-    {MGMSG_MOT_MOVE_VELOCITY, "chan_ident direction"},
-    {MGMSG_MOT_MOVE_STOP, "chan_ident stop_mode"},
-    {MGMSG_MOT_SET_EEPROMPARAMS, "chan_ident msg_id"},
-    {MGMSG_MOT_GET_STATUSBITS, "chan_ident status_bits"},
-    {MGMSG_MOT_SET_SOL_OPERATINGMODE, "chan_ident operating_mode"},
-    {MGMSG_MOT_GET_SOL_OPERATINGMODE, "chan_ident operating_mode"},
-    {MGMSG_MOT_SET_SOL_CYCLEPARAMS, "chan_ident on_time_250us off_time_250us num_cycles"},
-    {MGMSG_MOT_GET_SOL_CYCLEPARAMS, "chan_ident on_time_250us off_time_250us num_cycles"},
-    {MGMSG_MOT_SET_SOL_INTERLOCKMODE, "chan_ident interlock_mode"},
-    {MGMSG_MOT_GET_SOL_INTERLOCKMODE, "chan_ident interlock_mode"},
-    {MGMSG_MOT_SET_SOL_STATE, "chan_ident state"},
-    {MGMSG_MOT_GET_SOL_STATE, "chan_ident state"},
-    {MGMSG_PZ_SET_OUTPUTVOLTS, "chan_ident voltage"},
-    {MGMSG_PZ_GET_OUTPUTVOLTS, "chan_ident voltage"},
-    {MGMSG_PZ_SET_OUTPUTPOS, "chan_ident position_sw"},
-    {MGMSG_PZ_GET_OUTPUTPOS, "chan_ident position_sw"},
-    {MGMSG_PZ_SET_INPUTVOLTSSRC, "chan_ident volt_src"},
-    {MGMSG_PZ_GET_INPUTVOLTSSRC, "chan_ident volt_src"},
-    {MGMSG_PZ_SET_PICONSTS, "chan_ident prop_const int_const"},
-    {MGMSG_PZ_GET_PICONSTS, "chan_ident prop_const int_const"},
-    {MGMSG_PZ_SET_OUTPUTLUT, "chan_ident index output"},
-    {MGMSG_PZ_GET_OUTPUTLUT, "chan_ident index output"},
-    {MGMSG_PZ_SET_OUTPUTLUTPARAMS, "chan_ident mode cycle_length num_cycles delay_time pre_cycle_rest post_cycle_rest op_trig_start op_trig_width trig_repeat_cycle"},
-    {MGMSG_PZ_GET_OUTPUTLUTPARAMS, "chan_ident mode cycle_length num_cycles delay_time pre_cycle_rest post_cycle_rest op_trig_start op_trig_width trig_repeat_cycle"},
-    {MGMSG_PZ_SET_TPZ_DISPSETTINGS, "disp_intensity"},
-    {MGMSG_PZ_GET_TPZ_DISPSETTINGS, "disp_intensity"},
-    {MGMSG_PZ_SET_TPZ_IOSETTINGS, "chan_ident voltage_limit hub_analog_input future_use1 future_use2"},
-    {MGMSG_PZ_GET_TPZ_IOSETTINGS, "chan_ident voltage_limit hub_analog_input future_use1 future_use2"},
-    {MGMSG_PZ_SET_IOSETTINGS, "chan_ident amp_current_lim amp_lp_filter feedback_sig bnc_trig_or_lv_out"},
-    {MGMSG_PZ_GET_IOSETTINGS, "chan_ident amp_current_lim amp_lp_filter feedback_sig bnc_trig_or_lv_out"},
-    {MGMSG_PZ_SET_OUTPUTMAXVOLTS, "chan_ident voltage flags"},
-    {MGMSG_PZ_GET_OUTPUTMAXVOLTS, "chan_ident voltage flags"},
-    {MGMSG_PZ_SET_TPZ_SLEWRATES, "chan_ident slew_open slew_closed"},
-    {MGMSG_PZ_GET_TPZ_SLEWRATES, "chan_ident slew_open slew_closed"},
-    {MGMSG_PZ_SET_TSG_IOSETTINGS, "chan_ident hub_analogue_output display_mode force_calib future_use1 future_use2 future_use3"},
-    {MGMSG_PZ_GET_TSG_IOSETTINGS, "chan_ident hub_analogue_output display_mode force_calib future_use1 future_use2 future_use3"},
-    {MGMSG_PZ_SET_POSCONTROLMODE, "chan_ident mode"},
-    {MGMSG_PZ_GET_POSCONTROLMODE, "chan_ident mode"},
-    {MGMSG_PZ_SET_LUTVALUETYPE, "lut_type"},
-    {MGMSG_PZ_GET_PZSTATUSBITS, "chan_ident status_bits"},
-    {MGMSG_PZ_GET_PZSTATUSUPDATE, "chan_ident op_voltage position status_bits"},
-    {MGMSG_PZ_SET_EEPROMPARAMS, "chan_ident msg_id"},
-    {MGMSG_PZ_GET_MAXTRAVEL, "chan_ident travel"},
-    {MGMSG_PZ_GET_TSG_READING, "chan_ident reading smoothed"},
-    // The K-Cube units' own blocks (later protocol issues, codec_kcube_units.hpp).
-    {MGMSG_KPZ_SET_KCUBEMMIPARAMS, "chan_ident js_mode js_volt_gearbox js_volt_step dir_sense preset_volt1 preset_volt2 disp_brightness disp_timeout disp_dim_level reserved1 reserved2 reserved3 reserved4"},
-    {MGMSG_KPZ_GET_KCUBEMMIPARAMS, "chan_ident js_mode js_volt_gearbox js_volt_step dir_sense preset_volt1 preset_volt2 disp_brightness disp_timeout disp_dim_level reserved1 reserved2 reserved3 reserved4"},
-    {MGMSG_KPZ_SET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity reserved1 reserved2 reserved3 reserved4 reserved5 reserved6"},
-    {MGMSG_KPZ_GET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity reserved1 reserved2 reserved3 reserved4 reserved5 reserved6"},
-    {MGMSG_KSG_SET_KCUBEMMIPARAMS, "chan_ident disp_intensity disp_timeout disp_dim_level"},
-    {MGMSG_KSG_GET_KCUBEMMIPARAMS, "chan_ident disp_intensity disp_timeout disp_dim_level"},
-    {MGMSG_KSG_SET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity lower_lim upper_lim smoothing_samples reserved"},
-    {MGMSG_KSG_GET_KCUBETRIGIOCONFIG, "chan_ident trig1_mode trig1_polarity trig2_mode trig2_polarity lower_lim upper_lim smoothing_samples reserved"},
-    {MGMSG_MOT_GET_STATUSUPDATE, "chan_ident position enc_count status_bits"},
-    {MGMSG_MOT_GET_DCSTATUSUPDATE, "chan_ident position velocity reserved status_bits"},
-};
+// The field names the wire log shows, by message ID: each codec struct's own list
+// (RIGSIM_APT_FIELDS in codec.hpp: "s.chan_ident, s.position"), split once into its members'
+// names, for every message of every chapter of msg::Message.
+using NamesTable = std::unordered_map<std::uint16_t, std::vector<std::string_view>>;
 
-const std::unordered_map<std::uint16_t, std::vector<std::string_view>>& names_table()
+std::vector<std::string_view> split_field_names(std::string_view list)
 {
-    static const auto table = [] {
-        std::unordered_map<std::uint16_t, std::vector<std::string_view>> t;
-        for (const auto& [id, names] : kFieldNames) {
-            auto& list = t[id];
-            for (std::size_t at = 0; at < names.size();) {
-                const auto space = std::min(names.find(' ', at), names.size());
-                list.push_back(names.substr(at, space - at));
-                at = space + 1;
-            }
-        }
+    std::vector<std::string_view> names;
+    for (std::size_t at = 0; at < list.size();) {
+        const auto comma = std::min(list.find(',', at), list.size());
+        auto name = list.substr(at, comma - at);
+        while (!name.empty() && name.front() == ' ')
+            name.remove_prefix(1);
+        names.push_back(name.substr(name.rfind('.') + 1));   // "s.params.unused" -> "unused"
+        at = comma + 1;
+    }
+    return names;
+}
+
+/// True for the end-of-move messages, whose one field is a status structure that put_status
+/// flattens into the fields of its own kind (DC or stepper).
+template <class T>
+constexpr bool kStatusOnly = std::is_same_v<decltype(T::fields(std::declval<const T&>())), std::tuple<const msg::MotorStatus&>>;
+
+template <class... Messages> void add_chapter(NamesTable& t, const std::variant<Messages...>*)
+{
+    (
+        [&] {
+            if (!Messages::field_names.empty() && !kStatusOnly<Messages>)
+                t.emplace(Messages::id, split_field_names(Messages::field_names));
+        }(),
+        ...);
+}
+
+template <class... Chapter> void add_chapters(NamesTable& t, const std::tuple<Chapter...>*)
+{
+    (add_chapter(t, static_cast<const typename Chapter::variant*>(nullptr)), ...);
+}
+
+const NamesTable& names_table()
+{
+    static const NamesTable table = [] {
+        NamesTable t;
+        add_chapters(t, static_cast<const msg::Chapters*>(nullptr));
         return t;
     }();
     return table;
@@ -246,15 +149,10 @@ template <class T> void put_fields(const T& m, std::uint16_t id, const LogContex
         T::fields(m));
     if (status)
         return;
+    // Every typed message names its fields (RIGSIM_APT_FIELDS): the list and the values are one.
     const auto* names = field_names(id);
-    for (std::size_t i = 0; i < values.size(); ++i) {
-        if (names && names->size() == values.size())
-            fields[std::string((*names)[i])] = values[i];
-        else if (values.size() == 1 && !names)
-            fields["chan_ident"] = values[i];
-        else
-            fields["field" + std::to_string(i + 1)] = values[i];
-    }
+    for (std::size_t i = 0; i < values.size(); ++i)
+        fields[names ? std::string((*names)[i]) : "field" + std::to_string(i + 1)] = values[i];
     if (const auto bits = fields.find("status_bits"); bits != fields.end() && bits->is_number_unsigned())
         fields["status_set"] = status_bit_names(bits->get<std::uint32_t>(), table_of(id, unit));
 }

@@ -39,8 +39,9 @@ LogContext log_context(const ControllerModel& model);
 /// "fields": {...}}; bytes that are no whole frame as {"name": "not a frame"}.
 void decode_for_log(std::string_view frame, nlohmann::json& out, const LogContext& unit = {});
 
-/// The field names of message `id` in wire order (the codec struct's members), or nullptr
-/// (a header-only message whose only field is its channel, or a status structure).
+/// The field names of message `id` in wire order, from its codec struct's RIGSIM_APT_FIELDS, or
+/// nullptr for a message without fields (HW_DISCONNECT, ...), an end-of-move message (its status
+/// structure's fields depend on the unit) or an ID outside the table.
 const std::vector<std::string_view>* field_names(std::uint16_t id);
 
 /// The names of the status bits set in `bits` in `table` ("homed", "enabled", ...), lowest first.

@@ -27,6 +27,26 @@ TEST_CASE("decode_for_log names every field of the names table for every message
     }
 }
 
+TEST_CASE("every message of the table has the field names of its codec struct", "[unit][apt][wire]")
+{
+    for (const auto& info : all_messages()) {
+        INFO(info.name);
+        const auto* names = field_names(info.id);
+        // The end-of-move messages' status structure is named by its kind (put_status).
+        const bool end_of_move = info.id == MGMSG_MOT_MOVE_COMPLETED || info.id == MGMSG_MOT_MOVE_STOPPED;
+        if (!info.header_only() && !end_of_move)
+            REQUIRE(names != nullptr);
+        if (names)
+            for (const auto name : *names)
+                CHECK((!name.empty() && name.find_first_of(" .,") == std::string_view::npos));
+    }
+    // The names of a nested block are its members' own (codec_kcube.hpp: s.params.actuator_ident).
+    CHECK(*field_names(MGMSG_MOT_SET_TSTACTUATORTYPE) == std::vector<std::string_view>{"actuator_ident", "unused"});
+    CHECK(*field_names(MGMSG_MOT_GET_VELPARAMS)
+          == std::vector<std::string_view>{"chan_ident", "min_velocity", "acceleration", "max_velocity"});
+    CHECK(*field_names(MGMSG_MOT_REQ_VELPARAMS) == std::vector<std::string_view>{"chan_ident"});
+}
+
 TEST_CASE("decode_for_log: a MOVE_ABSOLUTE and a DC status update", "[unit][apt][wire]")
 {
     nlohmann::json out = nlohmann::json::object();
