@@ -1,15 +1,18 @@
 """rigsimctl: every route of rigsimd's control API as a sub-command (docs/cli.md#rigsimctl)."""
 
+from __future__ import annotations
+
 import argparse
 import json
 import os
 import sys
 import urllib.error
+from typing import Any, Callable, Final, Iterable, Mapping, Sequence, TextIO
 
-from rigsim.control import DEFAULT_CONTROL, ControlClient, ControlError, NotControlApi
+from rigsim.control import DEFAULT_CONTROL, ControlClient, ControlError, JsonObject, NotControlApi
 from rigsim.control import control_url as normalize_url
 
-EPILOG = f"""The control API is found by --control ADDRESS (HOST:PORT as rigsimd --control takes it,
+EPILOG: Final[str] = f"""The control API is found by --control ADDRESS (HOST:PORT as rigsimd --control takes it,
 or http://HOST:PORT), else --endpoints FILE (its "control" key, as rigsimd --endpoints-json
 writes it), else $RIGSIM_CONTROL, else {DEFAULT_CONTROL} (where the built-in default rig
 serves it). A daemon started with --control-token takes --token TOKEN, --token-file FILE or
@@ -17,11 +20,15 @@ $RIGSIM_CONTROL_TOKEN. Answers print as indented JSON (--format table: a short t
 Errors go to standard error in one line, exit status 1."""
 
 
+# A sub-command: its answer printed to `out`.
+Command = Callable[[ControlClient, argparse.Namespace, TextIO], None]
+
+
 class UsageError(Exception):
     """A command line the API cannot be asked with (bad key=value, no control URL)."""
 
 
-def parse_value(text):
+def parse_value(text: str) -> Any:
     """key=value values: JSON when they parse (1.5, true, null, "x"), else the text itself."""
     try:
         return json.loads(text)
@@ -29,8 +36,8 @@ def parse_value(text):
         return text
 
 
-def parse_fields(pairs):
-    fields = {}
+def parse_fields(pairs: Iterable[str]) -> dict[str, Any]:
+    fields: dict[str, Any] = {}
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key:
@@ -39,33 +46,34 @@ def parse_fields(pairs):
     return fields
 
 
-def control_url(args):
+def control_url(args: argparse.Namespace) -> str:
     """The control API's URL: --control, else --endpoints' "control" key, else $RIGSIM_CONTROL,
     else the default rig's (each a URL or HOST:PORT)."""
     return normalize_url(_control_address(args))
 
 
-def _control_address(args):
+def _control_address(args: argparse.Namespace) -> str:
     if getattr(args, "control", None):
-        return args.control
+        return str(args.control)
     if getattr(args, "endpoints", None):
         try:
             with open(args.endpoints, encoding="utf-8") as f:
                 doc = json.load(f)
         except (OSError, ValueError) as e:
             raise UsageError(f"cannot read the endpoints file {args.endpoints}: {e}") from None
-        if not isinstance(doc, dict) or "control" not in doc:
+        control = doc.get("control") if isinstance(doc, dict) else None
+        if not isinstance(control, str):
             raise UsageError(f"{args.endpoints} names no control API (was rigsimd started with --control?)")
-        return doc["control"]
+        return control
     if os.environ.get("RIGSIM_CONTROL"):
         return os.environ["RIGSIM_CONTROL"]
     return DEFAULT_CONTROL
 
 
-def control_token(args):
+def control_token(args: argparse.Namespace) -> str | None:
     """--token, else --token-file's first line, else None (the client reads RIGSIM_CONTROL_TOKEN)."""
     if getattr(args, "token", None):
-        return args.token
+        return str(args.token)
     if getattr(args, "token_file", None):
         try:
             with open(args.token_file, encoding="utf-8") as f:
@@ -80,7 +88,7 @@ def control_token(args):
 
 # ---- output ----
 
-def table(rows, columns):
+def table(rows: Iterable[Mapping[str, Any]], columns: Sequence[tuple[str, str]]) -> str:
     """A short left-aligned text table of `rows` (dicts) with `columns` (key, heading)."""
     cells = [[heading for _, heading in columns]]
     for row in rows:
@@ -89,7 +97,7 @@ def table(rows, columns):
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in cells)
 
 
-def _cell(value):
+def _cell(value: object) -> str:
     if value is None:
         return "-"
     if isinstance(value, bool):
@@ -105,12 +113,12 @@ def _cell(value):
     return str(value)
 
 
-def _clock_table(clock):
+def _clock_table(clock: Mapping[str, Any]) -> str:
     return table([clock], [("now_ms", "now_ms"), ("paused", "paused"), ("time_scale", "scale"),
                            ("tick_hz", "tick_hz"), ("reached_ms", "reached_ms")])
 
 
-def _log_rows(answer):
+def _log_rows(answer: JsonObject) -> list[dict[str, Any]]:
     rows = []
     for e in answer.get("entries", []):
         decoded = e.get("decoded") or {}
@@ -120,11 +128,11 @@ def _log_rows(answer):
     return rows
 
 
-def _numbers(values, digits):
+def _numbers(values: Iterable[float], digits: int) -> list[str]:
     return [f"{v:.{digits}f}" for v in values]
 
 
-def _joint_cell(frame):
+def _joint_cell(frame: JsonObject) -> str:
     if frame.get("tool"):
         return "tool"
     joint = frame.get("joint")
@@ -133,7 +141,7 @@ def _joint_cell(frame):
     return f"{joint['type']} {joint['device']}/{joint['channel']} = {joint['position']:.4f}"
 
 
-def _frames_table(answer):
+def _frames_table(answer: JsonObject) -> str:
     """One row per frame and tool point: its joint and its world placement; then the contacts."""
     rows = []
     for frame in answer.get("frames", []) + answer.get("tools", []):
@@ -149,7 +157,7 @@ def _frames_table(answer):
     return out + "\n\ncollisions: " + (", ".join(contacts) if contacts else "none")
 
 
-def _frame_table(frame):
+def _frame_table(frame: JsonObject) -> str:
     """One frame: its world and parent-relative placements, position, quaternion and angles."""
     rows = []
     for ref, key in (("world", "world"), ("parent", "parent_relative")):
@@ -165,7 +173,7 @@ def _frame_table(frame):
                                       ("roll", "roll_deg"), ("pitch", "pitch_deg"), ("yaw", "yaw_deg")])
 
 
-def render_table(kind, answer):
+def render_table(kind: str, answer: Any) -> str | None:
     """A short table for the answers that have one, else None (JSON is printed)."""
     if kind == "rig":
         out = table(answer.get("devices", []), [("name", "name"), ("protocol", "protocol"),
@@ -193,7 +201,7 @@ def render_table(kind, answer):
     return None
 
 
-def emit(args, kind, answer, out):
+def emit(args: argparse.Namespace, kind: str, answer: Any, out: TextIO) -> None:
     text = render_table(kind, answer) if args.format == "table" else None
     if text is None:
         text = json.dumps(answer, indent=2, sort_keys=False)
@@ -202,22 +210,22 @@ def emit(args, kind, answer, out):
 
 # ---- sub-commands ----
 
-def cmd_rig(client, args, out):
+def cmd_rig(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     emit(args, "rig", client.rig(), out)
 
 
-def cmd_state(client, args, out):
+def cmd_state(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     emit(args, "state", client.state(args.name), out)
 
 
-def cmd_set(client, args, out):
+def cmd_set(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     fields = parse_fields(args.fields)
     if not fields:
         raise UsageError("set: give at least one key=value (position_si, referenced, limit_switch, sensor)")
     emit(args, "channel", client.set(args.name, args.channel, **fields), out)
 
 
-def cmd_clock(client, args, out):
+def cmd_clock(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     action = args.action or "show"
     if action == "show":
         answer = client.clock()
@@ -234,7 +242,7 @@ def cmd_clock(client, args, out):
     emit(args, "clock", answer, out)
 
 
-def cmd_fault(client, args, out):
+def cmd_fault(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     action = args.action
     if action == "add":
         params = parse_fields(args.params)
@@ -247,15 +255,15 @@ def cmd_fault(client, args, out):
         emit(args, "removed", client.clear_faults(), out)
 
 
-def cmd_frames(client, args, out):
+def cmd_frames(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     if args.name is None:
         emit(args, "frames", client.frames(), out)
     else:
         emit(args, "frame", client.frame(args.name), out)
 
 
-def cmd_events(client, args, out):
-    def names(option):
+def cmd_events(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
+    def names(option: list[str] | None) -> list[str] | None:
         return [n for d in option for n in d.split(",") if n] if option else None
     count = 0
     stream = client.events(names(args.device), timeout=args.timeout, type=names(args.type))
@@ -272,11 +280,11 @@ def cmd_events(client, args, out):
         stream.close()
 
 
-def cmd_reset(client, args, out):
+def cmd_reset(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     emit(args, "reset", client.reset(keep_saved=not args.erase_saved), out)
 
 
-def cmd_log(client, args, out):
+def cmd_log(client: ControlClient, args: argparse.Namespace, out: TextIO) -> None:
     if args.clear:
         emit(args, "cleared", client.clear_log(args.name), out)
     else:
@@ -285,7 +293,7 @@ def cmd_log(client, args, out):
 
 # ---- the parser ----
 
-def _common(suppress):
+def _common(suppress: bool) -> argparse.ArgumentParser:
     """The options every sub-command takes too (before or after the sub-command's name)."""
     p = argparse.ArgumentParser(add_help=False)
     default = argparse.SUPPRESS if suppress else None
@@ -304,13 +312,14 @@ def _common(suppress):
     return p
 
 
-def _sub(subs, name, func, help_text, common):
+def _sub(subs: argparse._SubParsersAction[argparse.ArgumentParser], name: str, func: Command, help_text: str,
+         common: argparse.ArgumentParser) -> argparse.ArgumentParser:
     p = subs.add_parser(name, help=help_text, description=help_text, parents=[common])
     p.set_defaults(func=func)
     return p
 
 
-def build_parser():
+def build_parser() -> argparse.ArgumentParser:
     common = _common(suppress=True)
     parser = argparse.ArgumentParser(
         prog="rigsimctl", parents=[_common(suppress=False)],
@@ -396,14 +405,14 @@ def build_parser():
     return parser
 
 
-def _default_hint(url):
+def _default_hint(url: str | None) -> str:
     if url != normalize_url(DEFAULT_CONTROL):
         return ""
     return (f" ({DEFAULT_CONTROL} is the default rig's; for another daemon pass --control HOST:PORT, "
             "--endpoints FILE or set RIGSIM_CONTROL)")
 
 
-def main(argv=None, out=None):
+def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
     out = out or sys.stdout
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)

@@ -1,6 +1,7 @@
 """A client of rigsimd's HTTP control API (docs/control-api.md), standard library only."""
 
-import collections
+from __future__ import annotations
+
 import http.client
 import json
 import os
@@ -11,12 +12,17 @@ import time
 import urllib.error
 import urllib.parse
 import urllib.request
+from typing import Any, Final, Generator, Iterable, Mapping, NamedTuple
+
+# A decoded JSON object, as every route answers one: mypy sees its values as Any (the shape of
+# each answer is docs/control-api.md's, not something the client checks).
+JsonObject = dict[str, Any]
 
 
 class ControlError(Exception):
     """The control API answered with an error: `status` (4xx) and its `message`."""
 
-    def __init__(self, status, message):
+    def __init__(self, status: int, message: str) -> None:
         super().__init__(f"{status}: {message}")
         self.status = status
         self.message = message
@@ -26,13 +32,13 @@ class NotIdle(Exception):
     """run_until_idle() reached its max_ms while something still moved or settled; `clock` is
     the daemon's answer (with "reached_ms" and "idle": false)."""
 
-    def __init__(self, clock, max_ms):
+    def __init__(self, clock: JsonObject, max_ms: int) -> None:
         super().__init__(f"still busy after {max_ms} ms of clock time (now_ms {clock.get('now_ms')}): "
                          "something still moves, settles or runs; raise max_ms, or pass check=False")
         self.clock = clock
 
 
-def _message_matches(entry, message, direction):
+def _message_matches(entry: JsonObject, message: str, direction: str | None) -> bool:
     """Whether wire log `entry` is `message` in `direction`: an APT name with or without its
     MGMSG_ prefix, or an MCS command (MPA) or its name."""
     if direction is not None and entry.get("direction") != direction:
@@ -42,27 +48,27 @@ def _message_matches(entry, message, direction):
     return message in names or "MGMSG_" + message in names
 
 
-def _quote(name):
+def _quote(name: object) -> str:
     return urllib.parse.quote(str(name), safe="")
 
 
-def _error_message(text):
+def _error_message(text: str) -> str:
     try:
         message = json.loads(text).get("error", text)
     except (ValueError, AttributeError):
         message = text
-    return message
+    return str(message)
 
 
 # Where the built-in default rig's control API listens (config/default.json "control"): what
 # ControlClient() and rigsimctl reach when given no address.
-DEFAULT_CONTROL = "127.0.0.1:40200"
+DEFAULT_CONTROL: Final[str] = "127.0.0.1:40200"
 
 
 # The control API is reached directly, never through the http_proxy/HTTPS_PROXY of the
 # environment (a lab's proxy cannot reach the daemon on this machine's loopback, and the daemon
 # refuses a Host header it does not serve).
-_DIRECT = urllib.request.build_opener(urllib.request.ProxyHandler({}))
+_DIRECT: Final[urllib.request.OpenerDirector] = urllib.request.build_opener(urllib.request.ProxyHandler({}))
 
 
 class NotControlApi(OSError):
@@ -75,7 +81,7 @@ class NoControlAnswer(NotControlApi, TimeoutError):
     daemon too busy to answer. A TimeoutError too, as before the message named the port."""
 
 
-def control_url(address=None):
+def control_url(address: str | None = None) -> str:
     """The control API's base URL from `address`: "http://HOST:PORT", or "HOST:PORT" and
     "[IPv6]:PORT" as rigsimd --control takes them (http:// is added); None: the default rig's
     (DEFAULT_CONTROL)."""
@@ -85,20 +91,20 @@ def control_url(address=None):
     return text.rstrip("/")
 
 
-def _address_of(url):
+def _address_of(url: str) -> str:
     return urllib.parse.urlsplit(url).netloc or url
 
 
-def _answer_text(exc):
+def _answer_text(exc: BaseException) -> str:
     """What a non-HTTP peer sent, as http.client saw it (BadStatusLine's line), shortened."""
-    line = exc.args[0] if exc.args else ""
-    if isinstance(line, bytes):
-        line = line.decode("latin-1")
-    line = str(line).strip()
+    seen: object = exc.args[0] if exc.args else ""
+    if isinstance(seen, bytes):
+        seen = seen.decode("latin-1")
+    line = str(seen).strip()
     return line[:40] + ("..." if len(line) > 40 else "")
 
 
-def _not_control_api(url, exc, timeout_s):
+def _not_control_api(url: str, exc: BaseException, timeout_s: float) -> NotControlApi:
     """A NotControlApi that says what `url` did instead of answering HTTP."""
     where = _address_of(url)
     hint = ("the control API's address is the 'control:' line rigsimd prints, the \"control\" key "
@@ -115,47 +121,63 @@ def _not_control_api(url, exc, timeout_s):
                          f"control API; {hint}")
 
 
-TraceSample = collections.namedtuple("TraceSample", "tick output_code output_v position_um lut_index")
-TraceSample.__doc__ = """One sample of a piezo channel's trace (docs/control-api.md#traces): the clock tick, the
-output as GET_OUTPUTVOLTS codes it, the output in volts, the actuator's physical extension in um, and
-the LUT index being output (None when no LUT runs)."""
+class TraceSample(NamedTuple):
+    """One sample of a piezo channel's trace (docs/control-api.md#traces): the clock tick, the
+    output as GET_OUTPUTVOLTS codes it, the output in volts, the actuator's physical extension in um, and
+    the LUT index being output (None when no LUT runs)."""
 
-TRACE_PAGE = 16384   # the most samples one trace request answers (the ring's capacity)
-
-
-Placement = collections.namedtuple("Placement", "position_mm quaternion rpy_deg")
-Placement.__doc__ = """Where a frame is (docs/control-api.md#frames-get-apiframes): its origin in mm,
-its orientation as a unit quaternion (w, x, y, z) with w >= 0, and as roll, pitch, yaw in degrees
-(R = Rz(yaw) Ry(pitch) Rx(roll)). Each a tuple of floats."""
+    tick: int
+    output_code: int
+    output_v: float
+    position_um: float
+    lut_index: int | None
 
 
-def _placement(doc):
+TRACE_PAGE: Final[int] = 16384   # the most samples one trace request answers (the ring's capacity)
+
+
+class Placement(NamedTuple):
+    """Where a frame is (docs/control-api.md#frames-get-apiframes): its origin in mm,
+    its orientation as a unit quaternion (w, x, y, z) with w >= 0, and as roll, pitch, yaw in degrees
+    (R = Rz(yaw) Ry(pitch) Rx(roll)). Each a tuple of floats."""
+
+    position_mm: tuple[float, ...]
+    quaternion: tuple[float, ...]
+    rpy_deg: tuple[float, ...]
+
+
+def _placement(doc: JsonObject) -> Placement:
     return Placement(tuple(doc["position_mm"]), tuple(doc["quaternion"]), tuple(doc["rpy_deg"]))
 
 
-class Pose(collections.namedtuple("Pose", "name parent tool joint world parent_relative")):
+class Pose(NamedTuple):
     """One frame or tool point of the rig's kinematics, as GET /api/frames/{name} gives it:
     `world` and `parent_relative` are Placements; `joint` is None for a fixed frame, else a
     dict {type, device, channel, position} (position in mm or degrees). position_mm,
     quaternion and rpy_deg are the world placement's."""
 
-    __slots__ = ()
+    name: str
+    parent: str | None
+    tool: bool
+    joint: JsonObject | None
+    world: Placement
+    parent_relative: Placement
 
     @classmethod
-    def from_json(cls, doc):
+    def from_json(cls, doc: JsonObject) -> Pose:
         return cls(doc["name"], doc.get("parent"), bool(doc.get("tool")), doc.get("joint"),
                    _placement(doc["world"]), _placement(doc["parent_relative"]))
 
     @property
-    def position_mm(self):
+    def position_mm(self) -> tuple[float, ...]:
         return self.world.position_mm
 
     @property
-    def quaternion(self):
+    def quaternion(self) -> tuple[float, ...]:
         return self.world.quaternion
 
     @property
-    def rpy_deg(self):
+    def rpy_deg(self) -> tuple[float, ...]:
         return self.world.rpy_deg
 
 
@@ -168,18 +190,18 @@ class ControlClient:
 
     An address that answers, but not with HTTP (a device's TCP port), raises NotControlApi."""
 
-    def __init__(self, url=None, timeout_s=10.0, token=None):
+    def __init__(self, url: str | None = None, timeout_s: float = 10.0, token: str | None = None) -> None:
         self.url = control_url(url)
         self.timeout_s = timeout_s
         self.token = token if token is not None else os.environ.get("RIGSIM_CONTROL_TOKEN") or None
 
-    def _headers(self, extra=None):
+    def _headers(self, extra: Mapping[str, str] | None = None) -> dict[str, str]:
         headers = dict(extra or {})
         if self.token:
             headers["Authorization"] = "Bearer " + self.token
         return headers
 
-    def request(self, method, path, body=None):
+    def request(self, method: str, path: str, body: object = None) -> Any:
         """One request; returns the decoded JSON answer or raises ControlError."""
         data = None if body is None else json.dumps(body).encode()
         headers = self._headers({"Content-Type": "application/json"} if data is not None else None)
@@ -193,33 +215,39 @@ class ControlClient:
         except (http.client.HTTPException, TimeoutError, socket.timeout) as e:
             raise _not_control_api(self.url, e, self.timeout_s) from None
 
+    def _object(self, method: str, path: str, body: object = None) -> JsonObject:
+        """request() for the routes, each of which answers a JSON object."""
+        answer: JsonObject = self.request(method, path, body)
+        return answer
+
     # ---- rig and clock ----
 
-    def rig(self):
+    def rig(self) -> JsonObject:
         """GET /api/rig: the devices and the clock."""
-        return self.request("GET", "/api/rig")
+        return self._object("GET", "/api/rig")
 
-    def clock(self):
+    def clock(self) -> JsonObject:
         """GET /api/clock."""
-        return self.request("GET", "/api/clock")
+        return self._object("GET", "/api/clock")
 
-    def pause(self):
+    def pause(self) -> JsonObject:
         """Stop the clock at the current tick."""
-        return self.request("POST", "/api/clock", {"pause": True})
+        return self._object("POST", "/api/clock", {"pause": True})
 
-    def resume(self):
+    def resume(self) -> JsonObject:
         """Run the clock again from the current tick."""
-        return self.request("POST", "/api/clock", {"resume": True})
+        return self._object("POST", "/api/clock", {"resume": True})
 
-    def step(self, ms):
+    def step(self, ms: int) -> JsonObject:
         """Advance the clock `ms` milliseconds now (paused or running)."""
-        return self.request("POST", "/api/clock", {"step_ms": ms})
+        return self._object("POST", "/api/clock", {"step_ms": ms})
 
-    def scale(self, factor):
+    def scale(self, factor: float) -> JsonObject:
         """Run the clock `factor` times faster than wall time from now on."""
-        return self.request("POST", "/api/clock", {"scale": factor})
+        return self._object("POST", "/api/clock", {"scale": factor})
 
-    def run_until_idle(self, max_ms, check=True, chunk_ms=None, wait_for=None, timeout_s=5.0):
+    def run_until_idle(self, max_ms: int, check: bool = True, chunk_ms: int | None = None,
+                       wait_for: tuple[str, str] | None = None, timeout_s: float = 5.0) -> JsonObject:
         """Advance as fast as the CPU allows until nothing moves, at most `max_ms` of clock time.
 
         Idle means the world and every device: no motion, settling, calibration, move delay or
@@ -240,10 +268,11 @@ class ControlClient:
             raise NotIdle(answer, max_ms)
         return answer
 
-    def _run_until_idle(self, max_ms):
-        return self.request("POST", "/api/clock", {"run_until_idle": True, "max_ms": int(max_ms)})
+    def _run_until_idle(self, max_ms: int) -> JsonObject:
+        return self._object("POST", "/api/clock", {"run_until_idle": True, "max_ms": int(max_ms)})
 
-    def _run_in_chunks(self, max_ms, chunk_ms, wait_for, timeout_s):
+    def _run_in_chunks(self, max_ms: int, chunk_ms: int, wait_for: tuple[str, str] | None,
+                       timeout_s: float) -> JsonObject:
         if chunk_ms < 1:
             raise ValueError(f"chunk_ms must be at least 1, got {chunk_ms}")
         left = int(max_ms)
@@ -258,13 +287,14 @@ class ControlClient:
                 cursor = self.log_cursor(wait_for[0])
                 self.wait_for_message(wait_for[0], wait_for[1], after=cursor, timeout_s=timeout_s)
 
-    def log_cursor(self, name):
+    def log_cursor(self, name: str) -> int:
         """The seq of the newest entry of `name`'s wire log (0 when empty): pass it as
         wait_for_message(after=...) to wait for a message that comes after this point."""
         entries = self.log(name, last=1).get("entries", [])
-        return entries[-1]["seq"] if entries else 0
+        return int(entries[-1]["seq"]) if entries else 0
 
-    def wait_for_message(self, name, message, after=None, direction="in", timeout_s=5.0, poll_s=0.005):
+    def wait_for_message(self, name: str, message: str, after: int | None = None, direction: str | None = "in",
+                         timeout_s: float = 5.0, poll_s: float = 0.005) -> JsonObject:
         """Wait (wall time, the clock stands or runs as it does) until device `name`'s wire log
         holds `message` after seq `after` (None: anywhere in the log), and return that entry.
 
@@ -274,7 +304,7 @@ class ControlClient:
         clock. Raises TimeoutError after `timeout_s`."""
         deadline = time.monotonic() + timeout_s
         while True:
-            entries = self.log(name).get("entries", [])
+            entries: list[JsonObject] = self.log(name).get("entries", [])
             if after is not None and entries and entries[-1]["seq"] < after:
                 after = 0   # the log was emptied (a reset) since the cursor was taken
             for entry in entries:
@@ -287,16 +317,17 @@ class ControlClient:
 
     # ---- devices ----
 
-    def state(self, name):
+    def state(self, name: str) -> JsonObject:
         """GET /api/devices/{name}: the device's state, channel by channel."""
-        return self.request("GET", f"/api/devices/{_quote(name)}")
+        return self._object("GET", f"/api/devices/{_quote(name)}")
 
-    def set(self, name, channel, **fields):
+    def set(self, name: str, channel: int, **fields: Any) -> JsonObject:
         """PATCH /api/devices/{name}/channels/{channel} with `fields` (position_si=, referenced=,
         limit_switch=, sensor=); returns the channel object after the change."""
-        return self.request("PATCH", f"/api/devices/{_quote(name)}/channels/{int(channel)}", fields)
+        return self._object("PATCH", f"/api/devices/{_quote(name)}/channels/{int(channel)}", fields)
 
-    def trace_page(self, name, channel, since=None, max_samples=None):
+    def trace_page(self, name: str, channel: int, since: int | None = None,
+                   max_samples: int | None = None) -> JsonObject:
         """GET /api/devices/{name}/channels/{channel}/trace[?from=&max=]: one answer as the route
         gives it (tick_hz, capacity, kept, oldest_tick, next_from, samples)."""
         query = []
@@ -305,86 +336,88 @@ class ControlClient:
         if max_samples is not None:
             query.append(f"max={int(max_samples)}")
         path = f"/api/devices/{_quote(name)}/channels/{int(channel)}/trace"
-        return self.request("GET", path + ("?" + "&".join(query) if query else ""))
+        return self._object("GET", path + ("?" + "&".join(query) if query else ""))
 
-    def trace(self, name, channel, since=None):
+    def trace(self, name: str, channel: int, since: int | None = None) -> list[TraceSample]:
         """Every sample the channel's trace keeps from tick `since` on (all when None), oldest
         first, as TraceSample tuples; pages through the route until it has them all."""
-        samples = []
-        since = 0 if since is None else int(since)
+        samples: list[TraceSample] = []
+        start = 0 if since is None else int(since)
         while True:
-            page = self.trace_page(name, channel, since, TRACE_PAGE)
+            page = self.trace_page(name, channel, start, TRACE_PAGE)
             samples.extend(TraceSample(*s) for s in page["samples"])
             if len(page["samples"]) < TRACE_PAGE:
                 return samples
-            since = page["next_from"]
+            start = page["next_from"]
 
-    def trigger(self, name, channel):
+    def trigger(self, name: str, channel: int) -> JsonObject:
         """PATCH trig_in "pulse": a rising and a falling edge on the channel's TRIG IN in one
         tick (a BPC30x bay's LUT input trigger, a solenoid's triggered mode); returns the channel."""
         return self.set(name, channel, trig_in="pulse")
 
-    def device(self, name):
+    def device(self, name: str) -> Device:
         """A Device handle on `name`."""
         return Device(self, name)
 
-    def log(self, name, last=None):
+    def log(self, name: str, last: int | None = None) -> JsonObject:
         """GET /api/devices/{name}/log[?last=N]: the device's wire log."""
         query = "" if last is None else f"?last={int(last)}"
-        return self.request("GET", f"/api/devices/{_quote(name)}/log{query}")
+        return self._object("GET", f"/api/devices/{_quote(name)}/log{query}")
 
-    def clear_log(self, name):
+    def clear_log(self, name: str) -> JsonObject:
         """DELETE /api/devices/{name}/log."""
-        return self.request("DELETE", f"/api/devices/{_quote(name)}/log")
+        return self._object("DELETE", f"/api/devices/{_quote(name)}/log")
 
     # ---- frames ----
 
-    def frames(self):
+    def frames(self) -> JsonObject:
         """GET /api/frames: {"frames": [...], "tools": [...], "collisions": [...]} as the route
         gives it (empty lists when the rig has no kinematics)."""
-        return self.request("GET", "/api/frames")
+        return self._object("GET", "/api/frames")
 
-    def frame(self, name):
+    def frame(self, name: str) -> JsonObject:
         """GET /api/frames/{name}: one frame or tool point as the route gives it (404: none)."""
-        return self.request("GET", f"/api/frames/{_quote(name)}")
+        return self._object("GET", f"/api/frames/{_quote(name)}")
 
-    def pose(self, name):
+    def pose(self, name: str) -> Pose:
         """The frame or tool point `name` as a Pose (world and parent-relative placements)."""
         return Pose.from_json(self.frame(name))
 
     # ---- faults ----
 
-    def inject(self, device, kind, channel=None, **params):
+    def inject(self, device: str, kind: str, channel: int | None = None, **params: Any) -> int:
         """POST /api/faults; returns the fault's id."""
-        return self.add_fault(device, kind, channel, **params)["id"]
+        return int(self.add_fault(device, kind, channel, **params)["id"])
 
-    def add_fault(self, device, kind, channel=None, **params):
+    def add_fault(self, device: str, kind: str, channel: int | None = None, **params: Any) -> JsonObject:
         """POST /api/faults; returns the whole fault object (id, active, since_ms, ...)."""
-        body = {"device": device, "kind": kind}
+        body: JsonObject = {"device": device, "kind": kind}
         if channel is not None:
             body["channel"] = int(channel)
         body.update(params)
-        return self.request("POST", "/api/faults", body)
+        return self._object("POST", "/api/faults", body)
 
-    def faults(self):
+    def faults(self) -> list[JsonObject]:
         """GET /api/faults: the list of fault objects."""
-        return self.request("GET", "/api/faults")["faults"]
+        faults: list[JsonObject] = self._object("GET", "/api/faults")["faults"]
+        return faults
 
-    def clear_fault(self, fault_id):
+    def clear_fault(self, fault_id: int) -> JsonObject:
         """DELETE /api/faults/{id}."""
-        return self.request("DELETE", f"/api/faults/{int(fault_id)}")
+        return self._object("DELETE", f"/api/faults/{int(fault_id)}")
 
-    def clear_faults(self):
+    def clear_faults(self) -> JsonObject:
         """DELETE /api/faults: every fault; returns {"removed": [ids]}."""
-        return self.request("DELETE", "/api/faults")
+        return self._object("DELETE", "/api/faults")
 
     # ---- reset and events ----
 
-    def reset(self, keep_saved=True):
+    def reset(self, keep_saved: bool = True) -> JsonObject:
         """POST /api/reset: every device back to power-up, faults removed, wire logs cleared."""
-        return self.request("POST", "/api/reset", {} if keep_saved else {"keep_saved": False})
+        return self._object("POST", "/api/reset", {} if keep_saved else {"keep_saved": False})
 
-    def events(self, device=None, timeout=None, type=None):
+    def events(self, device: str | Iterable[str] | None = None, timeout: float | None = None,
+               type: str | Iterable[str] | None = None) -> Generator[JsonObject, None, None]:
         """GET /api/events: an iterator of the events as dicts (the `data` object, with "type"
         and "seq" filled from the `event:` and `id:` lines when the data lacks them).
 
@@ -408,13 +441,11 @@ class ControlClient:
         return _event_iterator(answer, timeout)
 
 
-_END = object()
-
-
-def _read_events(answer, events):
-    """The reader thread: parses the SSE stream into `events` until it ends or is closed."""
-    fields = {}
-    data = []
+def _read_events(answer: http.client.HTTPResponse, events: queue.Queue[JsonObject | None]) -> None:
+    """The reader thread: parses the SSE stream into `events` until it ends or is closed (then
+    puts None)."""
+    fields: dict[str, str] = {}
+    data: list[str] = []
     try:
         # The stream is read without a timeout: an idle stream is normal; close() ends it.
         sock = getattr(getattr(getattr(answer, "fp", None), "raw", None), "_sock", None)
@@ -438,16 +469,15 @@ def _read_events(answer, events):
     except (OSError, ValueError, AttributeError):
         pass   # closed under us, or the server went away
     finally:
-        events.put(_END)
+        events.put(None)
 
 
-def _event(fields, text):
+def _event(fields: Mapping[str, str], text: str) -> JsonObject:
     try:
-        event = json.loads(text)
+        decoded: Any = json.loads(text)
     except ValueError:
-        event = {"data": text}
-    if not isinstance(event, dict):
-        event = {"data": event}
+        decoded = {"data": text}
+    event: JsonObject = decoded if isinstance(decoded, dict) else {"data": decoded}
     if "event" in fields:
         event.setdefault("type", fields["event"])
     if "id" in fields:
@@ -456,8 +486,9 @@ def _event(fields, text):
     return event
 
 
-def _event_iterator(answer, timeout):
-    events = queue.Queue()
+def _event_iterator(answer: http.client.HTTPResponse,
+                    timeout: float | None) -> Generator[JsonObject, None, None]:
+    events: queue.Queue[JsonObject | None] = queue.Queue()
     reader = threading.Thread(target=_read_events, args=(answer, events), daemon=True)
     reader.start()
     try:
@@ -466,14 +497,14 @@ def _event_iterator(answer, timeout):
                 event = events.get(timeout=timeout)
             except queue.Empty:
                 return
-            if event is _END:
+            if event is None:   # the stream ended
                 return
             yield event
     finally:
         _close_stream(answer)
 
 
-def _close_stream(answer):
+def _close_stream(answer: http.client.HTTPResponse) -> None:
     """Unblock the reader thread: shut the socket down, then close the answer."""
     sock = getattr(getattr(getattr(answer, "fp", None), "raw", None), "_sock", None)
     if sock is not None:
@@ -491,29 +522,29 @@ class Device:
     """One device of the rig through a ControlClient: its state, its channels' set-up, traces and
     triggers, without repeating its name."""
 
-    def __init__(self, control, name):
+    def __init__(self, control: ControlClient, name: str) -> None:
         self.control = control
         self.name = name
 
-    def state(self):
+    def state(self) -> JsonObject:
         """GET /api/devices/{name}."""
         return self.control.state(self.name)
 
-    def channel(self, channel):
+    def channel(self, channel: int) -> JsonObject:
         """GET /api/devices/{name}/channels/{channel}: one channel object."""
-        return self.control.request("GET", f"/api/devices/{_quote(self.name)}/channels/{int(channel)}")
+        return self.control._object("GET", f"/api/devices/{_quote(self.name)}/channels/{int(channel)}")
 
-    def set(self, channel, **fields):
+    def set(self, channel: int, **fields: Any) -> JsonObject:
         """PATCH the channel with `fields`; returns the channel object after the change."""
         return self.control.set(self.name, channel, **fields)
 
-    def trace(self, channel, since=None):
+    def trace(self, channel: int, since: int | None = None) -> list[TraceSample]:
         """The channel's output trace from tick `since` on (all it keeps when None): a list of
         TraceSample(tick, output_code, output_v, position_um, lut_index), oldest first. Only
         piezo channels have one (ControlError 404 otherwise)."""
         return self.control.trace(self.name, channel, since)
 
-    def trigger(self, channel):
+    def trigger(self, channel: int) -> JsonObject:
         """A pulse on the channel's TRIG IN (PATCH trig_in "pulse"): starts an armed BPC30x LUT
         (OUTPUTLUTPARAMS input trigger, p. 108) or a primed solenoid's cycles; ControlError 400 on
         a unit without a trigger input (TPZ001, KPZ101)."""

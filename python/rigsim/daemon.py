@@ -1,5 +1,7 @@
 """Start rigsimd on a rig with ephemeral ports and a private pty dir; stop it and clean up."""
 
+from __future__ import annotations
+
 import json
 import os
 import secrets
@@ -9,8 +11,13 @@ import subprocess
 import tempfile
 import time
 from dataclasses import dataclass
+from typing import Any, Final, Generator, Iterable, Sequence, Union, overload
 
-from rigsim.control import ControlClient
+from rigsim.control import ControlClient, Device, JsonObject, Pose
+
+# A rig as Rigsim takes it: a rig JSON file's path, or the rig itself (written to a file for the
+# daemon); None, where a rig is asked for, is the built-in default rig.
+RigConfig = Union[str, "os.PathLike[str]", JsonObject]
 
 
 class RigsimError(Exception):
@@ -28,12 +35,12 @@ class Endpoint:
     pty: str        # the pty's symlink path
 
     @property
-    def url(self):
+    def url(self) -> str:
         """pyserial's URL for the TCP endpoint: serial.serial_for_url(endpoint.url)."""
         return "socket://" + self.tcp
 
     @property
-    def address(self):
+    def address(self) -> tuple[str, int]:
         """(host, port) of the TCP endpoint, for socket.create_connection()."""
         host, _, port = self.tcp.rpartition(":")
         return host.strip("[]"), int(port)
@@ -45,10 +52,10 @@ class Noted:
 
     device: str
     noted: int      # noted entries since start-up, reset or clear_log, kept or not
-    entries: list   # the noted wire log entries still kept, oldest first
+    entries: list[JsonObject]   # the noted wire log entries still kept, oldest first
 
 
-def notes_text(found):
+def notes_text(found: Sequence[Noted]) -> str:
     """A readable list of Noted records: one line per noted entry with its notes."""
     total = sum(n.noted for n in found)
     lines = [f"rigsimd noted {total} client mistake(s):"]
@@ -63,7 +70,7 @@ def notes_text(found):
     return "\n".join(lines)
 
 
-def find_rigsimd(explicit=None):
+def find_rigsimd(explicit: str | None = None) -> str:
     """`explicit`, else $RIGSIMD, else rigsimd on PATH."""
     path = explicit or os.environ.get("RIGSIMD") or shutil.which("rigsimd")
     if not path:
@@ -72,10 +79,10 @@ def find_rigsimd(explicit=None):
     return os.path.abspath(path) if os.sep in path else path
 
 
-MODEM_LINES_SHIM = "librigsim_modemlines.so"
+MODEM_LINES_SHIM: Final[str] = "librigsim_modemlines.so"
 
 
-def modem_lines_shim(rigsimd=None):
+def modem_lines_shim(rigsimd: str | None = None) -> str:
     """The path of the RTS/DTR shim (librigsim_modemlines.so, docs/cli.md "Serial clients that
     toggle RTS/DTR"): $RIGSIM_MODEMLINES, else beside rigsimd (the build tree: scripts/run.sh
     builds both), else in ../lib beside it (cmake --install, the Debian layout). rigsimd is found
@@ -101,7 +108,7 @@ def modem_lines_shim(rigsimd=None):
                       "or `cmake --build BUILD --target rigsim_modemlines`, or set RIGSIM_MODEMLINES")
 
 
-def modem_lines_preloaded():
+def modem_lines_preloaded() -> bool:
     """Whether the shim is loaded in this process (LD_PRELOAD took it when the process started)."""
     try:
         with open("/proc/self/maps", encoding="utf-8", errors="replace") as f:
@@ -117,21 +124,23 @@ class Rigsim:
     The control API takes a token: a fresh random one per daemon (`token`, passed to rigsimd in
     a file only this user can read), unless `args` give their own --control-token(-file)."""
 
-    def __init__(self, rig=None, rigsimd=None, args=(), start_timeout_s=15.0):
+    def __init__(self, rig: RigConfig | None = None, rigsimd: str | None = None, args: Iterable[str] = (),
+                 start_timeout_s: float = 15.0) -> None:
         self.rigsimd = find_rigsimd(rigsimd)
-        self.token = None
+        self.token: str | None = None
         self.rig = rig
         self.args = list(args)
         self.start_timeout_s = start_timeout_s
-        self.process = None
-        self.control = None
-        self.endpoints = {}
-        self.dir = None
-        self.used = []   # devices a test touched (endpoint/state/set/inject/log), in order
+        self.process: subprocess.Popen[bytes] | None = None
+        self.control: ControlClient | None = None   # set by start(), once the daemon listens
+        self.endpoints: dict[str, Endpoint] = {}
+        self.dir: str | None = None
+        self.used: list[str] = []   # devices a test touched (endpoint/state/set/inject/log), in order
+        self._log_copy = ""         # the daemon's log, kept when stop() removes its directory
 
     # ---- lifecycle ----
 
-    def start(self):
+    def start(self) -> Rigsim:
         self.dir = tempfile.mkdtemp(prefix="rigsim-")
         cmd = [self.rigsimd, "--ephemeral-ports", "--pty-dir", os.path.join(self.dir, "pty"),
                "--endpoints-json", self._path("endpoints.json"), "--control", "127.0.0.1:0"]
@@ -143,15 +152,15 @@ class Rigsim:
         elif self.rig is not None:
             cmd += ["--config", os.fspath(self.rig)]
         with open(self._path("rigsimd.log"), "wb") as log:
-            self.process = subprocess.Popen(cmd + self.args, stdout=subprocess.DEVNULL, stderr=log)
+            self.process = process = subprocess.Popen(cmd + self.args, stdout=subprocess.DEVNULL, stderr=log)
         try:
-            self._wait_for_endpoints()
+            self._wait_for_endpoints(process)
         except Exception:
             self.stop()
             raise
         return self
 
-    def stop(self, timeout_s=10.0):
+    def stop(self, timeout_s: float = 10.0) -> int | None:
         """SIGTERM, then SIGKILL after `timeout_s`; removes the pty dir. Returns the exit status."""
         status = None
         if self.process is not None:
@@ -170,24 +179,30 @@ class Rigsim:
             self.dir = None
         return status
 
-    def __enter__(self):
+    def __enter__(self) -> Rigsim:
         return self.start()
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.stop()
 
-    def log(self, name=None, last=None):
+    @overload
+    def log(self, name: None = None, last: int | None = None) -> str: ...
+
+    @overload
+    def log(self, name: str, last: int | None = None) -> JsonObject: ...
+
+    def log(self, name: str | None = None, last: int | None = None) -> str | JsonObject:
         """With a device `name`: its wire log (GET /api/devices/{name}/log[?last=N]).
         Without: the daemon's log (standard error) so far, as daemon_log()."""
         if name is None:
             return self.daemon_log()
         self._use(name)
-        return self.control.log(name, last)
+        return self._client().log(name, last)
 
-    def daemon_log(self):
+    def daemon_log(self) -> str:
         """The daemon's log (standard error) so far; kept after stop()."""
         if self.dir is None:
-            return getattr(self, "_log_copy", "")
+            return self._log_copy
         try:
             with open(self._path("rigsimd.log"), errors="replace") as f:
                 return f.read()
@@ -196,7 +211,7 @@ class Rigsim:
 
     # ---- what a test uses ----
 
-    def endpoint(self, name):
+    def endpoint(self, name: str) -> Endpoint:
         """The device `name`'s endpoints (pty path, TCP address, pyserial URL)."""
         try:
             endpoint = self.endpoints[name]
@@ -205,84 +220,86 @@ class Rigsim:
         self._use(name)
         return endpoint
 
-    def pause(self):
-        return self.control.pause()
+    def pause(self) -> JsonObject:
+        return self._client().pause()
 
-    def resume(self):
-        return self.control.resume()
+    def resume(self) -> JsonObject:
+        return self._client().resume()
 
-    def step(self, ms):
-        return self.control.step(ms)
+    def step(self, ms: int) -> JsonObject:
+        return self._client().step(ms)
 
-    def scale(self, factor):
-        return self.control.scale(factor)
+    def scale(self, factor: float) -> JsonObject:
+        return self._client().scale(factor)
 
-    def run_until_idle(self, max_ms=600_000, check=True, chunk_ms=None, wait_for=None, timeout_s=5.0):
+    def run_until_idle(self, max_ms: int = 600_000, check: bool = True, chunk_ms: int | None = None,
+                       wait_for: tuple[str, str] | None = None, timeout_s: float = 5.0) -> JsonObject:
         """ControlClient.run_until_idle(): raises NotIdle when max_ms comes first, unless check=False."""
-        return self.control.run_until_idle(max_ms, check=check, chunk_ms=chunk_ms, wait_for=wait_for,
+        return self._client().run_until_idle(max_ms, check=check, chunk_ms=chunk_ms, wait_for=wait_for,
                                            timeout_s=timeout_s)
 
-    def wait_for_message(self, name, message, after=None, direction="in", timeout_s=5.0):
+    def wait_for_message(self, name: str, message: str, after: int | None = None, direction: str | None = "in",
+                         timeout_s: float = 5.0) -> JsonObject:
         """ControlClient.wait_for_message(): the wire log entry of `message` sent to `name`."""
         self._use(name)
-        return self.control.wait_for_message(name, message, after=after, direction=direction, timeout_s=timeout_s)
+        return self._client().wait_for_message(name, message, after=after, direction=direction, timeout_s=timeout_s)
 
-    def log_cursor(self, name):
+    def log_cursor(self, name: str) -> int:
         """ControlClient.log_cursor(): the seq of the newest entry of `name`'s wire log."""
-        return self.control.log_cursor(name)
+        return self._client().log_cursor(name)
 
-    def clock(self):
-        return self.control.clock()
+    def clock(self) -> JsonObject:
+        return self._client().clock()
 
-    def rig_state(self):
+    def rig_state(self) -> JsonObject:
         """GET /api/rig: the devices, their endpoints and the clock."""
-        return self.control.rig()
+        return self._client().rig()
 
-    def state(self, name=None):
+    def state(self, name: str | None = None) -> JsonObject:
         """GET /api/devices/{name}: the device's state; without a name, GET /api/rig."""
         if name is None:
-            return self.control.rig()
+            return self._client().rig()
         self._use(name)
-        return self.control.state(name)
+        return self._client().state(name)
 
-    def set(self, name, channel, **fields):
+    def set(self, name: str, channel: int, **fields: Any) -> JsonObject:
         """PATCH /api/devices/{name}/channels/{channel}: position_si=, referenced=,
         limit_switch=, sensor=; returns the channel object after the change."""
         self._use(name)
-        return self.control.set(name, channel, **fields)
+        return self._client().set(name, channel, **fields)
 
-    def device(self, name):
+    def device(self, name: str) -> Device:
         """A rigsim.control.Device handle on device `name` (state, set, trace, trigger)."""
         self._use(name)
-        return self.control.device(name)
+        return self._client().device(name)
 
-    def inject(self, device, kind, channel=None, **params):
+    def inject(self, device: str, kind: str, channel: int | None = None, **params: Any) -> int:
         """POST /api/faults: a fault `kind` on `device` (channel 0 unless given); returns its id."""
         self._use(device)
-        return self.control.inject(device, kind, channel, **params)
+        return self._client().inject(device, kind, channel, **params)
 
-    def clear_fault(self, fault_id):
+    def clear_fault(self, fault_id: int) -> JsonObject:
         """DELETE /api/faults/{id}."""
-        return self.control.clear_fault(fault_id)
+        return self._client().clear_fault(fault_id)
 
-    def clear_faults(self):
+    def clear_faults(self) -> JsonObject:
         """DELETE /api/faults: every fault."""
-        return self.control.clear_faults()
+        return self._client().clear_faults()
 
-    def faults(self):
+    def faults(self) -> list[JsonObject]:
         """GET /api/faults: the list of fault objects."""
-        return self.control.faults()
+        return self._client().faults()
 
-    def reset(self, keep_saved=True):
+    def reset(self, keep_saved: bool = True) -> JsonObject:
         """POST /api/reset: every device back to power-up (saved settings kept unless
         keep_saved=False), faults removed, wire logs cleared."""
-        return self.control.reset(keep_saved)
+        return self._client().reset(keep_saved)
 
-    def clear_log(self, name):
+    def clear_log(self, name: str) -> JsonObject:
         """DELETE /api/devices/{name}/log."""
-        return self.control.clear_log(name)
+        return self._client().clear_log(name)
 
-    def notes(self, devices=None):
+    def notes(self, devices: str | Iterable[str] | None = None) -> list[Noted]:
         """The client mistakes the daemon noted (docs/control-api.md, "The wire log"): a list of
         Noted(device, noted, entries), one per device with at least one, where `noted` counts the
         noted entries since start-up, the last reset or clear_log() (also those the log no longer
@@ -290,48 +307,55 @@ class Rigsim:
         (None: every device of the rig)."""
         names = sorted(self.endpoints) if devices is None else (
             [devices] if isinstance(devices, str) else list(devices))
-        found = []
+        found: list[Noted] = []
         for name in names:
-            answer = self.control.log(name)
+            answer = self._client().log(name)
             entries = [e for e in answer.get("entries", []) if e.get("notes")]
             noted = answer.get("noted", len(entries))
             if noted or entries:
                 found.append(Noted(name, noted, entries))
         return found
 
-    def assert_no_notes(self, devices=None):
+    def assert_no_notes(self, devices: str | Iterable[str] | None = None) -> None:
         """Raise AssertionError listing every noted client mistake (notes()), if there is one:
         a test's client sent something the real unit would reject, ignore or take only by luck."""
         found = self.notes(devices)
         if found:
             raise AssertionError(notes_text(found))
 
-    def events(self, device=None, timeout=None, type=None):
+    def events(self, device: str | Iterable[str] | None = None, timeout: float | None = None,
+               type: str | Iterable[str] | None = None) -> Generator[JsonObject, None, None]:
         """GET /api/events[?device=&type=]: an iterator of event dicts; ends after `timeout` s
         without one."""
-        return self.control.events(device, timeout, type)
+        return self._client().events(device, timeout, type)
 
-    def frames(self):
+    def frames(self) -> JsonObject:
         """GET /api/frames: every frame and tool point of the rig's kinematics, and the contacts."""
-        return self.control.frames()
+        return self._client().frames()
 
-    def pose(self, name):
+    def pose(self, name: str) -> Pose:
         """GET /api/frames/{name} as a rigsim.control.Pose: position_mm, quaternion (w, x, y, z)
         and rpy_deg in the world, and the same relative to its parent (pose.parent_relative)."""
-        return self.control.pose(name)
+        return self._client().pose(name)
 
     # ---- internals ----
 
-    def _use(self, name):
+    def _use(self, name: str) -> None:
         if name not in self.used:
             self.used.append(name)
 
-    # ---- internals ----
+    def _client(self) -> ControlClient:
+        """The control API's client, once start() found it."""
+        if self.control is None:
+            raise RigsimError("rigsimd is not started: call start(), or use Rigsim as a context manager")
+        return self.control
 
-    def _path(self, name):
+    def _path(self, name: str) -> str:
+        if self.dir is None:
+            raise RigsimError("rigsimd is not started: it has no directory yet")
         return os.path.join(self.dir, name)
 
-    def _token_args(self):
+    def _token_args(self) -> list[str]:
         """--control-token-file with a fresh token, unless the caller's args give one."""
         args = self.args
         for i, arg in enumerate(args):
@@ -351,12 +375,12 @@ class Rigsim:
             f.write(self.token + "\n")
         return ["--control-token-file", path]
 
-    def _wait_for_endpoints(self):
+    def _wait_for_endpoints(self, process: subprocess.Popen[bytes]) -> None:
         deadline = time.monotonic() + self.start_timeout_s
         path = self._path("endpoints.json")
         while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                raise RigsimError(f"rigsimd exited with status {self.process.returncode}:\n{self.log()}")
+            if process.poll() is not None:
+                raise RigsimError(f"rigsimd exited with status {process.returncode}:\n{self.log()}")
             try:
                 with open(path) as f:
                     doc = json.load(f)

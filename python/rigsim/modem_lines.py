@@ -7,13 +7,16 @@ APT port set-up) needs the shim loaded in its own process, so LD_PRELOAD must na
 process starts (docs/python.md, "Serial clients that toggle RTS/DTR"). Exit 1 with a message on
 standard error when it is not found."""
 
+from __future__ import annotations
+
 import argparse
 import sys
+from typing import Sequence
 
 from rigsim.daemon import RigsimError, modem_lines_shim
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python3 -m rigsim.modem_lines",
         description="Print the path of librigsim_modemlines.so (the RTS/DTR shim) for LD_PRELOAD: "

@@ -39,26 +39,29 @@ conftest.py; an installed package (pip install ./python) registers it by its pyt
 point of the same name, so pytest loads it without either (and both still work).
 """
 
+from __future__ import annotations
+
 import json
 import os
+from typing import Any, Final, Generator, Iterable, Iterator, Protocol
 
 import pytest
 
-from rigsim.control import ControlError, NotControlApi
-from rigsim.daemon import Rigsim, notes_text
+from rigsim.control import ControlClient, ControlError, JsonObject, NotControlApi
+from rigsim.daemon import RigConfig, Rigsim, notes_text
 
 # (daemon, offset of its log when the test got it) for every daemon a test used.
-_DAEMONS = pytest.StashKey[list]()
+_DAEMONS = pytest.StashKey[list[tuple[Rigsim, int]]]()
 # Set once the logs were attached to one of the test's reports (setup, call or teardown).
 _ATTACHED = pytest.StashKey[bool]()
 
-WIRE_LOG_LAST = 200   # entries of each device's wire log attached to a failed test's report
+WIRE_LOG_LAST: Final[int] = 200   # entries of each device's wire log attached to a failed test's report
 
-_STRICT_HELP = ("fail a test whose clients made mistakes the daemon noted in a wire log "
+_STRICT_HELP: Final[str] = ("fail a test whose clients made mistakes the daemon noted in a wire log "
                 "(Rigsim.assert_no_notes(); per test: @pytest.mark.rigsim_strict(False))")
 
 
-def pytest_addoption(parser):
+def pytest_addoption(parser: pytest.Parser) -> None:
     group = parser.getgroup("rigsim", "rigsim (rigsimd for tests)")
     group.addoption("--rigsimd", default=None, metavar="PATH",
                     help="path of the rigsimd binary for the rigsim fixtures; write it as "
@@ -75,7 +78,7 @@ def pytest_addoption(parser):
     parser.addini("rigsim_strict", type="bool", default=False, help=_STRICT_HELP)
 
 
-def pytest_configure(config):
+def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line(
         "markers", "rigsim_strict(enabled=True): fail (or with False, do not fail) this test when "
                    "the daemon noted a client mistake, whatever --rigsim-strict and rigsim_strict say")
@@ -83,23 +86,23 @@ def pytest_configure(config):
 
 # ---- where things are ----
 
-def _ini_dir(config):
+def _ini_dir(config: pytest.Config) -> str:
     """Where relative paths of ini keys are taken from: the ini file's directory (pytest's
     rootdir), else the rootdir."""
     inipath = getattr(config, "inipath", None)
     return str(inipath.parent) if inipath else str(config.rootpath)
 
 
-def _invocation_dir(config):
+def _invocation_dir(config: pytest.Config) -> str:
     return str(config.invocation_params.dir)
 
 
-def _resolve(path, base):
+def _resolve(path: str, base: str) -> str:
     path = os.path.expanduser(path)
     return path if os.path.isabs(path) else os.path.normpath(os.path.join(base, path))
 
 
-def _rigsimd_path(config):
+def _rigsimd_path(config: pytest.Config) -> str | None:
     """--rigsimd (from the invocation directory), else the ini key (from the ini file's
     directory), else None: Rigsim then tries $RIGSIMD and PATH. A bare name (no '/') is looked
     up on PATH as given."""
@@ -112,7 +115,7 @@ def _rigsimd_path(config):
     return None
 
 
-def _rig_path(config):
+def _rig_path(config: pytest.Config) -> str | None:
     """The rigsim_rig fixture's rig: --rigsim-rig, else the ini key rigsim_rig, else None (the
     built-in default rig)."""
     option = config.getoption("--rigsim-rig")
@@ -124,7 +127,7 @@ def _rig_path(config):
     return None
 
 
-def _strict(item):
+def _strict(item: pytest.Item) -> bool:
     marker = item.get_closest_marker("rigsim_strict")
     if marker is not None:
         return bool(marker.args[0]) if marker.args else bool(marker.kwargs.get("enabled", True))
@@ -133,22 +136,27 @@ def _strict(item):
     return bool(item.config.getini("rigsim_strict"))
 
 
-def _used_by(item):
-    if _DAEMONS not in item.stash:
-        item.stash[_DAEMONS] = []
-    return item.stash[_DAEMONS]
+def _used_by(item: pytest.Item) -> list[tuple[Rigsim, int]]:
+    return item.stash.setdefault(_DAEMONS, [])
 
 
 # ---- the fixtures ----
 
+class RigsimFactory(Protocol):
+    """What the `rigsim` and `rigsim_session` fixtures give a test: called with (rig=None,
+    args=()), it returns a Rigsim. A typed test names it: def test_home(rigsim: RigsimFactory)."""
+
+    def __call__(self, rig: RigConfig | None = None, args: Iterable[str] = ()) -> Rigsim: ...
+
+
 @pytest.fixture
-def rigsim(request):
+def rigsim(request: pytest.FixtureRequest) -> Iterator[RigsimFactory]:
     """Factory: rigsim(rig=None, args=()) starts rigsimd on `rig` and returns a Rigsim; stopped
     when the test ends."""
-    started = []
+    started: list[Rigsim] = []
     used = _used_by(request.node)
 
-    def start(rig=None, args=()):
+    def start(rig: RigConfig | None = None, args: Iterable[str] = ()) -> Rigsim:
         daemon = Rigsim(rig, rigsimd=_rigsimd_path(request.config), args=args)
         started.append(daemon)
         used.append((daemon, 0))
@@ -159,18 +167,22 @@ def rigsim(request):
         daemon.stop()
 
 
+# A session daemon's key: its rig as JSON text, and its extra flags.
+_DaemonKey = tuple[str, tuple[str, ...]]
+
+
 class _SessionDaemons:
     """The daemons of the session, one per (rig, args), and the clock each started with."""
 
-    def __init__(self, rigsimd):
+    def __init__(self, rigsimd: str | None) -> None:
         self.rigsimd = rigsimd
-        self.daemons = {}
+        self.daemons: dict[_DaemonKey, tuple[Rigsim, JsonObject]] = {}
 
     @staticmethod
-    def key(rig, args):
+    def key(rig: RigConfig | None, args: Iterable[str]) -> _DaemonKey:
         return (json.dumps(rig, sort_keys=True, default=str), tuple(args))
 
-    def get(self, rig, args):
+    def get(self, rig: RigConfig | None, args: Iterable[str]) -> Rigsim:
         key = self.key(rig, args)
         entry = self.daemons.get(key)
         if entry is not None and entry[0].process is not None and entry[0].process.poll() is None:
@@ -183,7 +195,8 @@ class _SessionDaemons:
         self.daemons[key] = (daemon, daemon.clock())
         return daemon
 
-    def _reset(self, daemon, clock, rig, args, key):
+    def _reset(self, daemon: Rigsim, clock: JsonObject, rig: RigConfig | None, args: Iterable[str],
+               key: _DaemonKey) -> None:
         """POST /api/reset, and the clock back to how it started (running or paused, scale)."""
         try:
             daemon.reset()
@@ -203,26 +216,26 @@ class _SessionDaemons:
             daemon.resume()
         daemon.used = []
 
-    def stop_all(self):
+    def stop_all(self) -> None:
         for daemon, _ in self.daemons.values():
             daemon.stop()
 
 
 @pytest.fixture(scope="session")
-def _rigsim_session_daemons(pytestconfig):
+def _rigsim_session_daemons(pytestconfig: pytest.Config) -> Iterator[_SessionDaemons]:
     daemons = _SessionDaemons(_rigsimd_path(pytestconfig))
     yield daemons
     daemons.stop_all()
 
 
 @pytest.fixture
-def rigsim_session(request, _rigsim_session_daemons):
+def rigsim_session(request: pytest.FixtureRequest, _rigsim_session_daemons: _SessionDaemons) -> RigsimFactory:
     """Factory: rigsim_session(rig=None, args=()) returns the session's daemon on `rig` (started
     on first use, stopped at the end of the session), reset() and its clock restored first."""
     used = _used_by(request.node)
-    handed = {}   # asked for again in the same test: the same daemon, not reset again
+    handed: dict[_DaemonKey, Rigsim] = {}   # asked for again in the same test: the same daemon, not reset again
 
-    def get(rig=None, args=()):
+    def get(rig: RigConfig | None = None, args: Iterable[str] = ()) -> Rigsim:
         key = _SessionDaemons.key(rig, args)
         if key not in handed:
             daemon = _rigsim_session_daemons.get(rig, args)
@@ -234,7 +247,7 @@ def rigsim_session(request, _rigsim_session_daemons):
 
 
 @pytest.fixture
-def rigsim_rig(request, rigsim_session):
+def rigsim_rig(request: pytest.FixtureRequest, rigsim_session: RigsimFactory) -> Rigsim:
     """The session's daemon on the rig --rigsim-rig=FILE or the ini key rigsim_rig names (the
     built-in default rig without either), reset and its clock restored before each test, as
     rigsim_session gives it."""
@@ -243,44 +256,45 @@ def rigsim_rig(request, rigsim_session):
 
 # ---- what a report gets ----
 
-def _wire_log_text(daemon, name):
+def _wire_log_text(control: ControlClient, name: str) -> str:
     try:
-        answer = daemon.control.log(name, WIRE_LOG_LAST)
+        answer = control.log(name, WIRE_LOG_LAST)
     except (ControlError, NotControlApi, OSError) as e:
         return f"(no wire log: {e})"
-    lines = []
-    for e in answer.get("entries", []):
-        decoded = e.get("decoded") or {}
-        what = decoded.get("text") or decoded.get("name") or e.get("hex", "")
+    lines: list[str] = []
+    for entry in answer.get("entries", []):
+        decoded = entry.get("decoded") or {}
+        what = decoded.get("text") or decoded.get("name") or entry.get("hex", "")
         if decoded.get("fields") and "text" not in decoded:
             what += " " + json.dumps(decoded["fields"], separators=(",", ":"))
-        notes = "".join(f"\n      note: {n}" for n in e.get("notes", []))
-        lines.append(f"{e.get('time_ms', 0):>12.3f} ms {e.get('direction', '?'):<3} {what}"
-                     f"  [{e.get('hex', '')}]{notes}")
+        notes = "".join(f"\n      note: {n}" for n in entry.get("notes", []))
+        lines.append(f"{entry.get('time_ms', 0):>12.3f} ms {entry.get('direction', '?'):<3} {what}"
+                     f"  [{entry.get('hex', '')}]{notes}")
     return "\n".join(lines) or "(empty)"
 
 
-def _daemons_of(item):
+def _daemons_of(item: pytest.Item) -> list[tuple[Rigsim, int]]:
     """Each daemon the test used once, with the log offset of when it first got it."""
-    seen = {}
+    seen: dict[int, tuple[Rigsim, int]] = {}
     for daemon, offset in item.stash.get(_DAEMONS, []):
         seen.setdefault(id(daemon), (daemon, offset))   # a daemon asked for twice: the first offset
     return list(seen.values())
 
 
-def _attach_logs(item, report):
+def _attach_logs(item: pytest.Item, report: pytest.TestReport) -> None:
     for i, (daemon, offset) in enumerate(_daemons_of(item)):
         report.sections.append((f"rigsimd log ({i + 1})", daemon.daemon_log()[offset:]))
-        if daemon.control is None:
+        control = daemon.control
+        if control is None:
             continue
         for name in daemon.used:
             report.sections.append((f"wire log {name} ({i + 1}, last {WIRE_LOG_LAST})",
-                                    _wire_log_text(daemon, name)))
+                                    _wire_log_text(control, name)))
 
 
-def _noted_mistakes(item):
+def _noted_mistakes(item: pytest.Item) -> str | None:
     """notes_text() of what the daemons the test used noted, or None."""
-    texts = []
+    texts: list[str] = []
     for daemon, _ in _daemons_of(item):
         if daemon.control is None or daemon.process is None or daemon.process.poll() is not None:
             continue
@@ -297,10 +311,12 @@ def _noted_mistakes(item):
     return "\n".join(texts) or None
 
 
-@pytest.hookimpl(hookwrapper=True)
-def pytest_runtest_makereport(item, call):
+# pluggy (Debian's 1.0) has no type information: its hookimpl decorator is untyped to mypy, and
+# the result object sent into the wrapper is Any.
+@pytest.hookimpl(hookwrapper=True)  # type: ignore[misc]
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Generator[None, Any, None]:
     outcome = yield
-    report = outcome.get_result()
+    report: pytest.TestReport = outcome.get_result()
     if report.when == "call" and report.passed and _strict(item):
         mistakes = _noted_mistakes(item)
         if mistakes:
