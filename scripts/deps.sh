@@ -7,13 +7,14 @@
 #                            runtime (libclang-rt-14-dev), symbolizer (llvm) and linker (lld)
 #                            for the ASan + UBSan pass, python3-serial (the pyserial e2e test), python3-pytest
 #                            (the tests of python/rigsim and its plugin), python3-venv (the
-#                            offline `pip install ./python` test)
+#                            offline `pip install ./python` test), python3-mypy (the package's
+#                            type hints, checked with mypy --strict)
 set -euo pipefail
 
 packages=(g++ make cmake ninja-build libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
   python3)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv)
+  packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv python3-mypy)
 fi
 
 missing=()

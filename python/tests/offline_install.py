@@ -6,6 +6,8 @@ every proxy points at a closed port; Debian's pytest and pyserial are seen throu
 --system-site-packages), then, with nothing of the source tree on sys.path:
 - `import rigsim` loads the installed copy, `rigsimctl --help` answers, the pytest11 entry point
   is named after the plugin's module;
+- the installed copy holds py.typed, and a user's mypy (Debian's, through the venv) reads its
+  hints: a wrong type in the user's code is an error;
 - pytest loads the plugin by its entry point alone (the fixtures and options exist);
 and with --rigsimd (the daemon under test), a driver-style suite (docs/examples with the config/
 it reads: pyserial clients of an MCS and a KDC101 against the default rig, a threaded driver, a
@@ -17,7 +19,7 @@ piezo LUT, a kinematic chain) passes from the venv in each way the docs enable t
 - with the space form `--rigsimd PATH`, PATH outside the project and no test path given, pytest
   misses the project's ini file (the docs advise `--rigsimd=PATH`, which keeps it: both checked);
 and `python -m rigsim.modem_lines` prints the RTS/DTR shim beside that rigsimd.
-Needs Debian's python3-venv (scripts/deps.sh). Usage:
+Needs Debian's python3-venv and python3-mypy (scripts/deps.sh --test). Usage:
 offline_install.py [--rigsimd PATH] [--examples DIR] [PYTHON_DIR]
 (PYTHON_DIR default: the python/ directory this file is in; DIR: docs/examples beside it)."""
 
@@ -117,6 +119,8 @@ def main():
         if eps != "[('rigsim.pytest_plugin', 'rigsim.pytest_plugin')]":
             sys.exit(f"FAIL: pytest11 entry points of rigsim: {eps}, expected the one named rigsim.pytest_plugin")
 
+        check_types(tmp, env, python, where)
+
         # pytest loads the plugin by entry point alone (no -p): the fixtures and options exist.
         with open(os.path.join(tmp, "test_plugin_loaded.py"), "w") as f:
             f.write("def test_fixtures(rigsim, rigsim_session, rigsim_rig, pytestconfig):\n"
@@ -126,7 +130,8 @@ def main():
                     "    assert pytestconfig.getini('rigsim_strict') is False\n")
         run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--rigsimd=/nowhere/rigsimd",
              "test_plugin_loaded.py::test_options"], env, tmp, "pytest with the plugin loaded by entry point")
-        print("PASS: pip install --no-index ./python; import rigsim, rigsimctl --help, pytest11 entry point")
+        print("PASS: pip install --no-index ./python; import rigsim, rigsimctl --help, pytest11 entry point, "
+              "py.typed")
         if rigsimd is None:
             print("(no --rigsimd: the driver-style suite was not run)")
         else:
@@ -135,6 +140,24 @@ def main():
     after = source_files(python_dir)
     if after != before:
         sys.exit(f"FAIL: pip install wrote into the source tree: {sorted(set(after) - set(before))}")
+
+
+def check_types(tmp, env, python, where):
+    """PEP 561: the installed package (`where`: its __init__.py) holds py.typed, so mypy reads its
+    hints instead of skipping it as an untyped package: a user's file that gives a ControlClient
+    answer (a dict) to a str gets exactly that error."""
+    marker = os.path.join(os.path.dirname(where), "py.typed")
+    if not os.path.isfile(marker):
+        sys.exit(f"FAIL: the installed package has no py.typed ({marker})")
+    with open(os.path.join(tmp, "user_types.py"), "w") as f:
+        f.write("from rigsim import ControlClient\n\nnow_ms: str = ControlClient().clock()\n")
+    result = run([python, "-m", "mypy", "--strict", "--config-file=", "--cache-dir=/dev/null", "user_types.py"],
+                 env, tmp, "mypy on a user's file (install Debian's python3-mypy: scripts/deps.sh --test)",
+                 expect=1)
+    lines = [line for line in result.stdout.splitlines() if ": error:" in line]
+    if len(lines) != 1 or not lines[0].startswith("user_types.py:3: error: Incompatible types in assignment"):
+        sys.exit(f"FAIL: mypy did not read the installed package's hints (expected one error, on line 3):\n"
+                 f"{result.stdout}{result.stderr}")
 
 
 def run_suite(tmp, env, python, examples, rigsimd):

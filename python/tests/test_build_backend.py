@@ -37,6 +37,7 @@ def test_the_wheel_holds_the_package_metadata_entry_points_and_a_correct_record(
         names = wheel.namelist()
         for module in ("__init__", "cli", "control", "daemon", "modem_lines", "pytest_plugin"):
             assert f"rigsim/{module}.py" in names
+        assert "rigsim/py.typed" in names   # PEP 561: a user's mypy reads the package's hints
         assert not [n for n in names if "__pycache__" in n or n.endswith(".pyc")]
         info = "rigsim-0.1.0.dist-info"
         metadata = wheel.read(f"{info}/METADATA").decode()
@@ -69,7 +70,7 @@ def test_the_sdist_holds_what_a_build_needs(tmp_path):
     name = rigsim_build.build_sdist(str(tmp_path))
     with tarfile.open(tmp_path / name) as sdist:
         names = sdist.getnames()
-    for path in ("PKG-INFO", "pyproject.toml", "_backend/rigsim_build.py", "rigsim/cli.py"):
+    for path in ("PKG-INFO", "pyproject.toml", "_backend/rigsim_build.py", "rigsim/cli.py", "rigsim/py.typed"):
         assert f"rigsim-0.1.0/{path}" in names
 
 
