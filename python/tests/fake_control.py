@@ -2,7 +2,8 @@
 (docs/control-api.md) for the routes the real daemon may not serve yet.
 
 It holds two devices, "mcs0" (MCS, 3 channels) and "apt0" (APT, 1 channel), records every
-request in `requests` ((method, path, body) tuples) and its headers in `headers` and serves /api/events from `publish()`."""
+request in `requests` ((method, path, body) tuples) and its headers in `headers` and serves /api/events from `publish()`:
+as rigsimd does, a stream gets only what is published once it is open (`wait_for_subscribers()`)."""
 
 import json
 import threading
@@ -59,6 +60,7 @@ class FakeControl:
         self.headers = []         # each request's headers (an email.message.Message), in order
         self.lock = threading.Condition()
         self.events = []          # every published event, in order
+        self.subscribers = 0      # event streams open now
         self.closing = False
         self.clock = {"now_ticks": 0, "now_ms": 0.0, "tick_hz": 1000, "time_scale": 1.0, "paused": False}
         self.devices = {
@@ -97,6 +99,12 @@ class FakeControl:
             self.lock.notify_all()
         self.server.shutdown()
         self.server.server_close()
+
+    def wait_for_subscribers(self, count=1, timeout_s=5.0):
+        """Wait until `count` event streams are open: what is published from then on reaches
+        them. False after `timeout_s`."""
+        with self.lock:
+            return self.lock.wait_for(lambda: self.subscribers >= count, timeout_s)
 
     def publish(self, type_, device=None, **fields):
         with self.lock:
@@ -249,13 +257,18 @@ def _handler(fake):
         def stream(self, query):
             wanted = set(",".join(query.get("device", [])).split(",")) - {""}
             types = set(",".join(query.get("type", [])).split(",")) - {""}
-            self.send_response(200)
-            self.send_header("Content-Type", "text/event-stream")
-            self.end_headers()
-            self.wfile.write(b": hello\n\n")
-            self.wfile.flush()
-            sent = 0
+            # Subscribed before the answer's headers go out: once the client's events() returned,
+            # wait_for_subscribers() sees it. Live only, as rigsimd: nothing published before.
+            with fake.lock:
+                sent = len(fake.events)
+                fake.subscribers += 1
+                fake.lock.notify_all()
             try:
+                self.send_response(200)
+                self.send_header("Content-Type", "text/event-stream")
+                self.end_headers()
+                self.wfile.write(b": hello\n\n")
+                self.wfile.flush()
                 while True:
                     with fake.lock:
                         while sent == len(fake.events) and not fake.closing:
@@ -273,5 +286,9 @@ def _handler(fake):
                     self.wfile.flush()
             except OSError:
                 return
+            finally:
+                with fake.lock:
+                    fake.subscribers -= 1
+                    fake.lock.notify_all()
 
     return Handler

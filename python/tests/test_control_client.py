@@ -99,7 +99,7 @@ def test_devices_used_are_remembered_in_order(rig):
 
 def test_events_are_parsed_and_filtered(rig, fake):
     def later():
-        time.sleep(0.1)   # after the stream is open: events are only sent live
+        fake.wait_for_subscribers(1)   # events are only sent live: publish once the stream is open
         fake.publish("move_started", "apt0", channel=0)
         fake.publish("move_started", "mcs0", channel=1)
         fake.publish("move_ended", "mcs0", channel=1, outcome="reached")
@@ -190,7 +190,7 @@ def test_a_pose_name_is_quoted_in_the_path(fake):
 
 def test_events_filtered_by_type(rig, fake):
     def later():
-        time.sleep(0.1)
+        fake.wait_for_subscribers(1)
         fake.publish("move_ended", "mcs0", channel=0, outcome="completed")
         fake.publish("frames", None, frames=[{"name": "x"}])
     threading.Thread(target=later, daemon=True).start()

@@ -128,11 +128,12 @@ def test_fault_rm_unknown_shows_the_server_error(fake, capsys):
 
 def test_events_stream_json_lines(fake):
     def later():
-        time.sleep(0.1)
+        fake.wait_for_subscribers(1)   # events are only sent live: publish once the stream is open
         fake.publish("move_started", "apt0", channel=0)
         fake.publish("status", "mcs0", channel=0, status={"code": 4})
     threading.Thread(target=later, daemon=True).start()
-    status, text = ctl(fake.url, "events", "--device", "mcs0", "--count", "1")
+    # --timeout: a missed event ends the stream (and fails the test) instead of hanging it
+    status, text = ctl(fake.url, "events", "--device", "mcs0", "--count", "1", "--timeout", "5")
     assert status == 0
     assert [json.loads(line)["type"] for line in text.splitlines()] == ["status"]
     assert fake.requests[-1][1] == "/api/events?device=mcs0"
@@ -145,9 +146,8 @@ def test_events_streams_until_ctrl_c(fake):
     process = subprocess.Popen([sys.executable, LAUNCHER, "--control", fake.url, "events"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     deadline = time.monotonic() + 10
-    while not any(r[1] == "/api/events" for r in fake.requests):   # poll: the stream is open
+    while not fake.wait_for_subscribers(1, timeout_s=0.05):   # poll: the stream is open
         assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()
-        time.sleep(0.01)
     fake.publish("clock", None, paused=True)
     assert json.loads(process.stdout.readline())["type"] == "clock"
     process.send_signal(signal.SIGINT)
@@ -219,11 +219,11 @@ def test_frames_unknown_shows_the_server_error(fake, capsys):
 
 def test_events_by_type(fake):
     def later():
-        time.sleep(0.1)
+        fake.wait_for_subscribers(1)
         fake.publish("move_ended", "mcs0", channel=0, outcome="completed")
         fake.publish("frames", None, frames=[])
     threading.Thread(target=later, daemon=True).start()
-    status, text = ctl(fake.url, "events", "--type", "frames", "--count", "1")
+    status, text = ctl(fake.url, "events", "--type", "frames", "--count", "1", "--timeout", "5")
     assert status == 0
     assert [json.loads(line)["type"] for line in text.splitlines()] == ["frames"]
     assert fake.requests[-1][1] == "/api/events?type=frames"
