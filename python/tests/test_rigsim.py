@@ -37,12 +37,22 @@ def test_default_rig_endpoints_and_clock(rigsim):
 def test_a_paused_move_finishes_on_step(rigsim):
     rig = rigsim()
     rig.pause()
-    with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s:
+    running = rigsim()   # the same move on a running clock: it measures the wall time that passes
+    with socket.create_connection(rig.endpoint("mcs0").address, timeout=5) as s, \
+            socket.create_connection(running.endpoint("mcs0").address, timeout=5) as r:
         start = mcs_ask(s, ":GP0")
         assert start.startswith(":P0,")
         target = int(start[4:]) + 5_000_000   # 5 mm away: half a second at the default speed
         assert mcs_ask(s, f":MPA0,{target},0") == ":E0,0"
-        time.sleep(0.3)   # wall time passes (the move would be 3 mm along); the paused clock does not
+        running_start = int(mcs_ask(r, ":GP0")[4:])
+        assert mcs_ask(r, f":MPA0,{running_start + 5_000_000},0") == ":E0,0"
+        # Wall time passes until the running clock's move is 3 mm along; the paused clock does not
+        # pass: polled all along, its move never leaves the start.
+        deadline = time.monotonic() + 10
+        while int(mcs_ask(r, ":GP0")[4:]) < running_start + 3_000_000:
+            assert mcs_ask(s, ":GP0") == start
+            assert time.monotonic() < deadline, "the move on the running clock did not get 3 mm along"
+            time.sleep(0.01)
         assert mcs_ask(s, ":GP0") == start
         assert mcs_ask(s, ":GS0") != ":S0,0"   # still moving
         rig.step(10_000)   # 10 s of clock time: the move is done
