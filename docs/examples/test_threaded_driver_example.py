@@ -42,6 +42,7 @@ class ThreadedKdc:
         self.ack_period_s = ack_period_s
         self.commands = queue.Queue()
         self.updates = 0
+        self.updated = threading.Condition()   # notified at each status update read
         self.homed = threading.Event()
         self.stopping = threading.Event()
         self.thread = threading.Thread(target=self._run, daemon=True)
@@ -50,6 +51,11 @@ class ThreadedKdc:
     def send(self, message_id):
         """Queue a header-only command for channel 1; the thread sends it."""
         self.commands.put(struct.pack("<HBBBB", message_id, 1, 0, UNIT, HOST))
+
+    def wait_for_updates(self, count, timeout_s=5.0):
+        """Wait until the thread has read `count` status updates; False after `timeout_s`."""
+        with self.updated:
+            return self.updated.wait_for(lambda: self.updates >= count, timeout_s)
 
     def close(self):
         self.stopping.set()
@@ -80,7 +86,9 @@ class ThreadedKdc:
             if len(pending) < size:
                 break
             if message_id == GET_DCSTATUSUPDATE:
-                self.updates += 1
+                with self.updated:
+                    self.updates += 1
+                    self.updated.notify_all()
             elif message_id == MOVE_HOMED:
                 self.homed.set()
             pending = pending[size:]
@@ -118,9 +126,7 @@ def test_a_clock_run_in_pieces_keeps_the_drivers_status_updates(rig, driver):
     assert homing_ms > 2000
     notes = [n for e in rig.log("kdc101")["entries"] for n in e["notes"]]
     assert not [n for n in notes if n.startswith("cut-off")]
-    deadline = time.monotonic() + 5
-    while driver.updates < homing_ms / 100 - 1 and time.monotonic() < deadline:
-        time.sleep(0.01)
+    driver.wait_for_updates(homing_ms / 100 - 1)   # the last piece's may still be on their way
     assert driver.updates >= homing_ms / 100 - 1   # one every 100 ms of clock, all the way
 
 
