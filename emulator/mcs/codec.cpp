@@ -1,5 +1,6 @@
 #include "emulator/mcs/codec.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <limits>
@@ -14,87 +15,160 @@ using Params = std::array<std::int64_t, kMaxParams>;
 std::int32_t i32(std::int64_t v) { return static_cast<std::int32_t>(v); }
 
 struct CommandEntry {
-    std::string_view name;
-    std::size_t min_params;
-    std::size_t max_params;
+    CommandInfo info;
+    std::size_t min_params;   ///< fewer than its parameters: the last ones are optional (S, K)
     Command (*build)(const Params& p, std::size_t n);
     unsigned wide_params = 0;   ///< bit i: parameter i may be 0..4,294,967,295
+
+    /// As many as the manual names.
+    std::size_t max_params() const
+    {
+        return info.params.empty() ? 0 : 1 + static_cast<std::size_t>(std::count(info.params.begin(), info.params.end(), ','));
+    }
 };
 
-// The commands rigsim implements: name, parameter count range, builder.
+// Every command of chapter 3, once: its mnemonic, the manual's name and parameter names (the
+// wire log shows them, wire_names.cpp), the fewest parameters it takes, and its builder.
 const CommandEntry kCommands[] = {
-    {"GCM", 0, 0, [](const Params&, std::size_t) -> Command { return GetCommunicationMode{}; }},
-    {"SCM", 1, 1, [](const Params& p, std::size_t) -> Command { return SetCommunicationMode{i32(p[0])}; }},
-    {"GNC", 0, 0, [](const Params&, std::size_t) -> Command { return GetNumberOfChannels{}; }},
-    {"GSI", 0, 0, [](const Params&, std::size_t) -> Command { return GetSystemId{}; }},
-    {"GIV", 0, 0, [](const Params&, std::size_t) -> Command { return GetInterfaceVersion{}; }},
-    {"R", 0, 0, [](const Params&, std::size_t) -> Command { return Reset{}; }},
-    {"SHE", 1, 1, [](const Params& p, std::size_t) -> Command { return SetHcmEnabled{i32(p[0])}; }},
-    {"GCT", 1, 1, [](const Params& p, std::size_t) -> Command { return GetChannelType{i32(p[0])}; }},
-    {"GSE", 0, 0, [](const Params&, std::size_t) -> Command { return GetSensorEnabled{}; }},
-    {"SSE", 1, 1, [](const Params& p, std::size_t) -> Command { return SetSensorEnabled{i32(p[0])}; }},
-    {"GST", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSensorType{i32(p[0])}; }},
-    {"SST", 2, 2, [](const Params& p, std::size_t) -> Command { return SetSensorType{i32(p[0]), i32(p[1])}; }},
-    {"GP", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPosition{i32(p[0])}; }},
-    {"GS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetStatus{i32(p[0])}; }},
-    {"GPPK", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPhysicalPositionKnown{i32(p[0])}; }},
-    {"MPA", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"MPR", 3, 3, [](const Params& p, std::size_t) -> Command { return MovePositionRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"S", 0, 1, [](const Params& p, std::size_t n) -> Command {
+    {{"GCM", "Get Communication Mode", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetCommunicationMode{}; }},
+    {{"SCM", "Set Communication Mode", "mode"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetCommunicationMode{i32(p[0])}; }},
+    {{"GNC", "Get Number of Channels", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetNumberOfChannels{}; }},
+    {{"GSI", "Get System Id", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetSystemId{}; }},
+    {{"GIV", "Get Interface Version", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetInterfaceVersion{}; }},
+    {{"R", "Reset", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return Reset{}; }},
+    {{"SHE", "Set HCM Enabled", "enabled"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetHcmEnabled{i32(p[0])}; }},
+    {{"GCT", "Get Channel Type", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetChannelType{i32(p[0])}; }},
+    {{"GSE", "Get Sensor Enabled", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetSensorEnabled{}; }},
+    {{"SSE", "Set Sensor Enabled", "mode"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetSensorEnabled{i32(p[0])}; }},
+    {{"GST", "Get Sensor Type", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetSensorType{i32(p[0])}; }},
+    {{"SST", "Set Sensor Type", "channelIndex,type"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetSensorType{i32(p[0]), i32(p[1])}; }},
+    {{"GP", "Get Position", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetPosition{i32(p[0])}; }},
+    {{"GS", "Get Status", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetStatus{i32(p[0])}; }},
+    {{"GPPK", "Get Physical Position Known", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetPhysicalPositionKnown{i32(p[0])}; }},
+    {{"MPA", "Move to Position Absolute", "channelIndex,position,holdTime"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MovePositionAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"MPR", "Move to Position Relative", "channelIndex,diff,holdTime"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MovePositionRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"S", "Stop", "channelIndex"}, 0,
+     [](const Params& p, std::size_t n) -> Command {
          return n == 0 ? Stop{std::nullopt} : Stop{i32(p[0])};
      }},
-    {"SCLS", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopSpeed{i32(p[0]), i32(p[1])}; }},
-    {"GCLS", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopSpeed{i32(p[0])}; }},
-    {"SCLA", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopAcceleration{i32(p[0]), i32(p[1])}; }},
-    {"GCLA", 1, 1, [](const Params& p, std::size_t) -> Command { return GetClosedLoopAcceleration{i32(p[0])}; }},
-    {"SCLF", 2, 2, [](const Params& p, std::size_t) -> Command { return SetClosedLoopMaxFrequency{i32(p[0]), i32(p[1])}; }},
-    {"SARP", 2, 2, [](const Params& p, std::size_t) -> Command { return SetAccumulateRelativePositions{i32(p[0]), i32(p[1])}; }},
-    {"SP", 2, 2, [](const Params& p, std::size_t) -> Command { return SetPosition{i32(p[0]), i32(p[1])}; }},
-    {"SZP", 1, 1, [](const Params& p, std::size_t) -> Command { return SetZeroPosition{i32(p[0])}; }},
-    {"SSC", 3, 3, [](const Params& p, std::size_t) -> Command { return SetScale{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"GSC", 1, 1, [](const Params& p, std::size_t) -> Command { return GetScale{i32(p[0])}; }},
-    {"SSD", 2, 2, [](const Params& p, std::size_t) -> Command { return SetSafeDirection{i32(p[0]), i32(p[1])}; }},
-    {"GSD", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSafeDirection{i32(p[0])}; }},
-    {"SSWS", 2, 2, [](const Params& p, std::size_t) -> Command { return SetStepWhileScan{i32(p[0]), i32(p[1])}; }},
-    {"SRC", 2, 2, [](const Params& p, std::size_t) -> Command { return SetReportOnComplete{i32(p[0]), i32(p[1])}; }},
-    {"K", 0, 1, [](const Params& p, std::size_t n) -> Command {
+    {{"SCLS", "Set Closed Loop move Speed", "channelIndex,speed"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetClosedLoopSpeed{i32(p[0]), i32(p[1])}; }},
+    {{"GCLS", "Get Closed Loop move Speed", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetClosedLoopSpeed{i32(p[0])}; }},
+    {{"SCLA", "Set Closed Loop Acceleration", "channelIndex,acceleration"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetClosedLoopAcceleration{i32(p[0]), i32(p[1])}; }},
+    {{"GCLA", "Get Closed Loop Acceleration", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetClosedLoopAcceleration{i32(p[0])}; }},
+    {{"SCLF", "Set Closed Loop max Frequency", "channelIndex,frequency"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetClosedLoopMaxFrequency{i32(p[0]), i32(p[1])}; }},
+    {{"SARP", "Set Accumulate Relative Positions", "channelIndex,accumulate"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetAccumulateRelativePositions{i32(p[0]), i32(p[1])}; }},
+    {{"SP", "Set Position", "channelIndex,position"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetPosition{i32(p[0]), i32(p[1])}; }},
+    {{"SZP", "Set Zero Position", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetZeroPosition{i32(p[0])}; }},
+    {{"SSC", "Set Scale", "channelIndex,scale,inverted"}, 3,
+     [](const Params& p, std::size_t) -> Command { return SetScale{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"GSC", "Get Scale", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetScale{i32(p[0])}; }},
+    {{"SSD", "Set Safe Direction", "channelIndex,direction"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetSafeDirection{i32(p[0]), i32(p[1])}; }},
+    {{"GSD", "Get Safe Direction", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetSafeDirection{i32(p[0])}; }},
+    {{"SSWS", "Set Step While Scan", "channelIndex,step"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetStepWhileScan{i32(p[0]), i32(p[1])}; }},
+    {{"SRC", "Set Report on Complete", "channelIndex,report"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetReportOnComplete{i32(p[0]), i32(p[1])}; }},
+    {{"K", "Keep alive", "delay"}, 0,
+     [](const Params& p, std::size_t n) -> Command {
          return n == 0 ? KeepAlive{std::nullopt} : KeepAlive{i32(p[0])};
      }},
-    {"CB", 1, 1, [](const Params& p, std::size_t) -> Command { return ConfigureBaudrate{i32(p[0])}; }},
-    {"GSN", 1, 1, [](const Params& p, std::size_t) -> Command { return GetSerialNumber{i32(p[0])}; }},
-    {"GFV", 1, 1, [](const Params& p, std::size_t) -> Command { return GetFirmwareVersion{i32(p[0])}; }},
-    {"GFP", 2, 2, [](const Params& p, std::size_t) -> Command { return GetFeaturePermissions{i32(p[0]), i32(p[1])}; }},
-    {"FRM", 4, 4, [](const Params& p, std::size_t) -> Command { return FindReferenceMark{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
-    {"CS", 1, 1, [](const Params& p, std::size_t) -> Command { return CalibrateSensor{i32(p[0])}; }},
-    {"MAA", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveAngleAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
-    {"MAR", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveAngleRelative{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
-    {"GA", 1, 1, [](const Params& p, std::size_t) -> Command { return GetAngle{i32(p[0])}; }},
-    {"SPL", 3, 3, [](const Params& p, std::size_t) -> Command { return SetPositionLimit{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"GPL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetPositionLimit{i32(p[0])}; }},
-    {"SAL", 5, 5, [](const Params& p, std::size_t) -> Command { return SetAngleLimit{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3]), i32(p[4])}; }},
-    {"GAL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetAngleLimit{i32(p[0])}; }},
-    {"MST", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveStep{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"CB", "Configure Baudrate", "baudrate"}, 1,
+     [](const Params& p, std::size_t) -> Command { return ConfigureBaudrate{i32(p[0])}; }},
+    {{"GSN", "Get Serial Number", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetSerialNumber{i32(p[0])}; }},
+    {{"GFV", "Get Firmware Version", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetFirmwareVersion{i32(p[0])}; }},
+    {{"GFP", "Get Feature Permissions", "channelIndex,byteIndex"}, 2,
+     [](const Params& p, std::size_t) -> Command { return GetFeaturePermissions{i32(p[0]), i32(p[1])}; }},
+    {{"FRM", "Find Reference Mark", "channelIndex,direction,holdTime,autoZero"}, 4,
+     [](const Params& p, std::size_t) -> Command { return FindReferenceMark{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"CS", "Calibrate Sensor", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return CalibrateSensor{i32(p[0])}; }},
+    {{"MAA", "Move to Angle Absolute", "channelIndex,angle,revolution,holdTime"}, 4,
+     [](const Params& p, std::size_t) -> Command { return MoveAngleAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"MAR", "Move to Angle Relative", "channelIndex,angle,revolution,holdTime"}, 4,
+     [](const Params& p, std::size_t) -> Command { return MoveAngleRelative{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"GA", "Get Angle", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetAngle{i32(p[0])}; }},
+    {{"SPL", "Set Position Limit", "channelIndex,minPosition,maxPosition"}, 3,
+     [](const Params& p, std::size_t) -> Command { return SetPositionLimit{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"GPL", "Get Position Limit", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetPositionLimit{i32(p[0])}; }},
+    {{"SAL", "Set Angle Limit", "channelIndex,minAngle,minRevolution,maxAngle,maxRevolution"}, 5,
+     [](const Params& p, std::size_t) -> Command { return SetAngleLimit{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3]), i32(p[4])}; }},
+    {{"GAL", "Get Angle Limit", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetAngleLimit{i32(p[0])}; }},
+    {{"MST", "Move STep", "channelIndex,steps,amplitude,frequency"}, 4,
+     [](const Params& p, std::size_t) -> Command { return MoveStep{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
     // MSCA/MSCR scan speed: 1 .. 4,095,000,000, wider than a signed 32-bit value.
-    {"MSCA", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanAbsolute{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
-    {"MSCR", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveScanRelative{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
-    {"GVL", 1, 1, [](const Params& p, std::size_t) -> Command { return GetVoltageLevel{i32(p[0])}; }},
-    {"GCP", 2, 2, [](const Params& p, std::size_t) -> Command { return GetChannelProperty{i32(p[0]), i32(p[1])}; }},
-    {"SCP", 3, 3, [](const Params& p, std::size_t) -> Command { return SetChannelProperty{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"GESM", 0, 0, [](const Params&, std::size_t) -> Command { return GetEmergencyStopMode{}; }},
-    {"SESM", 1, 1, [](const Params& p, std::size_t) -> Command { return SetEmergencyStopMode{i32(p[0])}; }},
-    {"ATC", 2, 2, [](const Params& p, std::size_t) -> Command { return AppendTriggeredCommand{i32(p[0]), i32(p[1])}; }},
-    {"CTCQ", 1, 1, [](const Params& p, std::size_t) -> Command { return ClearTriggeredCommandQueue{i32(p[0])}; }},
-    {"TC", 1, 1, [](const Params& p, std::size_t) -> Command { return TriggerCommand{i32(p[0])}; }},
-    {"SRT", 2, 2, [](const Params& p, std::size_t) -> Command { return SetReportOnTriggered{i32(p[0]), i32(p[1])}; }},
-    {"GB", 2, 2, [](const Params& p, std::size_t) -> Command { return GetCaptureBuffer{i32(p[0]), i32(p[1])}; }},
-    {"SEET", 4, 4, [](const Params& p, std::size_t) -> Command { return SetEndEffectorType{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
-    {"GEET", 1, 1, [](const Params& p, std::size_t) -> Command { return GetEndEffectorType{i32(p[0])}; }},
-    {"MGOA", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"MGOR", 3, 3, [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
-    {"MGFA", 4, 4, [](const Params& p, std::size_t) -> Command { return MoveGripperForceAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
-    {"GGO", 1, 1, [](const Params& p, std::size_t) -> Command { return GetGripperOpening{i32(p[0])}; }},
-    {"GF", 1, 1, [](const Params& p, std::size_t) -> Command { return GetForce{i32(p[0])}; }},
-    {"SZF", 1, 1, [](const Params& p, std::size_t) -> Command { return SetZeroForce{i32(p[0])}; }},
+    {{"MSCA", "Move SCan Absolute", "channelIndex,target,scanSpeed"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MoveScanAbsolute{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
+    {{"MSCR", "Move SCan Relative", "channelIndex,diff,scanSpeed"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MoveScanRelative{i32(p[0]), i32(p[1]), p[2]}; }, 1u << 2},
+    {{"GVL", "Get Voltage Level", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetVoltageLevel{i32(p[0])}; }},
+    {{"GCP", "Get Channel Property", "channelIndex,key"}, 2,
+     [](const Params& p, std::size_t) -> Command { return GetChannelProperty{i32(p[0]), i32(p[1])}; }},
+    {{"SCP", "Set Channel Property", "channelIndex,key,value"}, 3,
+     [](const Params& p, std::size_t) -> Command { return SetChannelProperty{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"GESM", "Get Emergency Stop Mode", ""}, 0,
+     [](const Params&, std::size_t) -> Command { return GetEmergencyStopMode{}; }},
+    {{"SESM", "Set Emergency Stop Mode", "mode"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetEmergencyStopMode{i32(p[0])}; }},
+    {{"ATC", "Append Triggered Command", "channelIndex,triggerSource"}, 2,
+     [](const Params& p, std::size_t) -> Command { return AppendTriggeredCommand{i32(p[0]), i32(p[1])}; }},
+    {{"CTCQ", "Clear Triggered Command Queue", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return ClearTriggeredCommandQueue{i32(p[0])}; }},
+    {{"TC", "Trigger Command", "triggerIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return TriggerCommand{i32(p[0])}; }},
+    {{"SRT", "Set Report on Triggered", "channelIndex,report"}, 2,
+     [](const Params& p, std::size_t) -> Command { return SetReportOnTriggered{i32(p[0]), i32(p[1])}; }},
+    {{"GB", "Get capture Buffer", "channelIndex,bufferIndex"}, 2,
+     [](const Params& p, std::size_t) -> Command { return GetCaptureBuffer{i32(p[0]), i32(p[1])}; }},
+    {{"SEET", "Set End Effector Type", "channelIndex,type,param1,param2"}, 4,
+     [](const Params& p, std::size_t) -> Command { return SetEndEffectorType{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"GEET", "Get End Effector Type", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetEndEffectorType{i32(p[0])}; }},
+    {{"MGOA", "Move to Gripper Opening Absolute", "channelIndex,opening,speed"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningAbsolute{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"MGOR", "Move to Gripper Opening Relative", "channelIndex,diff,speed"}, 3,
+     [](const Params& p, std::size_t) -> Command { return MoveGripperOpeningRelative{i32(p[0]), i32(p[1]), i32(p[2])}; }},
+    {{"MGFA", "Move to Gripper Force Absolute", "channelIndex,force,speed,holdTime"}, 4,
+     [](const Params& p, std::size_t) -> Command { return MoveGripperForceAbsolute{i32(p[0]), i32(p[1]), i32(p[2]), i32(p[3])}; }},
+    {{"GGO", "Get Gripper Opening", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetGripperOpening{i32(p[0])}; }},
+    {{"GF", "Get Force", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return GetForce{i32(p[0])}; }},
+    {{"SZF", "Set Zero Force", "channelIndex"}, 1,
+     [](const Params& p, std::size_t) -> Command { return SetZeroForce{i32(p[0])}; }},
 };
 
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }
@@ -164,11 +238,11 @@ Decoded decode(std::string_view line)
     }
 
     for (const auto& entry : kCommands) {
-        if (entry.name != d.name)
+        if (entry.info.mnemonic != d.name)
             continue;
         if (count < entry.min_params)
             return fail(d, ErrorCode::TooFewParameters);
-        if (count > entry.max_params)
+        if (count > entry.max_params())
             return fail(d, ErrorCode::TooManyParameters);
         if ((overflow_mask & ~entry.wide_params) != 0 || (huge_mask & entry.wide_params) != 0)
             return fail(d, ErrorCode::Overflow);
@@ -237,6 +311,14 @@ std::string encode(const Reply& reply)
     std::string out;
     encode(reply, out);
     return out;
+}
+
+const CommandInfo* find_command(std::string_view mnemonic)
+{
+    for (const auto& entry : kCommands)
+        if (entry.info.mnemonic == mnemonic)
+            return &entry.info;
+    return nullptr;
 }
 
 } // namespace rigsim::mcs

@@ -35,4 +35,14 @@ struct Decoded {
 /// Decode one command string (without ':' and '\n').
 Decoded decode(std::string_view line);
 
+/// A command of chapter 3 as the codec's table declares it (codec.cpp, one entry per command).
+struct CommandInfo {
+    std::string_view mnemonic;   ///< "MPA"
+    std::string_view name;       ///< the manual's name, "Move to Position Absolute"
+    std::string_view params;     ///< the manual's parameter names, comma-separated
+};
+
+/// The command with this mnemonic, or nullptr when the codec knows none.
+const CommandInfo* find_command(std::string_view mnemonic);
+
 } // namespace rigsim::mcs

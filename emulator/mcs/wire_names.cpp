@@ -1,5 +1,7 @@
 #include "emulator/mcs/wire_names.hpp"
 
+#include "emulator/mcs/codec.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cctype>
@@ -10,85 +12,8 @@ namespace rigsim::mcs {
 
 namespace {
 
-struct Name {
-    std::string_view mnemonic;
-    std::string_view name;
-    std::string_view fields;   ///< the manual's parameter names, comma-separated
-};
-
-/// Chapter 3: command strings.
-constexpr Name kCommandNames[] = {
-    {"ATC", "Append Triggered Command", "channelIndex,triggerSource"},
-    {"CB", "Configure Baudrate", "baudrate"},
-    {"CS", "Calibrate Sensor", "channelIndex"},
-    {"CTCQ", "Clear Triggered Command Queue", "channelIndex"},
-    {"FRM", "Find Reference Mark", "channelIndex,direction,holdTime,autoZero"},
-    {"GA", "Get Angle", "channelIndex"},
-    {"GAL", "Get Angle Limit", "channelIndex"},
-    {"GB", "Get capture Buffer", "channelIndex,bufferIndex"},
-    {"GCLA", "Get Closed Loop Acceleration", "channelIndex"},
-    {"GCLS", "Get Closed Loop move Speed", "channelIndex"},
-    {"GCM", "Get Communication Mode", ""},
-    {"GCP", "Get Channel Property", "channelIndex,key"},
-    {"GCT", "Get Channel Type", "channelIndex"},
-    {"GEET", "Get End Effector Type", "channelIndex"},
-    {"GESM", "Get Emergency Stop Mode", ""},
-    {"GF", "Get Force", "channelIndex"},
-    {"GFP", "Get Feature Permissions", "channelIndex,byteIndex"},
-    {"GFV", "Get Firmware Version", "channelIndex"},
-    {"GGO", "Get Gripper Opening", "channelIndex"},
-    {"GIV", "Get Interface Version", ""},
-    {"GNC", "Get Number of Channels", ""},
-    {"GP", "Get Position", "channelIndex"},
-    {"GPL", "Get Position Limit", "channelIndex"},
-    {"GPPK", "Get Physical Position Known", "channelIndex"},
-    {"GS", "Get Status", "channelIndex"},
-    {"GSC", "Get Scale", "channelIndex"},
-    {"GSD", "Get Safe Direction", "channelIndex"},
-    {"GSE", "Get Sensor Enabled", ""},
-    {"GSI", "Get System Id", ""},
-    {"GSN", "Get Serial Number", "channelIndex"},
-    {"GST", "Get Sensor Type", "channelIndex"},
-    {"GVL", "Get Voltage Level", "channelIndex"},
-    {"K", "Keep alive", "delay"},
-    {"MAA", "Move to Angle Absolute", "channelIndex,angle,revolution,holdTime"},
-    {"MAR", "Move to Angle Relative", "channelIndex,angle,revolution,holdTime"},
-    {"MGFA", "Move to Gripper Force Absolute", "channelIndex,force,speed,holdTime"},
-    {"MGOA", "Move to Gripper Opening Absolute", "channelIndex,opening,speed"},
-    {"MGOR", "Move to Gripper Opening Relative", "channelIndex,diff,speed"},
-    {"MPA", "Move to Position Absolute", "channelIndex,position,holdTime"},
-    {"MPR", "Move to Position Relative", "channelIndex,diff,holdTime"},
-    {"MSCA", "Move SCan Absolute", "channelIndex,target,scanSpeed"},
-    {"MSCR", "Move SCan Relative", "channelIndex,diff,scanSpeed"},
-    {"MST", "Move STep", "channelIndex,steps,amplitude,frequency"},
-    {"R", "Reset", ""},
-    {"S", "Stop", "channelIndex"},
-    {"SAL", "Set Angle Limit", "channelIndex,minAngle,minRevolution,maxAngle,maxRevolution"},
-    {"SARP", "Set Accumulate Relative Positions", "channelIndex,accumulate"},
-    {"SCLA", "Set Closed Loop Acceleration", "channelIndex,acceleration"},
-    {"SCLF", "Set Closed Loop max Frequency", "channelIndex,frequency"},
-    {"SCLS", "Set Closed Loop move Speed", "channelIndex,speed"},
-    {"SCM", "Set Communication Mode", "mode"},
-    {"SCP", "Set Channel Property", "channelIndex,key,value"},
-    {"SEET", "Set End Effector Type", "channelIndex,type,param1,param2"},
-    {"SESM", "Set Emergency Stop Mode", "mode"},
-    {"SHE", "Set HCM Enabled", "enabled"},
-    {"SP", "Set Position", "channelIndex,position"},
-    {"SPL", "Set Position Limit", "channelIndex,minPosition,maxPosition"},
-    {"SRC", "Set Report on Complete", "channelIndex,report"},
-    {"SRT", "Set Report on Triggered", "channelIndex,report"},
-    {"SSC", "Set Scale", "channelIndex,scale,inverted"},
-    {"SSD", "Set Safe Direction", "channelIndex,direction"},
-    {"SSE", "Set Sensor Enabled", "mode"},
-    {"SST", "Set Sensor Type", "channelIndex,type"},
-    {"SSWS", "Set Step While Scan", "channelIndex,step"},
-    {"SZF", "Set Zero Force", "channelIndex"},
-    {"SZP", "Set Zero Position", "channelIndex"},
-    {"TC", "Trigger Command", "triggerIndex"},
-};
-
-/// Chapter 3: answer strings (E is decoded apart: acknowledge or error).
-constexpr Name kAnswerNames[] = {
+/// Chapter 3: answer strings, each named as a command is (E is decoded apart: acknowledge or error).
+constexpr CommandInfo kAnswerNames[] = {
     {"A", "Angle", "channelIndex,angle,revolution"},
     {"AL", "Angle Limit", "channelIndex,minAngle,minRevolution,maxAngle,maxRevolution"},
     {"B", "Capture Buffer", "channelIndex,bufferIndex,data1,data2,data3"},
@@ -140,7 +65,7 @@ constexpr ErrorName kErrorNames[] = {
 };
 
 template <std::size_t N>
-const Name* find(const Name (&table)[N], std::string_view mnemonic)
+const CommandInfo* find(const CommandInfo (&table)[N], std::string_view mnemonic)
 {
     for (const auto& n : table)
         if (n.mnemonic == mnemonic)
@@ -199,7 +124,7 @@ std::string_view error_name(int code)
 
 std::string_view command_name(std::string_view mnemonic)
 {
-    const auto* n = find(kCommandNames, mnemonic);
+    const auto* n = find_command(mnemonic);
     return n ? n->name : std::string_view{};
 }
 
@@ -220,10 +145,10 @@ void decode_line(std::string_view line, bool inbound, nlohmann::json& out)
         decode_error(params, out);
         return;
     }
-    const auto* n = inbound ? find(kCommandNames, mnemonic) : find(kAnswerNames, mnemonic);
+    const auto* n = inbound ? find_command(mnemonic) : find(kAnswerNames, mnemonic);
     out["name"] = n ? n->name : std::string_view("unknown");
     nlohmann::json fields = nlohmann::json::object();
-    const auto names = n ? split(n->fields) : std::vector<std::string_view>{};
+    const auto names = n ? split(n->params) : std::vector<std::string_view>{};
     const auto values = split(params);
     for (std::size_t i = 0; i < values.size(); ++i)
         fields[i < names.size() ? std::string(names[i]) : "param" + std::to_string(i + 1)] = value_of(values[i]);

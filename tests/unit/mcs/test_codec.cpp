@@ -106,4 +106,20 @@ TEST_CASE("codec encodes answers without spaces", "[unit][mcs][codec]")
     CHECK(encode(Answer{"P0,2000000"}) == ":P0,2000000\n");
 }
 
+TEST_CASE("find_command: each command's table entry, with the manual's names", "[unit][mcs][codec]")
+{
+    const auto* mpa = find_command("MPA");
+    REQUIRE(mpa != nullptr);
+    CHECK(mpa->name == "Move to Position Absolute");
+    CHECK(mpa->params == "channelIndex,position,holdTime");
+    CHECK(find_command("GNC")->params.empty());
+    CHECK(find_command("XYZ") == nullptr);
+    // The parameter count comes from the names: three for MPA, one optional for S.
+    CHECK(decode("MPA0,1,2,3").error.code == ErrorCode::TooManyParameters);
+    CHECK(decode("MPA0,1").error.code == ErrorCode::TooFewParameters);
+    CHECK(decode("S").command.has_value());
+    CHECK(decode("S0").command.has_value());
+    CHECK(decode("S0,1").error.code == ErrorCode::TooManyParameters);
+}
+
 } // namespace test_mcs_codec
