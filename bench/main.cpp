@@ -62,6 +62,7 @@ struct Options {
     double idle_seconds = 5.0;
     std::string daemon = RIGSIMD_PATH;
     Pinning pinning = Pinning::Same;
+    std::string protocol = "both";   ///< "mcs", "apt" or "both": the exchanges to time
 };
 
 struct UsageError : std::runtime_error {
@@ -72,13 +73,15 @@ void print_usage(std::FILE* out)
 {
     std::fprintf(out,
                  "usage: rigsim_bench [--iterations N] [--idle-seconds S] [--pin MODE]\n"
-                 "                    [--daemon PATH]\n"
+                 "                    [--protocol mcs|apt|both] [--daemon PATH]\n"
                  "  --iterations N    timed round trips per protocol, transport and server\n"
                  "                    (default 20000), after %d warm-up round trips\n"
                  "  --idle-seconds S  length of each idle CPU window, 0 to skip (default 5)\n"
                  "  --pin MODE        same: client and servers (rigsimd and the floor) on one\n"
                  "                    CPU (default); split: client on one CPU, servers on\n"
                  "                    another; none: left to the scheduler\n"
+                 "  --protocol P      mcs, apt or both (default): the exchanges to time; one\n"
+                 "                    alone gives callgrind a count per protocol\n"
                  "  --daemon PATH     rigsimd to start (default %s)\n",
                  kWarmupIterations, RIGSIMD_PATH);
 }
@@ -111,6 +114,10 @@ Options parse_options(int argc, char** argv)
             if (!pinning)
                 throw UsageError("--pin wants same, split or none, not " + value);
             options.pinning = *pinning;
+        } else if (flag == "--protocol") {
+            if (value != "mcs" && value != "apt" && value != "both")
+                throw UsageError("--protocol wants mcs, apt or both, not " + value);
+            options.protocol = value;
         } else if (flag == "--daemon") {
             options.daemon = value;
         } else {
@@ -381,6 +388,16 @@ const char* verdict(bool pass)
     return pass ? "PASS" : "FAIL";
 }
 
+/// The exchanges --protocol asks for, MCS first.
+std::vector<const Protocol*> protocols_of(const Options& options)
+{
+    std::vector<const Protocol*> out;
+    for (const Protocol* p : {&kMcs, &kApt})
+        if (options.protocol == "both" || options.protocol == p->name)
+            out.push_back(p);
+    return out;
+}
+
 int run(const Options& options)
 {
     // A peer closing mid-write must be an error return, not a fatal signal.
@@ -392,7 +409,7 @@ int run(const Options& options)
         pin_this_thread(*placement.client_cpu);
     std::printf("rigsim_bench: %s (pid %d)\n", options.daemon.c_str(),
                 static_cast<int>(daemon.pid()));
-    for (const Protocol* protocol : {&kMcs, &kApt}) {
+    for (const Protocol* protocol : protocols_of(options)) {
         const auto& d = daemon.device(protocol->device, protocol->name);
         std::printf("  %s (%s %s): tcp %s:%u, pty %s\n", d.name.c_str(), d.protocol.c_str(),
                     d.model.c_str(), d.tcp_host.c_str(), static_cast<unsigned>(d.tcp_port),
@@ -408,7 +425,7 @@ int run(const Options& options)
     progress("idle window, fresh daemon");
     const auto idle_fresh = measure_idle(daemon.pid(), options.idle_seconds);
     std::vector<ProtocolResult> results;
-    for (const Protocol* protocol : {&kMcs, &kApt}) {
+    for (const Protocol* protocol : protocols_of(options)) {
         progress((std::string{protocol->name} + " tcp round trips").c_str());
         auto tcp = measure_tcp(*protocol, daemon, placement, options);
         progress((std::string{protocol->name} + " pty round trips").c_str());
@@ -449,10 +466,11 @@ int run(const Options& options)
     for (const auto& r : results) {
         const double cpu_us = r.tcp.rigsim_cpu.stat_s * 1e6 / options.iterations;
         const std::string label = "daemon CPU per command (" + r.tcp.name + ")";
-        std::printf("  %-38s %8.2f us  <= %.0f us   %s   (floor echo thread: %.2f us)\n",
+        const double floor_us = r.tcp.floor_cpu.stat_s * 1e6 / options.iterations;
+        std::printf("  %-38s %8.2f us  <= %.0f us   %s   (floor echo thread: %.2f us, ratio %.2f)\n",
                     label.c_str(), cpu_us, kTargetCpuPerCommandUs,
-                    verdict(cpu_us <= kTargetCpuPerCommandUs),
-                    r.tcp.floor_cpu.stat_s * 1e6 / options.iterations);
+                    verdict(cpu_us <= kTargetCpuPerCommandUs), floor_us,
+                    floor_us > 0 ? cpu_us / floor_us : 0.0);
     }
     if (idle_fresh && idle_after) {
         const double idle = std::max(idle_percent(*idle_fresh), idle_percent(*idle_after));
