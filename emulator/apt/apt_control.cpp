@@ -69,31 +69,6 @@ Refusal bad(std::string message)
     return Refusal{400, std::move(message)};
 }
 
-/// The params of a fault: keys other than `allowed` (and the POST's own) are refused.
-Refused only_keys(const nlohmann::json* params, const std::string& kind, std::initializer_list<const char*> allowed)
-{
-    if (!params || params->is_null())
-        return std::nullopt;
-    if (!params->is_object())
-        return bad("fault params must be an object");
-    for (const auto& [key, value] : params->items()) {
-        (void)value;
-        if (key == "device" || key == "channel" || key == "kind")
-            continue;
-        bool ok = false;
-        for (const char* a : allowed)
-            ok = ok || key == a;
-        if (!ok) {
-            std::string names;
-            for (const char* a : allowed)
-                names += std::string(names.empty() ? "" : ", ") + "\"" + a + "\"";
-            return bad("unknown field \"" + key + "\" for fault \"" + kind + "\""
-                       + (names.empty() ? " (it takes no params)" : " (it takes " + names + ")"));
-        }
-    }
-    return std::nullopt;
-}
-
 } // namespace
 
 void AptDevice::record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes,
@@ -299,13 +274,13 @@ void AptDevice::apply_faults(std::size_t bay)
     for (const auto& [id, f] : faults_) {
         if (f.bay != bay)
             continue;
-        stalled = stalled || f.kind == "stall";
-        sensor = sensor || f.kind == "sensor_failure";
-        if (f.kind == "slip") {
+        stalled = stalled || f.kind == FaultKind::Stall;
+        sensor = sensor || f.kind == FaultKind::SensorFailure;
+        if (f.kind == FaultKind::Slip) {
             counts += f.counts;
             fraction += f.fraction;
         }
-        if (f.kind == "limit_switch")
+        if (f.kind == FaultKind::LimitSwitch)
             side = f.side;   // the latest fault's switch
     }
     MotorChannel& ch = *channels_[bay];
@@ -317,48 +292,26 @@ void AptDevice::apply_faults(std::size_t bay)
 
 Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
 {
+    const std::string kind(fault_name(f.kind));
     if (model_.kind != UnitKind::Motor)   // every device fault kind acts on a motor and its stage
-        return bad("\"kind\": " + f.kind + " is a motor fault and the " + config_.model + " (a "
+        return bad("\"kind\": " + kind + " is a motor fault and the " + config_.model + " (a "
                    + unit_name(model_.kind) + " unit) has no motor; its link faults (unplugged, drop_bytes, "
                    "corrupt_bytes, latency) and power_cycle act on it");
     const std::size_t bay = f.channel.value_or(0);
     if (bay >= channels_.size())
         return Refusal{404, "no channel " + std::to_string(bay) + " on " + config_.name};
-    const nlohmann::json* p = f.params;
     ActiveFault fault{f.kind, bay};
-    if (f.kind == "stall" || f.kind == "sensor_failure" || f.kind == "reference_lost") {
-        if (auto r = only_keys(p, f.kind, {}))
-            return r;
-    } else if (f.kind == "slip") {
+    if (f.kind == FaultKind::Slip) {
         if (model_.motor != MotorKind::Stepper)
             return bad("slip: the " + config_.model + " closes its position loop on the encoder, so it loses no "
                        "steps (a stepper controller does; try stall or sensor_failure)");
-        if (auto r = only_keys(p, f.kind, {"counts", "fraction"}))
-            return r;
-        const auto counts = p ? p->find("counts") : nlohmann::json::const_iterator{};
-        const auto fraction = p ? p->find("fraction") : nlohmann::json::const_iterator{};
-        const bool has_counts = p && p->is_object() && counts != p->end();
-        const bool has_fraction = p && p->is_object() && fraction != p->end();
-        if (!has_counts && !has_fraction)
+        if (!f.slip_counts && !f.slip_fraction)
             return bad("slip needs \"counts\" (microsteps lost per move) or \"fraction\" (of each move, 0..1)");
-        if (has_counts && (!counts->is_number() || counts->get<double>() < 0))
-            return bad("counts must be a number >= 0 (microsteps lost per move)");
-        if (has_fraction && (!fraction->is_number() || fraction->get<double>() < 0 || fraction->get<double>() > 1))
-            return bad("fraction must be a number from 0 to 1");
-        fault.counts = has_counts ? counts->get<double>() : 0;
-        fault.fraction = has_fraction ? fraction->get<double>() : 0;
-    } else if (f.kind == "limit_switch") {
-        if (auto r = only_keys(p, f.kind, {"side"}))
-            return r;
-        const auto side = p && p->is_object() ? p->find("side") : nlohmann::json::const_iterator{};
-        if (!p || !p->is_object() || side == p->end() || !side->is_string() || (*side != "forward" && *side != "reverse"))
-            return bad("side must be \"forward\" or \"reverse\"");
-        fault.side = *side == "forward" ? 1 : -1;
-    } else {
-        return bad("kind \"" + f.kind + "\" is not a fault an APT unit has (stall, slip, sensor_failure, "
-                   "reference_lost, limit_switch)");
+        fault.counts = f.slip_counts.value_or(0);
+        fault.fraction = f.slip_fraction.value_or(0);
     }
-    if (f.kind == "reference_lost") {
+    fault.side = f.limit_side;
+    if (f.kind == FaultKind::ReferenceLost) {
         channels_[bay]->set_homed(false);   // one-off: homing finds it again
         *kept = false;
     } else {
@@ -366,7 +319,7 @@ Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
         apply_faults(bay);
         *kept = true;
     }
-    log_->info("control: fault {} ({}) on channel {}", f.id, f.kind, bay);
+    log_->info("control: fault {} ({}) on channel {}", f.id, kind, bay);
     flush();
     return std::nullopt;
 }

@@ -202,7 +202,7 @@ private:
 
     /// A fault of the control API acting on a bay.
     struct ActiveFault {
-        std::string kind;
+        FaultKind kind = FaultKind::Stall;
         std::size_t bay = 0;
         int side = 0;            ///< limit_switch: +1 forward, -1 reverse
         double counts = 0;       ///< slip

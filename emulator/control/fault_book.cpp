@@ -44,7 +44,12 @@ std::uint32_t seed_of(const json& params)
 
 const std::vector<std::string>& FaultBook::device_kinds()
 {
-    static const std::vector<std::string> kinds{"stall", "slip", "sensor_failure", "reference_lost", "limit_switch"};
+    static const std::vector<std::string> kinds = [] {
+        std::vector<std::string> names;
+        for (const auto kind : kFaultKinds)
+            names.emplace_back(fault_name(kind));
+        return names;
+    }();
     return kinds;
 }
 
@@ -107,7 +112,12 @@ json FaultBook::add(const json& body)
     if (device_kind) {
         if (!dev.surface)
             throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no device faults"};
-        if (auto refused = dev.surface->add_fault(DeviceFault{id, kind, channel, &params}, &kept))
+        DeviceFault fault;
+        if (auto refused = parse_device_fault(kind, params, fault))
+            throw BadRequest{refused->status, refused->message};
+        fault.id = id;
+        fault.channel = channel;
+        if (auto refused = dev.surface->add_fault(fault, &kept))
             throw BadRequest{refused->status, refused->message};
     } else if (link_kind) {
         if (!dev.link)

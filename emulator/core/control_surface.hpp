@@ -26,13 +26,31 @@ struct Refusal {
 };
 using Refused = std::optional<Refusal>;
 
-/// A fault that acts inside a device (kinds: docs/control-api.md "Faults").
+/// The faults that act inside a device, on the stage a channel drives (docs/control-api.md
+/// "Faults"). Each family says which of them its units have.
+enum class FaultKind { Stall, Slip, SensorFailure, ReferenceLost, LimitSwitch };
+
+/// Every FaultKind, in the order the API lists them.
+inline constexpr FaultKind kFaultKinds[] = {FaultKind::Stall, FaultKind::Slip, FaultKind::SensorFailure,
+                                            FaultKind::ReferenceLost, FaultKind::LimitSwitch};
+
+/// The API's name of a fault kind: "stall", "slip", "sensor_failure", "reference_lost", "limit_switch".
+std::string_view fault_name(FaultKind kind);
+
+/// A device fault as the control API's JSON gives it, parsed once (parse_device_fault).
 struct DeviceFault {
     std::uint64_t id = 0;
-    std::string kind;                    ///< "stall", "slip", "sensor_failure", "reference_lost", "limit_switch"
+    FaultKind kind = FaultKind::Stall;
     std::optional<std::size_t> channel;  ///< MCS channel index, APT bay index (0-based); absent: the device picks (0)
-    const nlohmann::json* params = nullptr;   ///< the POST body's other keys (an object)
+    std::optional<double> slip_counts;   ///< slip: steps lost per move (a stepper's microsteps), >= 0
+    std::optional<double> slip_fraction; ///< slip: the part of each move lost, 0..1
+    int limit_side = 0;                  ///< limit_switch: +1 the forward switch, -1 the reverse one
 };
+
+/// Fills `out.kind` and its parameters from `kind` and `params` (the POST body's keys other
+/// than "device", "kind" and "channel"; an object); a 400 naming the field for an unknown kind,
+/// an unknown parameter or a value out of its range.
+Refused parse_device_fault(std::string_view kind, const nlohmann::json& params, DeviceFault& out);
 
 /// Samples a channel's trace keeps (GET .../channels/{index}/trace): the newest ones.
 constexpr std::size_t kTraceSamples = 16384;

@@ -249,9 +249,9 @@ void McsDevice::apply_faults(std::size_t index)
     for (const auto& f : faults_) {
         if (f.channel != index)
             continue;
-        stalled = stalled || f.kind == "stall";
-        failed = failed || f.kind == "sensor_failure";
-        if (f.kind == "slip")
+        stalled = stalled || f.kind == FaultKind::Stall;
+        failed = failed || f.kind == FaultKind::SensorFailure;
+        if (f.kind == FaultKind::Slip)
             slip = std::max(slip, f.fraction);
     }
     ch->body().set_slip(slip);
@@ -264,33 +264,23 @@ Refused McsDevice::add_fault(const DeviceFault& f, bool* kept)
     if (kept)
         *kept = false;
     const std::size_t index = f.channel.value_or(0);
-    const bool known_kind = f.kind == "stall" || f.kind == "slip" || f.kind == "sensor_failure"
-                            || f.kind == "reference_lost" || f.kind == "limit_switch";
-    if (!known_kind)
-        return bad("kind: unknown fault kind \"" + f.kind + "\" (stall, slip, sensor_failure, reference_lost)");
-    if (f.kind == "limit_switch")
+    if (f.kind == FaultKind::LimitSwitch)
         return bad("kind: limit_switch: an MCS positioner has no limit switches (its end stops are mechanical; "
                    "use stall)");
+    if (f.kind == FaultKind::Slip && f.slip_counts)
+        return bad("counts: an MCS positioner slips by a fraction of each step, not by counts (fraction)");
     if (index >= controller_.channel_count())
         return Refusal{404, "no channel " + std::to_string(index)};
     auto* ch = controller_.channel(static_cast<std::int32_t>(index));
     if (!ch)
         return bad("channel: channel " + std::to_string(index) + " is an end effector");
-    double fraction = 0.5;
-    if (f.params && f.params->is_object())
-        for (const auto& [key, value] : f.params->items()) {
-            if (key == "device" || key == "channel" || key == "kind")
-                continue;
-            if (f.kind != "slip" || key != "fraction")
-                return bad(key + ": not a parameter of " + f.kind
-                           + (f.kind == "slip" ? " (fraction)" : " (it takes none)"));
-            if (!value.is_number() || value.get<double>() < 0 || value.get<double>() >= 1)
-                return bad("fraction: a number from 0 up to (not including) 1 is required");
-            fraction = value.get<double>();
-        }
-    if ((f.kind == "sensor_failure" || f.kind == "reference_lost") && !ch->sensor())
+    // A positioner that lost every step would not move at all: that is the stall fault.
+    const double fraction = f.slip_fraction.value_or(0.5);
+    if (fraction >= 1)
+        return bad("fraction: a number from 0 up to (not including) 1 is required");
+    if ((f.kind == FaultKind::SensorFailure || f.kind == FaultKind::ReferenceLost) && !ch->sensor())
         return bad("kind: channel " + std::to_string(index) + " has no sensor");
-    if (f.kind == "reference_lost") {   // one-off: the position becomes unknown now
+    if (f.kind == FaultKind::ReferenceLost) {   // one-off: the position becomes unknown now
         ch->set_referenced(false);
         publish_changes();
         return std::nullopt;

@@ -83,7 +83,7 @@ private:
     /// A fault acting on a channel (stall, slip, sensor_failure).
     struct ActiveFault {
         std::uint64_t id;
-        std::string kind;
+        FaultKind kind;
         std::size_t channel;
         double fraction;   ///< slip
     };

@@ -46,9 +46,12 @@ Refused fault(AptHarness& h, std::uint64_t id, const std::string& kind, json par
               std::optional<std::size_t> ch = std::nullopt, bool* kept = nullptr)
 {
     bool k = false;
-    DeviceFault f{id, kind, ch, &params};
-    auto r = h.device().add_fault(f, kept ? kept : &k);
-    return r;
+    DeviceFault f;
+    if (auto r = parse_device_fault(kind, params, f))   // as the control API does
+        return r;
+    f.id = id;
+    f.channel = ch;
+    return h.device().add_fault(f, kept ? kept : &k);
 }
 
 std::int32_t position_counter(AptHarness& h)

@@ -327,9 +327,15 @@ TEST_CASE("control units: motor faults on a unit without a motor are 400 naming 
         INFO(config.model);
         AptHarness h(config);
         for (const char* kind : {"stall", "slip", "sensor_failure", "reference_lost", "limit_switch"}) {
-            const json params = json::object();
+            rigsim::DeviceFault f;
+            REQUIRE_FALSE(rigsim::parse_device_fault(kind, kind == std::string("limit_switch")
+                                                               ? json{{"side", "forward"}}
+                                                               : kind == std::string("slip") ? json{{"counts", 1}}
+                                                                                             : json::object(),
+                                                     f));
+            f.id = 1;
             bool kept = false;
-            const auto r = h.device().add_fault(rigsim::DeviceFault{1, kind, std::nullopt, &params}, &kept);
+            const auto r = h.device().add_fault(f, &kept);
             REQUIRE(r);
             CHECK(r->status == 400);
             CHECK(r->message.find("\"kind\"") == 0);

@@ -34,10 +34,10 @@ rigsim::Refused fault(McsHarness& h, std::uint64_t id, const std::string& kind, 
                       const json& params = json::object(), bool* kept = nullptr)
 {
     rigsim::DeviceFault f;
+    if (auto r = rigsim::parse_device_fault(kind, params, f))   // as the control API does
+        return r;
     f.id = id;
-    f.kind = kind;
     f.channel = channel;
-    f.params = &params;
     bool k = false;
     auto r = h.device().add_fault(f, kept ? kept : &k);
     return r;
@@ -239,10 +239,14 @@ TEST_CASE("MCS fault params are validated, naming the field", "[device][mcs][con
     const auto kind = fault(h, 3, "melt");
     REQUIRE(kind);
     CHECK(kind->status == 400);
-    const auto sw = fault(h, 4, "limit_switch");
+    const auto sw = fault(h, 4, "limit_switch", 0, {{"side", "forward"}});
     REQUIRE(sw);
     CHECK(sw->status == 400);
     CHECK_THAT(sw->message, Catch::Contains("limit_switch"));
+    const auto counts = fault(h, 4, "slip", 0, {{"counts", 10}});   // a stepper's figure
+    REQUIRE(counts);
+    CHECK(counts->status == 400);
+    CHECK_THAT(counts->message, Catch::Contains("counts"));
     const auto index = fault(h, 5, "stall", 9);
     REQUIRE(index);
     CHECK(index->status == 404);

@@ -47,13 +47,13 @@ public:
     }
     Refused add_fault(const DeviceFault& f, bool* kept) override
     {
-        if (f.params->contains("bad"))
-            return Refusal{400, "\"bad\": not a parameter"};
+        if (f.kind == FaultKind::LimitSwitch)
+            return Refusal{400, "\"kind\": no limit switches here"};
         added.push_back(f.id);
         last_kind = f.kind;
         last_channel = f.channel;
-        last_params = *f.params;
-        *kept = f.kind != "reference_lost";
+        last_fraction = f.slip_fraction;
+        *kept = f.kind != FaultKind::ReferenceLost;
         return std::nullopt;
     }
     void remove_fault(std::uint64_t id) override { removed.push_back(id); }
@@ -63,9 +63,9 @@ public:
     double position = 0;
     bool moving = false;
     std::vector<std::uint64_t> added, removed;
-    std::string last_kind;
+    std::optional<FaultKind> last_kind;
     std::optional<std::size_t> last_channel;
-    json last_params;
+    std::optional<double> last_fraction;
     std::vector<PowerCycle> cycles;
 
 private:
@@ -152,16 +152,16 @@ TEST_CASE("PATCH a channel: the device's answer, its refusals as their status, t
 TEST_CASE("POST /api/faults: a device fault goes to the device with its params, is listed and removed", "[control]")
 {
     Fixture f;
-    const auto [status, record] = f.call("POST", "/api/faults", R"({"device":"dev","channel":0,"kind":"stall","after_ms":5})");
+    const auto [status, record] = f.call("POST", "/api/faults", R"({"device":"dev","channel":0,"kind":"slip","fraction":0.25})");
     CHECK(status == 201);
     CHECK(record["id"] == 1);
     CHECK(record["active"] == true);
-    CHECK(record["params"] == json{{"after_ms", 5}});
-    CHECK(f.surface.last_kind == "stall");
+    CHECK(record["params"] == json{{"fraction", 0.25}});
+    CHECK(f.surface.last_kind == FaultKind::Slip);   // parsed once, typed
     CHECK(f.surface.last_channel == std::optional<std::size_t>(0));
-    CHECK(f.surface.last_params == json{{"after_ms", 5}});
+    CHECK(f.surface.last_fraction == std::optional<double>(0.25));
     CHECK(f.call("GET", "/api/faults").second["faults"].size() == 1);
-    CHECK(f.call("GET", "/api/devices/dev").second["faults"][0]["kind"] == "stall");
+    CHECK(f.call("GET", "/api/devices/dev").second["faults"][0]["kind"] == "slip");
     CHECK(f.call("DELETE", "/api/faults/1").second == json{{"id", 1}, {"removed", true}});
     CHECK(f.surface.removed == std::vector<std::uint64_t>{1});
     CHECK(f.error_of("DELETE", "/api/faults/1", "", 404) == "no active fault \"1\"");
@@ -180,7 +180,13 @@ TEST_CASE("POST /api/faults refuses what is wrong by name, and the device's own 
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"stall","channel":-1})", 400)
           == "\"channel\": expected an integer 0..255, got -1");
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"stall","bad":1})", 400)
-          == "\"bad\": not a parameter");
+          == "\"bad\": not a parameter of a stall fault (it takes none)");
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"slip","fraction":2})", 400)
+          == "\"fraction\": expected a number from 0 to 1, got 2");
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"limit_switch","side":"up"})", 400)
+          == "\"side\": \"forward\" or \"reverse\" is required, got \"up\"");
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"limit_switch","side":"forward"})", 400)
+          == "\"kind\": no limit switches here");   // the device's own refusal
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"unplugged","channel":0})", 400)
           == "\"channel\": a unplugged fault acts on the whole device");
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"latency"})", 400)
