@@ -1,5 +1,7 @@
 #pragma once
 
+#include "tests/support/rigsimd_process.hpp"
+
 #include <sys/types.h>
 
 #include <chrono>
@@ -25,20 +27,19 @@ struct DeviceEndpoints {
 /// "tcp" as "HOST:PORT"; throws std::runtime_error saying what is missing or malformed.
 std::vector<DeviceEndpoints> parse_endpoints(const std::string& json);
 
-/// rigsimd started with fork/exec on ephemeral ports in a fresh temporary directory.
+/// rigsimd started on ephemeral ports in a fresh temporary directory, by the launcher the e2e
+/// tests share (tests/support/rigsimd_process.hpp), its devices read from its endpoints file.
 class DaemonProcess {
 public:
     /// Starts `path`, pinned to `cpu` if given, with `extra_args` after its own (e.g.
     /// `--config FILE`), and waits (polling, up to `timeout`) for its endpoints file.
     DaemonProcess(const std::string& path, std::optional<int> cpu,
                   std::chrono::milliseconds timeout, std::vector<std::string> extra_args = {});
-    /// Kills the daemon if still running and removes the temporary directory.
-    ~DaemonProcess();
     DaemonProcess(const DaemonProcess&) = delete;
     DaemonProcess& operator=(const DaemonProcess&) = delete;
 
     /// The daemon's process id (-1 once it has been reaped).
-    pid_t pid() const { return pid_; }
+    pid_t pid() const { return process_.wait_status() ? -1 : process_.pid(); }
     /// Where each of the daemon's devices listens, in the order of the endpoints file.
     const std::vector<DeviceEndpoints>& devices() const { return devices_; }
     /// The device called `name` speaking `protocol`; throws if the rig has none.
@@ -49,16 +50,10 @@ public:
     void terminate(std::chrono::milliseconds timeout);
 
 private:
-    /// Creates the directory, forks, execs and waits for the endpoints file.
-    void start(const std::string& path, std::optional<int> cpu,
-               std::chrono::milliseconds timeout, const std::vector<std::string>& extra_args);
-    /// Kills and reaps the daemon if running; removes the temporary directory.
-    void clean_up();
-    /// Polls waitpid(WNOHANG); true once the child is reaped, with its status.
-    bool reaped(int& status);
-
-    std::string temp_dir_;
-    pid_t pid_ = -1;
+    /// Removed with what it holds when the benchmark is done with the daemon.
+    launch::TempDir dir_;
+    /// Killed (SIGKILL) on destruction if still running.
+    launch::RigsimdProcess process_;
     std::vector<DeviceEndpoints> devices_;
 };
 

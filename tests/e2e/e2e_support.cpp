@@ -8,24 +8,17 @@
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
-#ifdef __linux__
-#include <sys/prctl.h>
-#endif
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #if !defined(RIGSIMD_PATH) || !defined(RIGSIM_E2E_DIR)
 #error "RIGSIMD_PATH and RIGSIM_E2E_DIR are set by tests/e2e/CMakeLists.txt"
@@ -34,8 +27,6 @@
 namespace rigsim::e2e {
 
 namespace {
-
-constexpr Millis kPollPeriod{2};
 
 std::string errno_text(const std::string& what)
 {
@@ -55,68 +46,6 @@ void set_nonblocking(int fd)
         throw std::runtime_error(errno_text("fcntl(O_NONBLOCK)"));
 }
 
-/// argv for execv, built before fork so the child only calls async-signal-safe functions.
-class Argv {
-public:
-    explicit Argv(const std::vector<std::string>& args) : storage_(args)
-    {
-        for (auto& s : storage_)
-            pointers_.push_back(s.data());
-        pointers_.push_back(nullptr);
-    }
-    char* const* get() { return pointers_.data(); }
-
-private:
-    std::vector<std::string> storage_;
-    std::vector<char*> pointers_;
-};
-
-/// In the child after fork: die with the test process, default signal handling, stdio
-/// redirected, then exec. Only async-signal-safe calls.
-[[noreturn]] void exec_child(char* const* argv, int in_fd, int out_fd, int err_fd,
-                             pid_t parent, const rlimit* max_open_files = nullptr,
-                             char* const* envp = nullptr)
-{
-    if (max_open_files && ::setrlimit(RLIMIT_NOFILE, max_open_files) != 0)
-        ::_exit(127);
-#ifdef __linux__
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent)
-        ::_exit(127);
-#else
-    (void)parent;
-#endif
-    sigset_t none;
-    sigemptyset(&none);
-    ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    ::signal(SIGPIPE, SIG_DFL);
-    ::signal(SIGINT, SIG_DFL);
-    ::signal(SIGTERM, SIG_DFL);
-    if (::dup2(in_fd, STDIN_FILENO) < 0 || ::dup2(out_fd, STDOUT_FILENO) < 0 ||
-        ::dup2(err_fd, STDERR_FILENO) < 0)
-        ::_exit(127);
-    if (envp)
-        ::execve(argv[0], argv, envp);
-    else
-        ::execv(argv[0], argv);
-    ::_exit(127);
-}
-
-/// This process's environment with `entries` ("NAME=value") added or replacing NAME's.
-std::vector<std::string> environment_with(const std::vector<std::string>& entries)
-{
-    std::vector<std::string> env = entries;
-    for (char** e = environ; *e; ++e) {
-        const std::string entry(*e);
-        const auto name = entry.substr(0, entry.find('=') + 1);
-        const bool replaced = std::any_of(entries.begin(), entries.end(),
-                                          [&](const std::string& x) { return x.rfind(name, 0) == 0; });
-        if (!replaced)
-            env.push_back(entry);
-    }
-    return env;
-}
-
 std::vector<std::string> with_binary(const std::vector<std::string>& args)
 {
     std::vector<std::string> all{RIGSIMD_PATH};
@@ -126,42 +55,12 @@ std::vector<std::string> with_binary(const std::vector<std::string>& args)
 
 } // namespace
 
-bool wait_until(const std::function<bool()>& pred, Millis timeout)
-{
-    const auto deadline = SteadyClock::now() + timeout;
-    for (;;) {
-        if (pred())
-            return true;
-        if (SteadyClock::now() >= deadline)
-            return false;
-        // Not a fixed delay: a short poll period between checks of the predicate.
-        std::this_thread::sleep_for(kPollPeriod);   // poll: re-check until the deadline
-    }
-}
-
 double elapsed_ms(SteadyClock::time_point start)
 {
     return std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
 }
 
 // --- files ---------------------------------------------------------------------------
-
-TempDir::TempDir()
-{
-    const char* base = std::getenv("TMPDIR");
-    std::string templ = std::string(base && *base ? base : "/tmp") + "/rigsim-e2e-XXXXXX";
-    if (!::mkdtemp(templ.data()))
-        throw std::runtime_error(errno_text("mkdtemp " + templ));
-    path_ = templ;
-}
-
-TempDir::~TempDir()
-{
-    if (std::getenv("RIGSIM_E2E_KEEP_TMP"))
-        return;
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-}
 
 void write_file(const std::string& path, const std::string& text)
 {
@@ -264,87 +163,9 @@ std::optional<Endpoint> find_endpoint(const std::string& json, const std::string
 
 // --- processes -----------------------------------------------------------------------
 
-std::string describe_wait_status(int status)
-{
-    if (WIFEXITED(status))
-        return "exited " + std::to_string(WEXITSTATUS(status));
-    if (WIFSIGNALED(status))
-        return "killed by signal " + std::to_string(WTERMSIG(status));
-    return "wait status " + std::to_string(status);
-}
-
 ProcessResult run_rigsimd(const std::vector<std::string>& args, Millis timeout)
 {
-    Argv argv(with_binary(args));
-    int out_pipe[2], err_pipe[2];
-    if (::pipe2(out_pipe, O_CLOEXEC) < 0)
-        throw std::runtime_error(errno_text("pipe2"));
-    if (::pipe2(err_pipe, O_CLOEXEC) < 0) {
-        ::close(out_pipe[0]);
-        ::close(out_pipe[1]);
-        throw std::runtime_error(errno_text("pipe2"));
-    }
-    int null_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-    const pid_t parent = ::getpid();
-    pid_t pid = ::fork();
-    if (pid == 0)
-        exec_child(argv.get(), null_fd, out_pipe[1], err_pipe[1], parent);
-    ::close(null_fd);
-    ::close(out_pipe[1]);
-    ::close(err_pipe[1]);
-    if (pid < 0) {
-        ::close(out_pipe[0]);
-        ::close(err_pipe[0]);
-        throw std::runtime_error(errno_text("fork"));
-    }
-
-    ProcessResult result;
-    const auto deadline = SteadyClock::now() + timeout;
-    pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
-    std::string* sinks[2] = {&result.out, &result.err};
-    int open_pipes = 2;
-    while (open_pipes > 0) {
-        int left = remaining_ms(deadline);
-        if (left == 0) {
-            result.timed_out = true;
-            break;
-        }
-        int n = ::poll(fds, 2, left);
-        if (n < 0 && errno != EINTR)
-            break;
-        for (int i = 0; i < 2; ++i) {
-            if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR)))
-                continue;
-            char buf[4096];
-            ssize_t got = ::read(fds[i].fd, buf, sizeof buf);
-            if (got > 0) {
-                sinks[i]->append(buf, static_cast<std::size_t>(got));
-            } else if (got == 0 || errno != EINTR) {
-                ::close(fds[i].fd);
-                fds[i].fd = -1;
-                --open_pipes;
-            }
-        }
-    }
-    for (auto& p : fds)
-        if (p.fd >= 0)
-            ::close(p.fd);
-
-    int status = 0;
-    bool reaped = wait_until(
-        [&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
-        result.timed_out ? Millis{0} : Millis{std::max(remaining_ms(deadline), 1)});
-    if (!reaped) {
-        result.timed_out = true;
-        ::kill(pid, SIGKILL);
-        ::waitpid(pid, &status, 0);
-        return result;
-    }
-    if (WIFEXITED(status)) {
-        result.exited = true;
-        result.exit_code = WEXITSTATUS(status);
-    }
-    return result;
+    return launch::run_to_completion(with_binary(args), timeout);
 }
 
 // --- Daemon --------------------------------------------------------------------------
@@ -353,49 +174,23 @@ Daemon::Daemon() : Daemon(Options{}) {}
 
 Daemon::Daemon(Options options) : Daemon(std::move(options), Limits{}) {}
 
-Daemon::Daemon(Options options, Limits limits)
-{
-    try {
-        start(options, limits);
-        wait_for_endpoints();
-    } catch (...) {
-        if (pid_ > 0 && !wait_status_) {
-            ::kill(pid_, SIGKILL);
-            int status = 0;
-            ::waitpid(pid_, &status, 0);
-        }
-        throw;
-    }
-}
+Daemon::Daemon(Options options, Limits limits) : process_(launch_options(dir_, options, limits)) {}
 
-Daemon::~Daemon()
+launch::LaunchOptions Daemon::launch_options(const TempDir& dir, const Options& options, const Limits& limits)
 {
-    if (pid_ <= 0 || wait_status_)
-        return;
-    ::kill(pid_, SIGTERM);
-    if (wait_until([this] { return reap_nohang(); }, kShutdownTimeout))
-        return;
-    ::kill(pid_, SIGKILL);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-}
-
-void Daemon::start(const Options& options, const Limits& limits)
-{
-    std::vector<std::string> args{
-        "--ephemeral-ports",
-        "--pty-dir", dir_.path(),
-        "--endpoints-json", dir_.file("endpoints.json"),
-    };
+    launch::LaunchOptions launch;
+    launch.binary = RIGSIMD_PATH;
+    launch.dir = dir.path();
     if (!options.config_json.empty()) {
-        write_file(dir_.file("rig.json"), options.config_json);
-        args.insert(args.end(), {"--config", dir_.file("rig.json")});
+        write_file(dir.file("rig.json"), options.config_json);
+        launch.args = {"--config", dir.file("rig.json")};
     } else if (!options.config_path.empty()) {
-        args.insert(args.end(), {"--config", options.config_path});
+        launch.args = {"--config", options.config_path};
     }
-    args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
-
-    Argv argv(with_binary(args));
+    launch.args.insert(launch.args.end(), options.extra_args.begin(), options.extra_args.end());
+    launch.start_timeout = kStartTimeout;
+    launch.stop_timeout = kShutdownTimeout;
+    launch.max_open_files = limits.max_open_files;
     // A sanitized daemon's run-time checks need descriptors of their own: UBSan's vptr check
     // tells whether a vtable is readable by writing it to a pipe, which fails with EMFILE once
     // a test has used up the daemon's descriptors, and is then reported as "invalid vptr ...
@@ -403,94 +198,23 @@ void Daemon::start(const Options& options, const Limits& limits)
     // armed (the accept back-off's among them), so a daemon with a descriptor limit runs with
     // that check ("vptr") suppressed in Asio's headers, matched by the file name the check
     // carries (no symbolizer, which would need descriptors too). A plain daemon ignores it.
-    std::optional<Argv> envp;
     if (limits.max_open_files) {
-        const std::string suppressions = dir_.file("ubsan.supp");
+        const std::string suppressions = dir.file("ubsan.supp");
         write_file(suppressions, "vptr:boost/asio/\n");
         const char* ubsan = std::getenv("UBSAN_OPTIONS");
-        envp.emplace(environment_with({std::string("UBSAN_OPTIONS=") + (ubsan && *ubsan ? std::string(ubsan) + ":" : "")
-                                       + "suppressions=" + suppressions}));
+        launch.environment = {std::string("UBSAN_OPTIONS=") + (ubsan && *ubsan ? std::string(ubsan) + ":" : "")
+                              + "suppressions=" + suppressions};
     }
-    int in_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-    int out_fd = ::open(dir_.file("stdout.log").c_str(),
-                        O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    int err_fd = ::open(dir_.file("rigsimd.log").c_str(),
-                        O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (in_fd < 0 || out_fd < 0 || err_fd < 0)
-        throw std::runtime_error(errno_text("open daemon stdio in " + dir_.path()));
-    rlimit limit{};
-    if (limits.max_open_files)
-        limit.rlim_cur = limit.rlim_max = *limits.max_open_files;
-    const pid_t parent = ::getpid();
-    pid_t pid = ::fork();
-    if (pid == 0)
-        exec_child(argv.get(), in_fd, out_fd, err_fd, parent,
-                   limits.max_open_files ? &limit : nullptr, envp ? envp->get() : nullptr);
-    ::close(in_fd);
-    ::close(out_fd);
-    ::close(err_fd);
-    if (pid < 0)
-        throw std::runtime_error(errno_text("fork"));
-    pid_ = pid;
-}
-
-void Daemon::wait_for_endpoints()
-{
-    const std::string path = dir_.file("endpoints.json");
-    bool appeared = wait_until([&] { return path_exists(path) || !running(); }, kStartTimeout);
-    if (!running())
-        throw std::runtime_error("rigsimd " + describe_wait_status(*wait_status_) +
-                                 " before writing " + path + "; its log:\n" + log());
-    if (!appeared)
-        throw std::runtime_error("rigsimd did not write " + path + " within " +
-                                 std::to_string(kStartTimeout.count()) + " ms; its log:\n" +
-                                 log());
-    endpoints_json_ = read_file(path).value_or("");
+    return launch;
 }
 
 Endpoint Daemon::endpoint(const std::string& name) const
 {
-    auto ep = find_endpoint(endpoints_json_, name);
+    auto ep = find_endpoint(endpoints_json(), name);
     if (!ep)
         throw std::runtime_error("no device \"" + name + "\" in endpoints file: " +
-                                 endpoints_json_);
+                                 endpoints_json());
     return *ep;
-}
-
-std::string Daemon::log() const
-{
-    return read_file(dir_.file("rigsimd.log")).value_or("<no log>");
-}
-
-bool Daemon::reap_nohang()
-{
-    if (wait_status_)
-        return true;
-    int status = 0;
-    pid_t r = ::waitpid(pid_, &status, WNOHANG);
-    if (r == pid_) {
-        wait_status_ = status;
-        return true;
-    }
-    if (r < 0 && errno == ECHILD) {
-        wait_status_ = -1;
-        return true;
-    }
-    return false;
-}
-
-bool Daemon::running()
-{
-    return pid_ > 0 && !reap_nohang();
-}
-
-std::optional<int> Daemon::stop(int signal, Millis timeout)
-{
-    if (running())
-        ::kill(pid_, signal);
-    if (!wait_until([this] { return reap_nohang(); }, timeout))
-        return std::nullopt;
-    return wait_status_;
 }
 
 // --- clients -------------------------------------------------------------------------

@@ -1,8 +1,11 @@
 #pragma once
-// Helpers for the end-to-end tests: start the real rigsimd in a fresh temp dir, find its
-// endpoints, talk MCS to it over TCP and over its pty. Standard library and POSIX only, so
-// these tests see the daemon exactly as a user does. Nothing here sleeps for a fixed time:
-// every wait polls with a deadline.
+// Helpers for the end-to-end tests: start the real rigsimd in a fresh temp dir (through the
+// launcher the benches share, tests/support/rigsimd_process.hpp), find its endpoints, talk MCS
+// to it over TCP and over its pty. Standard library and POSIX only, so these tests see the
+// daemon exactly as a user does. Nothing here sleeps for a fixed time: every wait polls with a
+// deadline.
+
+#include "tests/support/rigsimd_process.hpp"
 
 #include <sys/types.h>
 
@@ -17,8 +20,8 @@
 
 namespace rigsim::e2e {
 
-using SteadyClock = std::chrono::steady_clock;
-using Millis = std::chrono::milliseconds;
+using launch::Millis;
+using launch::SteadyClock;
 
 /// How long a test waits for an answer it expects before calling it lost.
 inline constexpr Millis kAnswerTimeout{3000};
@@ -28,26 +31,16 @@ inline constexpr Millis kStartTimeout{15000};
 inline constexpr Millis kShutdownTimeout{5000};
 
 /// Polls `pred` every few ms until it holds (true) or `timeout` passes (false).
-bool wait_until(const std::function<bool()>& pred, Millis timeout);
+using launch::wait_until;
 
 /// Milliseconds elapsed since `start`, as a double for messages and comparisons.
 double elapsed_ms(SteadyClock::time_point start);
 
 /// A fresh directory from mkdtemp, removed with its contents on destruction (kept if the
 /// environment variable RIGSIM_E2E_KEEP_TMP is set, for post-mortems).
-class TempDir {
+class TempDir : public launch::TempDir {
 public:
-    TempDir();
-    ~TempDir();
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    const std::string& path() const { return path_; }
-    /// `path()/name`.
-    std::string file(const std::string& name) const { return path_ + "/" + name; }
-
-private:
-    std::string path_;
+    TempDir() : launch::TempDir("rigsim-e2e", "RIGSIM_E2E_KEEP_TMP") {}
 };
 
 /// Writes `text` to `path` (truncating); throws on failure.
@@ -75,23 +68,18 @@ std::optional<Endpoint> find_endpoint(const std::string& endpoints_json,
                                       const std::string& name);
 
 /// How a child process ended, with what it printed.
-struct ProcessResult {
-    bool exited = false;     ///< exited normally (not killed by a signal or by us)
-    int exit_code = -1;      ///< valid if `exited`
-    bool timed_out = false;  ///< we had to SIGKILL it
-    std::string out;         ///< stdout
-    std::string err;         ///< stderr
-};
+using launch::ProcessResult;
 
 /// Runs rigsimd with `args` to completion (for --help, --check-config, bad flags) and
 /// captures its output; SIGKILLs it after `timeout`.
 ProcessResult run_rigsimd(const std::vector<std::string>& args, Millis timeout = Millis{10000});
 
 /// Describes a wait status ("exited 0", "killed by signal 9") for messages.
-std::string describe_wait_status(int status);
+using launch::describe_wait_status;
 
 /// A running rigsimd in its own temp dir with ephemeral ports, a private pty dir and an
-/// endpoints file. RAII: the destructor sends SIGTERM, SIGKILLs after a deadline, reaps.
+/// endpoints file (launch::RigsimdProcess). RAII: the destructor sends SIGTERM, SIGKILLs after
+/// a deadline, reaps.
 class Daemon {
 public:
     struct Options {
@@ -112,37 +100,35 @@ public:
     Daemon();
     explicit Daemon(Options options);
     Daemon(Options options, Limits limits);
-    ~Daemon();
     Daemon(const Daemon&) = delete;
     Daemon& operator=(const Daemon&) = delete;
 
     /// The endpoints of device `name` from the endpoints file; throws if absent.
     Endpoint endpoint(const std::string& name = "mcs0") const;
     /// The endpoints file as written by the daemon.
-    const std::string& endpoints_json() const { return endpoints_json_; }
+    const std::string& endpoints_json() const { return process_.endpoints_json(); }
 
-    pid_t pid() const { return pid_; }
+    pid_t pid() const { return process_.pid(); }
     const TempDir& dir() const { return dir_; }
     /// Everything the daemon wrote to stderr so far (its log).
-    std::string log() const;
+    std::string log() const { return process_.log(); }
 
     /// True while the process has not been reaped and has not exited.
-    bool running();
+    bool running() { return process_.running(); }
     /// Sends `signal` and waits up to `timeout` for the exit; returns the wait status, or
     /// nullopt if the daemon was still running at the deadline (it is then left running
     /// for the destructor to kill).
-    std::optional<int> stop(int signal, Millis timeout = kShutdownTimeout);
+    std::optional<int> stop(int signal, Millis timeout = kShutdownTimeout)
+    {
+        return process_.stop(signal, timeout);
+    }
 
 private:
-    void start(const Options& options, const Limits& limits);
-    void wait_for_endpoints();
-    /// waitpid(WNOHANG); records the status when the child has ended.
-    bool reap_nohang();
+    /// The launch of rigsimd in `dir` (writes the config file and sanitizer settings it needs).
+    static launch::LaunchOptions launch_options(const TempDir& dir, const Options& options, const Limits& limits);
 
-    TempDir dir_;
-    pid_t pid_ = -1;
-    std::optional<int> wait_status_;
-    std::string endpoints_json_;
+    TempDir dir_;   // before process_: the daemon runs in it
+    launch::RigsimdProcess process_;
 };
 
 /// A line-oriented MCS client over one fd (TCP socket or pty slave). Answers are returned
