@@ -208,7 +208,7 @@ TEST_CASE("status updates per model in both generations: K-Cube stepper MOT_GET_
 }
 
 TEST_CASE("HW_GET_INFO at issue-44.1: stage type word (DC servo cubes), hardware version 1, modification state "
-          "0; the manual's generation leaves those bytes of its notes 0",
+          "0, where the manual's generation leaves those bytes of its notes 0",
           "[device][apt][firmware]")
 {
     struct Case {
