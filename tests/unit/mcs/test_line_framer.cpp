@@ -53,7 +53,7 @@ std::vector<std::string> frame(const std::string& input, std::size_t chunk)
 
 } // namespace
 
-TEST_CASE("framer yields one command per ':'...'\\n'", "[unit][mcs][framer]")
+TEST_CASE("framer yields one command per ':' ... newline", "[unit][mcs][framer]")
 {
     CHECK(frame(":GNC\n", 100) == std::vector<std::string>{"C:GNC"});
     CHECK(frame(":GNC\n:GP0\n:MPA0,1,0\n", 100)
@@ -79,7 +79,7 @@ TEST_CASE("framer gives the same commands for every split of the input", "[unit]
     }
 }
 
-TEST_CASE("framer ignores bytes between '\\n' and ':' and empty commands", "[unit][mcs][framer]")
+TEST_CASE("framer ignores bytes between a newline and ':' and empty commands", "[unit][mcs][framer]")
 {
     LineFramer f;
     std::size_t ignored = 0;
