@@ -6,12 +6,12 @@ Usage: scripts/apt_coverage.py [--manual PATH] [--check DOC] [SOURCE_DIR]
 The manual (Thorlabs' "APT Communications Protocol", issue 3 of 2012, pp.131-138, as Markdown
 text; not part of the repository, docs/protocol/apt.md says where to obtain it) is read from
 --manual PATH, else $RIGSIM_APT_MANUAL. Without it, --check checks what the sources alone decide:
-every message of messages.hpp has its row in DOC's per-message tables and no row names an ID
+every message of messages.def has its row in DOC's per-message tables and no row names an ID
 the table lacks, with each row's "kinds" cell as the sources give it; the per-unit table between
 the markers is left as it is.
 
 Reads the cross-reference tables (manual pp.131-138) from the manual's text, and what rigsim
-does from its sources: the message IDs (emulator/apt/messages.hpp), each model's kind, `takes`
+does from its sources: the message IDs (emulator/apt/messages.def), each model's kind, `takes`
 list, rack flag and fault report form (emulator/apt/catalogue.cpp), and the messages each module
 class and the unit shell have a handler for (the MGMSG_ name in the `///` line of each `on()` in
 module.hpp, apt_device.hpp, rack_modules.hpp and the kind's module header). A message of a
@@ -93,8 +93,9 @@ def manual_tables(text):
 
 
 def message_ids(text):
+    """{MGMSG name: ID} from messages.def, one RIGSIM_APT_TABLE*(NAME, ID, ...) line per message."""
     return {m.group(1): int(m.group(2), 16)
-            for m in re.finditer(r"constexpr std::uint16_t (MGMSG_\w+) = 0x([0-9A-Fa-f]+);", text)}
+            for m in re.finditer(r"^RIGSIM_APT_TABLE\w*\((MGMSG_\w+), 0x([0-9A-Fa-f]+),", text, re.M)}
 
 
 def handlers(text):
@@ -160,7 +161,7 @@ class Sources:
     def __init__(self, root):
         apt = os.path.join(root, "emulator", "apt")
         self.apt = apt
-        self.ids = message_ids(read(os.path.join(apt, "messages.hpp")))
+        self.ids = message_ids(read(os.path.join(apt, "messages.def")))
         self.names = {v: k for k, v in self.ids.items()}
         self.models = catalogue(read(os.path.join(apt, "catalogue.cpp")))
         self.generic = handlers(read(os.path.join(apt, "module.hpp"))) | handlers(read(os.path.join(apt, "apt_device.hpp")))
@@ -316,7 +317,7 @@ def main(argv):
     with_table = doc if table is None else doc[:start] + table[:-1] + doc[end + len(END):]
     expected, unknown, rowless = rows_with_kinds(with_table, kind_cells(src))
     if unknown or rowless:
-        sys.stderr.write(f"apt_coverage.py: {path}: rows of IDs not in messages.hpp: {unknown}; "
+        sys.stderr.write(f"apt_coverage.py: {path}: rows of IDs not in messages.def: {unknown}; "
                          f"messages without a row: {[f'0x{i:04X}' for i in rowless]}\n")
         return 1
     if write:

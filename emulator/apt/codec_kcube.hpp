@@ -1,5 +1,5 @@
 #pragma once
-// The codec structs of the motor messages that later protocol issues add (messages.cpp,
+// The codec structs of the motor messages that later protocol issues add (messages.def,
 // "Later protocol issues"): the stepper power factors, the rack trigger byte, the K-Cube
 // wheel/display, trigger port, position trigger and KST loop blocks, the TST actuator type.
 // Same pattern as codec.hpp (fields() in wire order; Set<>/Req<>/Get<> trios). Their family,

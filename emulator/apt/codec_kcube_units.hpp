@@ -2,7 +2,7 @@
 // The K-Cube piezo driver's and strain gauge reader's own messages (KPZ101, KSG101), which later
 // issues of the APT protocol add and the 2012 manual lacks, typed as codec.hpp types the
 // manual's: one parameter block per SET/REQ/GET trio, with the field names of the public sources
-// (messages.cpp and docs/protocol/apt.md "K-Cube units" name them), and the header-only
+// (messages.def and docs/protocol/apt.md "K-Cube units" name them), and the header-only
 // PZ_REQ_PZSTATUSUPDATE.
 //
 // This header is a part of codec.hpp: codec.hpp includes it after its Set<>, Req<> and Get<>

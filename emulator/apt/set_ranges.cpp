@@ -167,7 +167,7 @@ Ranges ranges(const msg::TsgIoSettings& p)
             {"ForceCalib", p.force_calib, 1, 65535}};
 }
 
-// ---- Later protocol issues: motor blocks (codec_kcube.hpp; sources in messages.cpp) ----
+// ---- Later protocol issues: motor blocks (codec_kcube.hpp; sources in messages.def) ----
 
 Ranges ranges(const msg::PowerParams& p)
 {
