@@ -60,10 +60,18 @@ enum class Family {
     template <class S> static auto fields(S& s) { return std::tie(__VA_ARGS__); }                                     \
     static constexpr std::string_view field_names = #__VA_ARGS__
 
+/// True when message `id` is a bare header in its table layout (messages.def); an ID the table
+/// does not know does not compile.
+constexpr bool header_only_in_table(std::uint16_t id)
+{
+    const auto length = data_length_of(id);
+    return length == kNotInTable ? throw "an APT message struct whose ID is not in messages.def" : length < 0;
+}
+
 /// SET of a parameter trio: the host sets the block.
 template <class P> struct Set {
     static constexpr std::uint16_t id = P::set_id;
-    static constexpr bool header_only = false;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = P::family;
     using Params = P;
     P params;
@@ -74,7 +82,7 @@ template <class P> struct Set {
 /// REQ of a parameter trio: header only, the channel in param1.
 template <class P> struct Req {
     static constexpr std::uint16_t id = P::req_id;
-    static constexpr bool header_only = true;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = P::family;
     using Params = P;
     std::uint8_t chan_ident = 1;
@@ -84,7 +92,7 @@ template <class P> struct Req {
 /// GET of a parameter trio: the unit's answer to the REQ.
 template <class P> struct Get {
     static constexpr std::uint16_t id = P::get_id;
-    static constexpr bool header_only = false;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = Family::UnitToHost;
     using Params = P;
     P params;
@@ -94,16 +102,17 @@ template <class P> struct Get {
 
 // ---- The macros of the messages of one struct each (the chapter files below use them) ----
 
-/// Declares the ID, form and family of a message struct.
-#define RIGSIM_APT_MESSAGE(ID, HEADER_ONLY, FAMILY)                                                                   \
+/// Declares the ID and family of a message struct; its form (header-only or not) is the table's
+/// (messages.def).
+#define RIGSIM_APT_MESSAGE(ID, FAMILY)                                                                                \
     static constexpr std::uint16_t id = ID;                                                                           \
-    static constexpr bool header_only = HEADER_ONLY;                                                                  \
+    static constexpr bool header_only = header_only_in_table(ID);                                                     \
     static constexpr Family family = Family::FAMILY
 
 /// A header-only message without parameters.
 #define RIGSIM_APT_BARE_MESSAGE(NAME, ID, FAMILY)                                                                     \
     struct NAME {                                                                                                     \
-        RIGSIM_APT_MESSAGE(ID, true, FAMILY);                                                                         \
+        RIGSIM_APT_MESSAGE(ID, FAMILY);                                                                               \
         template <class S> static auto fields(S&) { return std::tuple<>(); }                                          \
         static constexpr std::string_view field_names = "";                                                          \
     }

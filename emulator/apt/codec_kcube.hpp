@@ -119,7 +119,7 @@ using GetKCubeKstLoopParams = Get<KCubeKstLoopParams>;
 /// MGMSG_MOT_SET_TRIGGER (issue 16 p. 102): a rack's trigger mode bits, header only.
 struct MotSetTrigger {
     static constexpr std::uint16_t id = MGMSG_MOT_SET_TRIGGER;
-    static constexpr bool header_only = true;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = Family::KCubeMotor;
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;   ///< bits 0-7 (their meaning differs for brushless and stepper racks)
@@ -128,7 +128,7 @@ struct MotSetTrigger {
 /// MGMSG_MOT_REQ_TRIGGER (issue 16 p. 103).
 struct MotReqTrigger {
     static constexpr std::uint16_t id = MGMSG_MOT_REQ_TRIGGER;
-    static constexpr bool header_only = true;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = Family::KCubeMotor;
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
@@ -136,7 +136,7 @@ struct MotReqTrigger {
 /// MGMSG_MOT_GET_TRIGGER (issue 16 p. 103).
 struct MotGetTrigger {
     static constexpr std::uint16_t id = MGMSG_MOT_GET_TRIGGER;
-    static constexpr bool header_only = true;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = Family::UnitToHost;
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;
@@ -147,7 +147,7 @@ struct MotGetTrigger {
 /// PZ_SET_TPZ_DISPSETTINGS's), so the module does not read param1 as a channel.
 struct MotSetTstActuatorType {
     static constexpr std::uint16_t id = MGMSG_MOT_SET_TSTACTUATORTYPE;
-    static constexpr bool header_only = true;
+    static constexpr bool header_only = header_only_in_table(id);
     static constexpr Family family = Family::KCubeMotor;
     struct Params {
         std::uint8_t actuator_ident = 0;   ///< 0x20-0x22 ZST legacy, 0x30-0x32 ZST, 0x40-0x42 ZFS, ...

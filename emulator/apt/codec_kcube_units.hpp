@@ -91,7 +91,7 @@ struct KsgTrigIoConfig {
 
 /// MGMSG_PZ_REQ_PZSTATUSUPDATE (later issue): answered by MGMSG_PZ_GET_PZSTATUSUPDATE.
 struct PzReqPzStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSUPDATE, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSUPDATE, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };

@@ -380,13 +380,13 @@ using GetPmdStageAxisParams = Get<PmdStageAxisParams>;
 
 /// MGMSG_MOT_MOVE_HOME (p. 41).
 struct MoveHome {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOME, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOME, Motor);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_MOVE_HOMED (p. 41).
 struct MoveHomed {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOMED, true, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_HOMED, UnitToHost);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
@@ -408,21 +408,21 @@ struct MoveAbsolute {
 };
 /// MGMSG_MOT_MOVE_JOG (p. 47).
 struct MoveJog {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_JOG, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_JOG, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t direction = 1;   ///< 1 forward, 2 reverse
     RIGSIM_APT_FIELDS(s.chan_ident, s.direction);
 };
 /// MGMSG_MOT_MOVE_VELOCITY (p. 48).
 struct MoveVelocity {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_VELOCITY, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_VELOCITY, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t direction = 1;   ///< 1 forward, 2 reverse
     RIGSIM_APT_FIELDS(s.chan_ident, s.direction);
 };
 /// MGMSG_MOT_MOVE_STOP (p. 49).
 struct MoveStop {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOP, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOP, Motor);
     std::uint8_t chan_ident = 1;
     std::uint8_t stop_mode = 2;   ///< 1 immediate, 2 profiled
     RIGSIM_APT_FIELDS(s.chan_ident, s.stop_mode);
@@ -451,45 +451,45 @@ using MotorStatus = std::variant<DcStatus, MotStatus>;
 
 /// MGMSG_MOT_MOVE_COMPLETED (p. 44): 14 bytes of status (ERRATA).
 struct MoveCompleted {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_COMPLETED, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_COMPLETED, UnitToHost);
     MotorStatus status;
     RIGSIM_APT_FIELDS(s.status);
 };
 /// MGMSG_MOT_MOVE_STOPPED (p. 50): 14 bytes of status (ERRATA).
 struct MoveStopped {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOPPED, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_MOVE_STOPPED, UnitToHost);
     MotorStatus status;
     RIGSIM_APT_FIELDS(s.status);
 };
 /// MGMSG_MOT_SET_EEPROMPARAMS (p. 60): save the parameters of message msg_id.
 struct SetEepromParams {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_EEPROMPARAMS, false, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_EEPROMPARAMS, Motor);
     std::uint16_t chan_ident = 1;
     std::uint16_t msg_id = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.msg_id);
 };
 /// MGMSG_MOT_REQ_STATUSUPDATE (p. 78).
 struct ReqStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSUPDATE, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSUPDATE, Motor);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_STATUSUPDATE (p. 77).
 struct GetStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSUPDATE, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSUPDATE, UnitToHost);
     MotStatus status;
     template <class S> static auto fields(S& s) { return MotStatus::fields(s.status); }
     static constexpr std::string_view field_names = MotStatus::field_names;
 };
 /// MGMSG_MOT_REQ_DCSTATUSUPDATE (p. 80).
 struct ReqDcStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_DCSTATUSUPDATE, true, DcServo);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_DCSTATUSUPDATE, DcServo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_DCSTATUSUPDATE (p. 79).
 struct GetDcStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_DCSTATUSUPDATE, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_DCSTATUSUPDATE, UnitToHost);
     DcStatus status;
     template <class S> static auto fields(S& s) { return DcStatus::fields(s.status); }
     static constexpr std::string_view field_names = DcStatus::field_names;
@@ -498,13 +498,13 @@ struct GetDcStatusUpdate {
 RIGSIM_APT_BARE_MESSAGE(AckDcStatusUpdate, MGMSG_MOT_ACK_DCSTATUSUPDATE, System);
 /// MGMSG_MOT_REQ_STATUSBITS (p. 81).
 struct ReqStatusBits {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSBITS, true, Motor);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_STATUSBITS, Motor);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_STATUSBITS (p. 81).
 struct GetStatusBits {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSBITS, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_STATUSBITS, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint32_t status_bits = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.status_bits);

@@ -157,81 +157,81 @@ struct TsgIoSettings {
 };
 /// MGMSG_PZ_SET_POSCONTROLMODE (p. 94).
 struct PzSetPosControlMode {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_POSCONTROLMODE, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_POSCONTROLMODE, Piezo);
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;   ///< 1: open loop, 2: closed loop, 3/4: smoothed
     RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_PZ_REQ_POSCONTROLMODE (p. 94).
 struct PzReqPosControlMode {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_POSCONTROLMODE, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_POSCONTROLMODE, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_GET_POSCONTROLMODE (p. 94).
 struct PzGetPosControlMode {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_POSCONTROLMODE, true, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_POSCONTROLMODE, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t mode = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.mode);
 };
 /// MGMSG_PZ_REQ_PZSTATUSBITS (p. 101).
 struct PzReqPzStatusBits {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSBITS, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_PZSTATUSBITS, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_ACK_PZSTATUSUPDATE (p. 105).
 struct PzAckPzStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_ACK_PZSTATUSUPDATE, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_ACK_PZSTATUSUPDATE, Piezo);
     template <class S> static auto fields(S&) { return std::tuple<>(); }
     static constexpr std::string_view field_names = "";
 };
 /// MGMSG_PZ_START_LUTOUTPUT (p. 112).
 struct PzStartLutOutput {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_START_LUTOUTPUT, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_START_LUTOUTPUT, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_STOP_LUTOUTPUT (p. 112).
 struct PzStopLutOutput {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_STOP_LUTOUTPUT, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_STOP_LUTOUTPUT, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_SET_ZERO (p. 117).
 struct PzSetZero {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_ZERO, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_ZERO, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_REQ_MAXTRAVEL (p. 118).
 struct PzReqMaxTravel {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_MAXTRAVEL, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_MAXTRAVEL, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS (p. 125).
 struct MotSetPzStageParamDefaults {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS, Piezo);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_SET_LUTVALUETYPE (p. 126).
 struct PzSetLutValueType {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_LUTVALUETYPE, true, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_LUTVALUETYPE, Piezo);
     std::uint8_t lut_type = 0;
     RIGSIM_APT_FIELDS(s.lut_type);
 };
 /// MGMSG_PZ_REQ_TSG_READING (p. 129).
 struct TsgReqReading {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_TSG_READING, true, StrainGauge);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_REQ_TSG_READING, StrainGauge);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_PZ_GET_PZSTATUSBITS (p. 101).
 struct PzGetPzStatusBits {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSBITS, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSBITS, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint32_t status_bits = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.status_bits);
@@ -244,7 +244,7 @@ inline constexpr std::uint32_t kPzZeroing = 0x00000020;
 inline constexpr double kPzFullScale = 32767.0;
 /// MGMSG_PZ_GET_PZSTATUSUPDATE (p. 103; 10 bytes, ERRATA).
 struct PzGetPzStatusUpdate {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSUPDATE, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_PZSTATUSUPDATE, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::int16_t op_voltage = 0;
     std::int16_t position = 0;
@@ -253,21 +253,21 @@ struct PzGetPzStatusUpdate {
 };
 /// MGMSG_PZ_SET_EEPROMPARAMS (p. 113).
 struct PzSetEepromParams {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_EEPROMPARAMS, false, Piezo);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_EEPROMPARAMS, Piezo);
     std::uint16_t chan_ident = 1;
     std::uint16_t msg_id = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.msg_id);
 };
 /// MGMSG_PZ_GET_MAXTRAVEL (p. 118).
 struct PzGetMaxTravel {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_MAXTRAVEL, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_MAXTRAVEL, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::uint16_t travel = 0;   ///< 100 nm steps
     RIGSIM_APT_FIELDS(s.chan_ident, s.travel);
 };
 /// MGMSG_PZ_GET_TSG_READING (p. 129).
 struct TsgGetReading {
-    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_TSG_READING, false, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_PZ_GET_TSG_READING, UnitToHost);
     std::uint16_t chan_ident = 1;
     std::int16_t reading = 0;   ///< -32767..32767: -100..100 % of the range
     std::uint16_t smoothed = 0;

@@ -12,20 +12,20 @@ namespace rigsim::apt::msg {
 
 /// MGMSG_MOT_SET_SOL_OPERATINGMODE (p. 85).
 struct SolSetOperatingMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_OPERATINGMODE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_OPERATINGMODE, Solenoid);
     std::uint8_t chan_ident = 1;
     std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
     RIGSIM_APT_FIELDS(s.chan_ident, s.operating_mode);
 };
 /// MGMSG_MOT_REQ_SOL_OPERATINGMODE (p. 85).
 struct SolReqOperatingMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_OPERATINGMODE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_OPERATINGMODE, Solenoid);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_OPERATINGMODE (p. 85).
 struct SolGetOperatingMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_OPERATINGMODE, true, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_OPERATINGMODE, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t operating_mode = 1;   ///< 1 manual, 2 single, 3 auto, 4 triggered
     RIGSIM_APT_FIELDS(s.chan_ident, s.operating_mode);
@@ -46,20 +46,20 @@ struct SolCycleParams {
 
 /// MGMSG_MOT_SET_SOL_INTERLOCKMODE (p. 89).
 struct SolSetInterlockMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_INTERLOCKMODE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_INTERLOCKMODE, Solenoid);
     std::uint8_t chan_ident = 1;
     std::uint8_t interlock_mode = 1;   ///< 1 enabled (the interlock plug is required), 2 disabled
     RIGSIM_APT_FIELDS(s.chan_ident, s.interlock_mode);
 };
 /// MGMSG_MOT_REQ_SOL_INTERLOCKMODE (p. 89).
 struct SolReqInterlockMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_INTERLOCKMODE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_INTERLOCKMODE, Solenoid);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_INTERLOCKMODE (p. 89).
 struct SolGetInterlockMode {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_INTERLOCKMODE, true, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_INTERLOCKMODE, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t interlock_mode = 1;   ///< 1 enabled, 2 disabled
     RIGSIM_APT_FIELDS(s.chan_ident, s.interlock_mode);
@@ -67,7 +67,7 @@ struct SolGetInterlockMode {
 
 /// MGMSG_MOT_SET_SOL_STATE (p. 91): overrides the operating mode.
 struct SolSetState {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_STATE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_SET_SOL_STATE, Solenoid);
     std::uint8_t chan_ident = 1;
     // The data structure table labels param2 "Interlock Mode" (copied from p. 89); the
     // header diagram and the values name it the state.
@@ -76,13 +76,13 @@ struct SolSetState {
 };
 /// MGMSG_MOT_REQ_SOL_STATE (p. 91).
 struct SolReqState {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_STATE, true, Solenoid);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_REQ_SOL_STATE, Solenoid);
     std::uint8_t chan_ident = 1;
     RIGSIM_APT_FIELDS(s.chan_ident);
 };
 /// MGMSG_MOT_GET_SOL_STATE (p. 91).
 struct SolGetState {
-    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_STATE, true, UnitToHost);
+    RIGSIM_APT_MESSAGE(MGMSG_MOT_GET_SOL_STATE, UnitToHost);
     std::uint8_t chan_ident = 1;
     std::uint8_t state = 2;   ///< 1 on, 2 off
     RIGSIM_APT_FIELDS(s.chan_ident, s.state);

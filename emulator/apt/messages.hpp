@@ -79,4 +79,24 @@ MessageTable all_messages();
 #undef RIGSIM_APT_TABLE_SHORT_FORM_TOO
 #undef RIGSIM_APT_TABLE_LATER
 
+/// The data packet's length of message `id` in its layout (-1: header-only), as messages.def
+/// gives it, at compile time: the codec's structs take their form from it. kNotInTable for an ID
+/// the table does not know.
+inline constexpr std::int16_t kNotInTable = -2;
+constexpr std::int16_t data_length_of(std::uint16_t id)
+{
+    constexpr std::int16_t H = -1;
+    switch (id) {
+#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER) case ID: return LENGTH;
+#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER) case ID: return LENGTH;
+#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS) case ID: return LENGTH;
+#include "emulator/apt/messages.def"
+#undef RIGSIM_APT_TABLE
+#undef RIGSIM_APT_TABLE_SHORT_FORM_TOO
+#undef RIGSIM_APT_TABLE_LATER
+    default:
+        return kNotInTable;
+    }
+}
+
 } // namespace rigsim::apt
