@@ -36,14 +36,17 @@ Controller::Controller(const McsConfig& config, models::World& world, const std:
     channels_.reserve(config.channels.size());
     for (std::size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i];
-        channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, config.firmware, world,
-                                                         device + "/" + std::to_string(i)));
-        if (c.kind == "end_effector")
+        if (c.kind == "end_effector") {
+            channels_.push_back(nullptr);   // no positioner: nothing of it in the world
             effectors_.push_back(std::make_unique<EndEffector>(
                 clock_, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
                                         static_cast<std::int32_t>(c.gripper_stiffness_dun_per_cv)}));
-        else
+        } else {
+            channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, config.firmware, world,
+                                                             device + "/" + std::to_string(i)));
+            positioners_.push_back(channels_.back().get());
             effectors_.push_back(nullptr);
+        }
     }
     effector_report_.assign(channels_.size(), false);
 }
@@ -68,7 +71,7 @@ void Controller::set_effector_report(std::int32_t index, bool report)
 
 Channel* Controller::channel(std::int32_t index)
 {
-    if (!valid_index(index) || effectors_[static_cast<std::size_t>(index)])
+    if (!valid_index(index))
         return nullptr;
     return channels_[static_cast<std::size_t>(index)].get();
 }
@@ -81,7 +84,7 @@ const Channel* Controller::channel(std::int32_t index) const
 void Controller::set_sensor_mode(SensorMode mode)
 {
     sensor_mode_ = mode;
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->set_sensor_mode(mode);
 }
 
@@ -111,7 +114,7 @@ void Controller::reset()
     keep_alive_deadline_ = kNever;
     baudrate_ = configured_baudrate_;   // CB takes effect at the next reset
     outbox_.clear();
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->reset();
     for (auto& e : effectors_)
         if (e)
@@ -125,7 +128,7 @@ void Controller::restore_defaults()
 {
     sensor_mode_ = SensorMode::Enabled;
     configured_baudrate_ = kDefaultBaudrate;
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->restore_defaults();
     for (auto& e : effectors_)
         if (e)
@@ -134,13 +137,13 @@ void Controller::restore_defaults()
 
 void Controller::place_at_start()
 {
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->place_at_start();
 }
 
 void Controller::stop_all()
 {
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->stop();
     for (auto& e : effectors_)
         if (e)
@@ -150,28 +153,28 @@ void Controller::stop_all()
 void Controller::set_emergency_stop_mode(std::int32_t mode)
 {
     esm_mode_ = mode;
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->set_emergency_stop_mode(mode);
 }
 
 void Controller::emergency_stop_pulse()
 {
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->emergency_stop_edge(false);
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->emergency_stop_edge(true);
 }
 
 void Controller::trigger(std::int32_t source)
 {
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         c->on_event(source);
 }
 
 void Controller::collect_events()
 {
     bool broadcast = false;
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         broadcast = c->take_broadcast_request() || broadcast;
     if (broadcast)   // 2.2.3: an end stop on a channel with broadcast stop halts them all
         emergency_stop_pulse();
@@ -180,6 +183,8 @@ void Controller::collect_events()
             && mode_ == CommunicationMode::Async)
             outbox_.push_back(Answer{"C" + std::to_string(i)});
     for (std::size_t i = 0; i < channels_.size(); ++i) {
+        if (!channels_[i])
+            continue;
         auto& events = channels_[i]->events();
         if (mode_ == CommunicationMode::Async)
             for (const auto& e : events)
@@ -191,7 +196,7 @@ void Controller::collect_events()
 Ticks Controller::next_change(Ticks now) const
 {
     Ticks next = keep_alive_deadline_ > now ? keep_alive_deadline_ : (keep_alive_deadline_ == kNever ? kNever : now + 1);
-    for (const auto& c : channels_)
+    for (const auto* c : positioners_)
         next = std::min(next, c->next_change(now));
     for (const auto& e : effectors_)
         if (e)
@@ -201,7 +206,7 @@ Ticks Controller::next_change(Ticks now) const
 
 bool Controller::busy(Ticks now) const
 {
-    return std::any_of(channels_.begin(), channels_.end(), [now](const auto& c) { return c->next_change(now) != kNever; })
+    return std::any_of(positioners_.begin(), positioners_.end(), [now](const auto* c) { return c->next_change(now) != kNever; })
         || std::any_of(effectors_.begin(), effectors_.end(),
                        [now](const auto& e) { return e && e->next_change(now) != kNever; });
 }
@@ -210,12 +215,12 @@ void Controller::tick(Ticks now)
 {
     if (now >= keep_alive_deadline_) {
         // K: "If a timeout occurs, all positioners are immediately stopped."
-        for (auto& c : channels_)
+        for (auto* c : positioners_)
             c->stop();
         keep_alive_deadline_ = kNever;
         keep_alive_expired_ = true;
     }
-    for (auto& c : channels_)
+    for (auto* c : positioners_)
         if (c->next_change(now - 1) <= now)
             c->tick(now);
     for (auto& e : effectors_)

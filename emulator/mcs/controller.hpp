@@ -117,7 +117,8 @@ private:
     const Clock& clock_;
     std::uint32_t system_id_;
     InterfaceVersion interface_version_;
-    std::vector<std::unique_ptr<Channel>> channels_;   ///< one per index; end effector indices hold an unused one
+    std::vector<std::unique_ptr<Channel>> channels_;   ///< one per index; nullptr at an end effector's
+    std::vector<Channel*> positioners_;               ///< the positioners of channels_, in index order
     std::vector<std::unique_ptr<EndEffector>> effectors_;   ///< non-null for end effector indices
     std::vector<bool> effector_report_;
     CommunicationMode mode_ = CommunicationMode::Sync;

@@ -90,4 +90,12 @@ TEST_CASE("K stops positioners only, R opens the gripper and keeps its type", "[
     CHECK(h.send(":GS1\n:GGO1\n:GEET1\n") == ":S1,0\n:GO1,0\n:EET1,1,10000,0\n");
 }
 
+TEST_CASE("an end effector channel has no positioner in the world", "[device][mcs][end-effector]")
+{
+    McsHarness h(with_gripper());
+    CHECK(h.world().find("mcs-test/0") != nullptr);   // the positioner of channel 0
+    CHECK(h.world().find("mcs-test/1") == nullptr);   // the gripper: nothing that could be moved or mounted
+    CHECK(h.world().size() == 1);
+}
+
 } // namespace test_mcs_end_effectors
