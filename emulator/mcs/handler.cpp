@@ -473,42 +473,6 @@ Reply Handler::on(const GetPositionLimit& c)
     return Answer{join("PL", c.channel, lo) + "," + std::to_string(hi)};
 }
 
-/// MST<ch>,<steps>,<amplitude>,<frequency>: open-loop steps, also without sensor (3.3).
-Reply Handler::on(const MoveStep& c)
-{
-    auto* ch = controller_.channel(c.channel);
-    if (!ch)
-        return missing(c.channel);
-    return result(ch->move_steps(c.steps, c.amplitude, c.frequency_hz), c.channel, c.channel);
-}
-
-/// MSCA<ch>,<target>,<speed>: scan the piezo to a 12-bit level (3.3).
-Reply Handler::on(const MoveScanAbsolute& c)
-{
-    auto* ch = controller_.channel(c.channel);
-    if (!ch)
-        return missing(c.channel);
-    return result(ch->scan_absolute(c.target, c.speed), c.channel, c.channel);
-}
-
-/// MSCR<ch>,<diff>,<speed>: relative scan, stopping at 0 and 4095 (3.3).
-Reply Handler::on(const MoveScanRelative& c)
-{
-    auto* ch = controller_.channel(c.channel);
-    if (!ch)
-        return missing(c.channel);
-    return result(ch->scan_relative(c.diff, c.speed), c.channel, c.channel);
-}
-
-/// GVL<ch>: `VL<ch>,<level>` (3.4).
-Reply Handler::on(const GetVoltageLevel& c)
-{
-    const auto* ch = controller_.channel(c.channel);
-    if (!ch)
-        return missing(c.channel);
-    return Answer{join("VL", c.channel, ch->voltage_level())};
-}
-
 /// GCP<ch>,<key>: `CPR<ch>,<key>,<value>` (3.2, appendix 4.4).
 Reply Handler::on(const GetChannelProperty& c)
 {
