@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace rigsim::models {
 
@@ -20,7 +22,59 @@ Axis::Axis(const Clock& clock, const AxisConfig& config)
     : clock_(clock), config_(config), limit_min_counts_(config.travel_min_counts),
       limit_max_counts_(config.travel_max_counts)
 {
+    if (travel_of(config.kind) == Travel::None)
+        throw std::invalid_argument("an axis is linear, rotary or a goniometer");
+    if (config.rotary != (config.kind == BodyKind::Rotary))
+        throw std::invalid_argument("an axis is rotary (no end stops) exactly when its kind is rotary");
+    if (!(config.si_per_count >= 0) || !std::isfinite(config.si_per_count))
+        throw std::invalid_argument("an axis's SI units per count are >= 0 and finite");
     anchor_.position_counts = config.start_position_counts;
+}
+
+namespace {
+
+/// The axis's scale, or std::logic_error for a bare axis.
+double scale_of(const AxisConfig& c)
+{
+    if (c.si_per_count <= 0)
+        throw std::logic_error("this axis was built without SI units per count: it has no physical face");
+    return c.si_per_count;
+}
+
+std::optional<double> counts_of(std::optional<double> si, double k)
+{
+    return si ? std::optional<double>(*si / k) : std::nullopt;
+}
+
+} // namespace
+
+double Axis::si_position() const
+{
+    return position_counts() * scale_of(config_);
+}
+
+double Axis::si_velocity() const
+{
+    return velocity_counts_per_s() * scale_of(config_);
+}
+
+TravelRange Axis::si_travel() const
+{
+    const double k = scale_of(config_);
+    if (config_.rotary)
+        return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    return {config_.travel_min_counts * k, config_.travel_max_counts * k};
+}
+
+void Axis::si_place(double position)
+{
+    place(position / scale_of(config_));
+}
+
+void Axis::si_set_obstacles(std::optional<double> min, std::optional<double> max)
+{
+    const double k = scale_of(config_);
+    set_obstacles(counts_of(min, k), counts_of(max, k));
 }
 
 double Axis::profile_at(Ticks k) const

@@ -42,6 +42,11 @@ struct AxisConfig {
     double travel_max_counts = 0;
     double counts_per_turn = 0;         ///< rotary: the home switch sits at every multiple
     double start_position_counts = 0;   ///< where the carriage stands at power-up
+    /// What the carriage is (linear, rotary, goniometer: the physical face's metres or radians).
+    BodyKind kind = BodyKind::Linear;
+    /// Metres (radians for a rotary stage or a goniometer) per count: the stage's resolution, for
+    /// the physical face (Body::position_m(), ...). 0: the axis has no face (a test's bare axis).
+    double si_per_count = 0;
 };
 
 class Axis : public Body {
@@ -120,6 +125,17 @@ public:
 
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
+
+    BodyKind kind() const override { return config_.kind; }
+    bool settling() const override { return moving_; }
+
+protected:
+    double si_position() const override;
+    double si_velocity() const override;
+    TravelRange si_travel() const override;
+    void si_place(double position) override;
+    bool si_stoppable() const override { return true; }
+    void si_set_obstacles(std::optional<double> min, std::optional<double> max) override;
 
 private:
     /// The axis at one tick of a motion.

@@ -106,6 +106,7 @@ public:
     void on_watched(Body& body) override;
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
+    BodyKind kind() const override { return BodyKind::Watch; }
 
 private:
     /// An obstacle a contact put on a joint.

@@ -107,6 +107,14 @@ double PiezoActuator::extension_um() const
     return extension_of(state_at(clock_.now()));
 }
 
+double PiezoActuator::si_velocity() const
+{
+    if (settled())
+        return 0.0;
+    // µm per ms is mm per s: * 1e-3 for m/s.
+    return (config_.travel_um * voltage_v_ / config_.max_voltage_v - extension_um()) / config_.response_ms * 1e-3;
+}
+
 bool PiezoActuator::settled() const
 {
     const State s = state_at(clock_.now());

@@ -80,6 +80,18 @@ public:
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
 
+    BodyKind kind() const override { return BodyKind::PiezoActuator; }
+    bool settling() const override { return !settled(); }
+
+protected:
+    /// The extension (m); its rate as the first-order lag makes it (toward the extension the
+    /// voltage asks for, over the response time; hysteresis and creep aside), 0 once settled;
+    /// the travel 0 to the rated extension. A piezo is not placed (its voltage sets it) and
+    /// pushes on against an obstacle.
+    double si_position() const override { return extension_um() * 1e-6; }
+    double si_velocity() const override;
+    TravelRange si_travel() const override { return {0.0, config_.travel_um * 1e-6}; }
+
 private:
     struct State {
         double u_v = 0;                               ///< lagged (charge) voltage

@@ -44,6 +44,7 @@ public:
 
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
+    BodyKind kind() const override { return BodyKind::Solenoid; }
 
 private:
     enum class State { Closed, Open, Cycling };

@@ -17,6 +17,40 @@ StickSlipPositioner::StickSlipPositioner(const Clock& clock, const StickSlipConf
 {
 }
 
+double StickSlipPositioner::si_per_nm() const
+{
+    constexpr double kPi = 3.14159265358979323846;
+    return travel_of(config_.kind) == Travel::Angle ? kPi / 180.0 * 1e-6 : 1e-9;
+}
+
+double StickSlipPositioner::si_position() const
+{
+    return position_nm() * si_per_nm();
+}
+
+double StickSlipPositioner::si_velocity() const
+{
+    return velocity_nm_per_s() * si_per_nm();
+}
+
+TravelRange StickSlipPositioner::si_travel() const
+{
+    return {config_.travel_min_nm * si_per_nm(), config_.travel_max_nm * si_per_nm()};
+}
+
+void StickSlipPositioner::si_place(double position)
+{
+    place(std::clamp(position / si_per_nm(), config_.travel_min_nm, config_.travel_max_nm));
+}
+
+void StickSlipPositioner::si_set_obstacles(std::optional<double> min, std::optional<double> max)
+{
+    const auto nm = [this](std::optional<double> si) {
+        return si ? std::optional<double>(*si / si_per_nm()) : std::nullopt;
+    };
+    set_obstacles(nm(min), nm(max));
+}
+
 void StickSlipPositioner::set_travel(double min_nm, double max_nm)
 {
     config_.travel_min_nm = min_nm;

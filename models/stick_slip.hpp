@@ -54,6 +54,9 @@ struct StickSlipConfig {
     std::uint32_t jitter_seed = 0;
     double scan_range_nm = 1500;        ///< a full 0..4095 scan
     double drift_nm_per_s = 0;          ///< open-loop creep at rest, signed; 0: none
+    /// Linear (positions in nm, the face in m), rotary or goniometer (positions in µ°, the face
+    /// in rad).
+    BodyKind kind = BodyKind::Linear;
 };
 
 /// A software range limit an open-loop burst stops at (MCS 2.3.4).
@@ -158,7 +161,21 @@ public:
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
 
+    BodyKind kind() const override { return config_.kind; }
+    /// A motion under way (the drift at rest is no settling: it has no end).
+    bool settling() const override { return motion_ != Motion::Rest; }
+
+protected:
+    double si_position() const override;
+    double si_velocity() const override;
+    TravelRange si_travel() const override;
+    void si_place(double position) override;
+    bool si_stoppable() const override { return true; }
+    void si_set_obstacles(std::optional<double> min, std::optional<double> max) override;
+
 private:
+    /// m (rad) per nm (µ°).
+    double si_per_nm() const;
     /// A burst replayed up to some step.
     struct Replay {
         double position_nm = 0;

@@ -64,6 +64,7 @@ public:
 
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
+    BodyKind kind() const override { return BodyKind::StrainGauge; }
 
 private:
     struct Sample {

@@ -5,12 +5,6 @@
 
 namespace rigsim::models {
 
-void Body::reschedule()
-{
-    if (world_)
-        world_->reschedule(*this);
-}
-
 World::World(Clock& clock) : clock_(clock)
 {
     clock_.add(this);

@@ -9,6 +9,7 @@
 // their body and translate (units, counters, status bits, error codes); they never
 // integrate motion themselves.
 
+#include "models/body.hpp"
 #include "models/clock.hpp"
 
 #include <cstdint>
@@ -21,43 +22,6 @@
 #include <vector>
 
 namespace rigsim::models {
-
-class World;
-
-/// A moving part of the world.
-class Body {
-public:
-    virtual ~Body() = default;
-    /// Earliest tick (> now) at which on_event() must run, or kNever while only sampling
-    /// changes the state (at rest, or in the middle of a planned profile).
-    virtual Ticks next_event(Ticks now) const = 0;
-    /// Handle what is due at `now` (an end of move, a limit met, ...).
-    virtual void on_event(Ticks now) = 0;
-    /// Resolve the keys of other bodies this one reads (World::link_all(), once every body
-    /// exists, so a body may be added before the one it reads). std::invalid_argument for a
-    /// missing or unfit body.
-    virtual void link(World& world) { (void)world; }
-    /// A body watching `body` (World::watch()) hears here that `body` was rescheduled: a
-    /// motion of it started, changed or ended.
-    virtual void on_watched(Body& body) { (void)body; }
-    /// Bodies due at the same tick run in phase order: a body that reads the others at their
-    /// state after the tick (a collision watch) has a later phase than the bodies it reads.
-    virtual int phase() const { return 0; }
-
-    const std::string& key() const { return key_; }
-
-protected:
-    /// Tell the world that next_event() changed (call after every command that starts,
-    /// changes or stops a motion). Harmless before the body joined a world.
-    void reschedule();
-
-private:
-    friend class World;
-    World* world_ = nullptr;
-    std::string key_;
-    std::uint64_t generation_ = 0;   ///< scheduled wake-ups of older generations are void
-    std::vector<Body*> watchers_;    ///< told on every reschedule of this body
-};
 
 /// Every body of a rig, on one clock. The world is one Tickable of the clock: the clock
 /// asks it for its earliest due event and it wakes only the bodies that are due.

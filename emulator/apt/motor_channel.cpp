@@ -23,19 +23,25 @@ models::AxisConfig axis_config(const ControllerModel& controller, const StageMod
     // 0° of a rotation stage or a goniometer (whose end stops sit at its angle range).
     switch (stage.kind) {
     case StageKind::Linear:
+        c.kind = models::BodyKind::Linear;
         c.travel_min_counts = 0.0;
         c.travel_max_counts = stage.travel_mm * cpu;
         break;
     case StageKind::Rotary:
+        c.kind = models::BodyKind::Rotary;
         c.rotary = true;
         c.travel_min_counts = -kRotaryTravelCounts;
         c.travel_max_counts = kRotaryTravelCounts;
         break;
     case StageKind::Goniometer:
+        c.kind = models::BodyKind::Goniometer;
         c.travel_min_counts = stage.angle_min_deg * cpu;
         c.travel_max_counts = stage.angle_max_deg * cpu;
         break;
     }
+    // The stage's resolution for the world's physical face: counts per mm, per degree when it turns.
+    constexpr double kPi = 3.14159265358979323846;
+    c.si_per_count = stage.kind == StageKind::Linear ? 1e-3 / cpu : kPi / 180.0 / cpu;
     c.counts_per_turn = 360.0 * cpu;
     // Power-up: the stage stands mid-travel (a rotation stage half a turn from its home
     // switch); the counters read 0 there (not homed).

@@ -17,6 +17,20 @@ models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
     s.jitter_seed = 0x9e3779b9u ^ static_cast<std::uint32_t>(index);
     s.scan_range_nm = static_cast<double>(c.scan_range_nm);
     s.drift_nm_per_s = static_cast<double>(c.drift_nm_per_s);
+    // The stage is what the configured sensor says it came with (a positioner without one is
+    // taken as linear); an SST later changes how the controller reads it, not the stage.
+    const auto* sensor = c.sensor_type == "none" ? nullptr : sensor_type_by_symbol(c.sensor_type);
+    switch (sensor ? sensor->kind : SensorKind::Linear) {
+    case SensorKind::Linear:
+        s.kind = models::BodyKind::Linear;
+        break;
+    case SensorKind::Rotary:
+        s.kind = models::BodyKind::Rotary;
+        break;
+    case SensorKind::Goniometer:
+        s.kind = models::BodyKind::Goniometer;
+        break;
+    }
     return s;
 }
 

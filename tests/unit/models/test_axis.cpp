@@ -202,6 +202,7 @@ TEST_CASE("axis: a rotation stage has no ends and a home switch once per turn", 
     AxisConfig c;
     c.drive = Drive::Servo;
     c.rotary = true;
+    c.kind = models::BodyKind::Rotary;
     c.travel_min_counts = -1e9;
     c.travel_max_counts = 1e9;
     c.counts_per_turn = 3'600;

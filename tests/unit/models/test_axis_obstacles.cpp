@@ -198,6 +198,7 @@ TEST_CASE("axis obstacle: a rotation stage, which has no end stops, meets one to
     AxisConfig c;
     c.drive = Drive::Servo;
     c.rotary = true;
+    c.kind = models::BodyKind::Rotary;
     c.travel_min_counts = -1e9;
     c.travel_max_counts = 1e9;
     c.counts_per_turn = 3'600;

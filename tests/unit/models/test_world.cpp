@@ -27,6 +27,7 @@ public:
         return kNever;
     }
     void on_event(Ticks now) override { woken.push_back(now); }
+    models::BodyKind kind() const override { return models::BodyKind::Watch; }
     void set(std::vector<Ticks> at)
     {
         at_ = std::move(at);

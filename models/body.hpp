@@ -1,0 +1,124 @@
+#pragma once
+// A body of the world (models/world.hpp): a moving part under a stable key, woken only at its
+// events, and its physical face.
+//
+// The physical face is what everything that is not a protocol talks to (kinematic chains,
+// collisions, the control API's physical state): the body's kind, and its one degree of
+// freedom in SI units with the unit in every name: metres for a body that travels along a
+// line (a linear stage, a piezo actuator), radians for one that turns (a rotation stage, a
+// goniometer). A body keeps its own resolution inside (an axis counts encoder counts or
+// microsteps, a stick-slip positioner nm or µ°) and converts at the face; the protocol's scale
+// (a controller's counts per mm) lives in the device that translates.
+
+#include "models/clock.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rigsim::models {
+
+class World;
+
+/// What a body is.
+enum class BodyKind {
+    Linear,          ///< a carriage along a line (m)
+    Rotary,          ///< a rotation stage: no end stops (rad)
+    Goniometer,      ///< a cradle turning about a centre above it, between end stops (rad)
+    PiezoActuator,   ///< a piezo stack that extends along a line (m); it pushes on: no obstacle stops it
+    Solenoid,        ///< an output that opens and closes: no travel
+    StrainGauge,     ///< a sensor: no travel
+    Watch,           ///< not a part: a watch over others (collisions)
+};
+
+/// The kind's name as the control API and the rig JSON spell it ("linear", "piezo_actuator", ...).
+std::string_view body_kind_name(BodyKind kind);
+
+/// How a body of a kind moves: along a line (its face in m), about an axis (rad), or not at all.
+enum class Travel { None, Line, Angle };
+Travel travel_of(BodyKind kind);
+
+/// Where a body may stand: its end stops (±infinity where it has none).
+struct TravelRange {
+    double min = 0;
+    double max = 0;
+};
+
+/// A moving part of the world.
+class Body {
+public:
+    virtual ~Body() = default;
+    /// Earliest tick (> now) at which on_event() must run, or kNever while only sampling
+    /// changes the state (at rest, or in the middle of a planned profile).
+    virtual Ticks next_event(Ticks now) const = 0;
+    /// Handle what is due at `now` (an end of move, a limit met, ...).
+    virtual void on_event(Ticks now) = 0;
+    /// Resolve the keys of other bodies this one reads (World::link_all(), once every body
+    /// exists, so a body may be added before the one it reads). std::invalid_argument for a
+    /// missing or unfit body.
+    virtual void link(World& world) { (void)world; }
+    /// A body watching `body` (World::watch()) hears here that `body` was rescheduled: a
+    /// motion of it started, changed or ended.
+    virtual void on_watched(Body& body) { (void)body; }
+    /// Bodies due at the same tick run in phase order: a body that reads the others at their
+    /// state after the tick (a collision watch) has a later phase than the bodies it reads.
+    virtual int phase() const { return 0; }
+
+    const std::string& key() const { return key_; }
+
+    // ---- The physical face ----
+    virtual BodyKind kind() const = 0;
+    Travel travel() const { return travel_of(kind()); }
+
+    /// Position and velocity now. The _m forms for a body that travels along a line, the _rad
+    /// forms for one that turns; the other forms, and any form on a body without travel, throw
+    /// std::logic_error.
+    double position_m() const;
+    double angle_rad() const;
+    double velocity_m_per_s() const;
+    double angular_velocity_rad_per_s() const;
+    /// The end stops.
+    TravelRange travel_m() const;
+    TravelRange travel_rad() const;
+    /// Put the body at rest at a position (clamped to its end stops): a hand moved it, or a test
+    /// sets it up.
+    void place_m(double position);
+    void place_rad(double angle);
+    /// Whether an obstacle (a collision) stops the body; a piezo pushes on.
+    bool stoppable() const { return si_stoppable(); }
+    /// Obstacles met in a collision, each acting as the end stop on its side while set
+    /// (std::nullopt clears that side); std::logic_error on a body that is not stoppable().
+    void set_obstacles_m(std::optional<double> min, std::optional<double> max);
+    void set_obstacles_rad(std::optional<double> min, std::optional<double> max);
+    /// Something about the body still changes without a new command: a motion under way, a
+    /// piezo settling or creeping, a solenoid cycling, a gauge sampling toward its reading.
+    virtual bool settling() const { return false; }
+
+protected:
+    /// Tell the world that next_event() changed (call after every command that starts,
+    /// changes or stops a motion). Harmless before the body joined a world.
+    void reschedule();
+
+    // The face's one implementation, in the unit of travel() (m or rad). A body without
+    // travel keeps the defaults, which throw std::logic_error.
+    virtual double si_position() const;
+    virtual double si_velocity() const;
+    virtual TravelRange si_travel() const;
+    virtual void si_place(double position);
+    virtual bool si_stoppable() const { return false; }
+    virtual void si_set_obstacles(std::optional<double> min, std::optional<double> max);
+
+private:
+    friend class World;
+    /// std::logic_error unless the body travels as `unit` says (`what` names the form called).
+    void expect(Travel unit, const char* what) const;
+
+    World* world_ = nullptr;
+    std::string key_;
+    std::uint64_t generation_ = 0;   ///< scheduled wake-ups of older generations are void
+    std::vector<Body*> watchers_;    ///< told on every reschedule of this body
+};
+
+} // namespace rigsim::models
