@@ -147,46 +147,22 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
             {"limits", std::move(limits)}};
 }
 
-Refused AptDevice::joint(std::size_t index, JointBinding& out) const
+Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
 {
     if (index >= modules_.size())
         return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
                                 + (modules_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(modules_.size() - 1))};
     if (index >= channels_.size()) {   // a kind without a motor
         if (const auto* piezo = dynamic_cast<const PiezoModule*>(modules_[index].get())) {
-            piezo->joint(out);
+            // The actuator is the world's: a power cycle's new module drives the same body.
+            out = piezo->actuator().key();
             return std::nullopt;
         }
         const char* what = model_.kind == UnitKind::Solenoid ? "a solenoid controller" : "a strain gauge reader";
         return bad("channel " + std::to_string(index) + " of the " + config_.model + " (" + what + ") moves nothing");
     }
-    const StageModel& stage = channels_[index]->stage();
-    // The axis is the world's; its carriage position, not the counters (lost steps do not move it).
-    const models::Axis* axis = &channels_[index]->axis();
-    const double counts_per_unit = stage.counts_per_mm;   // per degree on a rotary stage or goniometer
-    switch (stage.kind) {
-    case StageKind::Linear:
-        out.kind = JointBinding::Kind::Linear;
-        break;
-    case StageKind::Rotary:
-        out.kind = JointBinding::Kind::Rotary;
-        break;
-    case StageKind::Goniometer:
-        out.kind = JointBinding::Kind::Goniometer;
-        break;
-    }
-    out.body_key = axis->key();
-    out.position = [axis, counts_per_unit] { return axis->position_counts() / counts_per_unit; };
-    out.velocity = [axis, counts_per_unit] { return axis->velocity_counts_per_s() / counts_per_unit; };
-    // A collision's obstacle: the carriage meets it as its end stop (a servo stalls, a stepper
-    // loses microsteps).
-    models::Axis* carriage = world_.find_as<models::Axis>(axis->key());
-    out.set_obstacles = [carriage, counts_per_unit](std::optional<double> min, std::optional<double> max) {
-        const auto counts = [counts_per_unit](std::optional<double> q) {
-            return q ? std::optional<double>(*q * counts_per_unit) : std::nullopt;
-        };
-        carriage->set_obstacles(counts(min), counts(max));
-    };
+    // The axis is the world's; its carriage, not the counters (lost steps do not move it).
+    out = channels_[index]->axis().key();
     return std::nullopt;
 }
 

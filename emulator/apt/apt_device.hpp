@@ -110,7 +110,7 @@ public:
     Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const override;
     /// A motor bay's stage as a joint (carriage position in mm or degrees), a piezo bay's
     /// actuator (extension in mm); solenoid outputs and gauges move nothing (400).
-    Refused joint(std::size_t index, JointBinding& out) const override;
+    Refused axis_body_key(std::size_t index, std::string& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Record one frame crossing the wire of connection `peer` (notes: the client's mistakes).
     void record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes = {},

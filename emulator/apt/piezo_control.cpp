@@ -52,25 +52,6 @@ void PiezoModule::describe(nlohmann::json& out) const
     out["status"] = status_bits();
 }
 
-void PiezoModule::joint(JointBinding& out) const
-{
-    // The actuator is the world's: a power cycle's new module drives the same body.
-    const models::PiezoActuator* a = &actuator_;
-    out.kind = JointBinding::Kind::Linear;
-    out.body_key = a->key();
-    out.position = [a] { return a->extension_um() * 1e-3; };
-    // The extension's rate as the first-order lag makes it: toward the extension the drive
-    // voltage asks for, over the response time (µm per ms is mm per s); hysteresis and creep
-    // aside, which move it less. 0 once it has settled.
-    out.velocity = [a] {
-        if (a->settled())
-            return 0.0;
-        const auto& c = a->config();
-        return (c.travel_um * a->voltage() / c.max_voltage_v - a->extension_um()) / c.response_ms;
-    };
-    out.set_obstacles = nullptr;   // a piezo pushes on: a collision is only reported
-}
-
 Refused PiezoModule::patch(const nlohmann::json& body)
 {
     for (const auto& [key, value] : body.items()) {

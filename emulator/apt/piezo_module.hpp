@@ -62,8 +62,8 @@ public:
     /// trigger, p. 108); a TPZ001/KPZ101 has none (400).
     Refused patch(const nlohmann::json& body) override;
     Refused trace(Ticks from, std::size_t max, nlohmann::json& out) const override;
-    /// The actuator as a linear joint: its extension in mm (ControlSurface::joint).
-    void joint(JointBinding& out) const;
+    /// The actuator the bay drives: a body of the world (a kinematic joint reads its extension).
+    const models::PiezoActuator& actuator() const { return actuator_; }
 
     /// The amplifier's output now (V), after clip and slew.
     double output_v() const { return output_at(clock_.now()); }

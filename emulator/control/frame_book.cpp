@@ -30,10 +30,10 @@ std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>
             continue;
         for (const auto& ch : state["channels"]) {
             const auto index = ch.value("index", -1);
-            JointBinding b;
-            if (index < 0 || d.surface->joint(static_cast<std::size_t>(index), b) || b.body_key.empty())
+            std::string key;
+            if (index < 0 || d.surface->axis_body_key(static_cast<std::size_t>(index), key) || key.empty())
                 continue;
-            by_body.emplace(b.body_key, JointAxis{d.endpoints.name, static_cast<std::size_t>(index)});
+            by_body.emplace(key, JointAxis{d.endpoints.name, static_cast<std::size_t>(index)});
         }
     }
     std::vector<std::optional<JointAxis>> out;

@@ -25,8 +25,8 @@ struct FrameSource {
 };
 
 /// The device and channel of each joint binding (indexed like the frames; an empty binding, a
-/// fixed frame's, gives std::nullopt): the channel of `devices` whose ControlSurface::joint()
-/// drives the same world body. A binding no channel drives also gives std::nullopt.
+/// fixed frame's, gives std::nullopt): the channel of `devices` whose
+/// ControlSurface::axis_body_key() is the same world body. A binding no channel drives also gives std::nullopt.
 std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>& bindings,
                                                  const std::vector<ControlledDevice>& devices);
 

@@ -61,21 +61,6 @@ struct PowerCycle {
     bool restore_positions = false;  ///< stages back to their configured start positions (reset only)
 };
 
-/// What drives one joint of a kinematic chain (rig JSON "kinematics", docs/config.md): a
-/// channel's axis, read as the physical position of its moving part.
-struct JointBinding {
-    enum class Kind { Linear, Rotary, Goniometer };
-    Kind kind = Kind::Linear;
-    std::string body_key;               ///< the world body the channel drives ("<device>/<channel>")
-    std::function<double()> position;   ///< now: mm (linear) or degrees (rotary, goniometer)
-    std::function<double()> velocity;   ///< now: mm/s or degrees/s, signed; 0 at rest
-    /// An obstacle met in a collision: the axis stops at `min` when moving down and at `max`
-    /// when moving up (joint units), as at its own end stop; std::nullopt clears that side.
-    /// Empty: the axis cannot be stopped by an obstacle (a piezo pushes on; the collision is
-    /// only reported).
-    std::function<void(std::optional<double> min, std::optional<double> max)> set_obstacles;
-};
-
 class ControlSurface {
 public:
     virtual ~ControlSurface() = default;
@@ -96,9 +81,10 @@ public:
         (void)index, (void)from_tick, (void)max, (void)out;
         return Refusal{404, "no trace for this channel"};
     }
-    /// The axis of channel `index` as a kinematic joint (filled in `out`). 404 "no channel N";
+    /// The key of the world body that channel `index` moves (filled in `out`): what a kinematic
+    /// joint and a collision address (models/body.hpp, its physical face). 404 "no channel N";
     /// 400 for a channel that moves nothing (a solenoid, a gauge, an end effector).
-    virtual Refused joint(std::size_t index, JointBinding& out) const
+    virtual Refused axis_body_key(std::size_t index, std::string& out) const
     {
         (void)index, (void)out;
         return Refusal{400, "this device has no axis to mount"};

@@ -136,7 +136,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     // The frames' joints read the devices' channels; a channel that cannot drive its joint is
     // a config error, found before any endpoint opens.
     if (config.kinematics) {
-        auto built = build_kinematics(*config.kinematics, surfaces_of(config, entries_));
+        auto built = build_kinematics(*config.kinematics, surfaces_of(config, entries_), world_);
         collisions_ = watch_collisions(world_, built, *config.kinematics, events_);
         kinematics_ = std::move(built.kinematics);
         joint_bindings_ = std::move(built.bindings);
@@ -190,7 +190,7 @@ void check_rig_devices(const RigConfig& config)
     std::vector<std::unique_ptr<Device>> devices;
     for (const auto& dc : config.devices)   // loggers without sinks, not the daemon's
         devices.push_back(make_device(dc, world, std::make_shared<spdlog::logger>(dc.name), store, events));
-    build_kinematics(*config.kinematics, surfaces_of(config, devices));
+    build_kinematics(*config.kinematics, surfaces_of(config, devices), world);
 }
 
 Rig::~Rig()

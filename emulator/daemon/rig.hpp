@@ -7,6 +7,7 @@
 #include "emulator/core/device.hpp"
 #include "emulator/core/event_bus.hpp"
 #include "emulator/daemon/link.hpp"
+#include "emulator/daemon/rig_kinematics.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
 #include "emulator/core/state_store.hpp"

@@ -2,6 +2,7 @@
 
 #include "emulator/core/config_reader.hpp"
 #include "emulator/core/event_bus.hpp"
+#include "models/body_joint.hpp"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -14,31 +15,10 @@ namespace rigsim {
 
 namespace {
 
-const char* kind_name(JointBinding::Kind kind)
+/// What a stage of `kind` is called in an error (a piezo actuator extends along a line).
+std::string_view stage_name(models::BodyKind kind)
 {
-    switch (kind) {
-    case JointBinding::Kind::Linear:
-        return "linear";
-    case JointBinding::Kind::Rotary:
-        return "rotary";
-    case JointBinding::Kind::Goniometer:
-        return "goniometer";
-    }
-    return "linear";
-}
-
-/// Whether a stage of `kind` can drive a joint of `joint`.
-bool suits(JointBinding::Kind kind, JointKind joint)
-{
-    switch (kind) {
-    case JointBinding::Kind::Linear:
-        return joint == JointKind::Prismatic;
-    case JointBinding::Kind::Rotary:
-        return joint == JointKind::Revolute;
-    case JointBinding::Kind::Goniometer:
-        return joint == JointKind::Goniometer || joint == JointKind::Revolute;
-    }
-    return false;
+    return kind == models::BodyKind::PiezoActuator ? "linear" : models::body_kind_name(kind);
 }
 
 models::JointType joint_type(JointKind kind)
@@ -75,8 +55,9 @@ Eigen::Isometry3d offset_of(const FrameConfig& f)
     return offset;
 }
 
-/// The binding of frame `f`'s axis; throws ConfigError at the frame's pointer.
-JointBinding bind(const KinematicsConfig& config, const FrameConfig& f, const SurfaceOf& surface_of)
+/// The body that drives frame `f`'s joint; throws ConfigError at the frame's pointer.
+JointBinding bind(const KinematicsConfig& config, const FrameConfig& f, const SurfaceOf& surface_of,
+                  const models::World& world)
 {
     const auto& axis = *f.axis;
     const auto axis_pointer = pointer_to(f.pointer, "axis");
@@ -84,15 +65,21 @@ JointBinding bind(const KinematicsConfig& config, const FrameConfig& f, const Su
     JointBinding b;
     Refused refused;
     if (auto* surface = surface_of(axis.device))
-        refused = surface->joint(axis.channel, b);
+        refused = surface->axis_body_key(axis.channel, b.body_key);
     else
         refused = Refusal{400, "this device has no axis to mount"};
     if (refused)
         fail(config.source, refused->status == 404 ? pointer_to(axis_pointer, "channel") : axis_pointer,
              "device " + quote(axis.device) + ": " + refused->message);
-    if (!suits(b.kind, f.joint))
+    b.body = world.find(b.body_key);
+    if (!b.body || b.body->travel() == models::Travel::None)
+        fail(config.source, axis_pointer, "device " + quote(axis.device) + ": " + what + " moves nothing");
+    if (!models::body_suits(b.body->kind(), joint_type(f.joint)))
         fail(config.source, pointer_to(pointer_to(f.pointer, "joint"), "type"),
-             std::string("a ") + joint_kind_name(f.joint) + " joint on a " + kind_name(b.kind) + " stage (" + what + ")");
+             std::string("a ") + joint_kind_name(f.joint) + " joint on a " + std::string(stage_name(b.body->kind()))
+                 + " stage (" + what + ")");
+    b.position = models::joint_reader(*b.body);
+    b.drive = models::joint_drive(*b.body);
     return b;
 }
 
@@ -110,7 +97,7 @@ void at_frame(const KinematicsConfig& config, const FrameConfig& f, Add&& add)
 
 } // namespace
 
-RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of)
+RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& surface_of, const models::World& world)
 {
     RigKinematics out;
     const auto& frames = config.frames;
@@ -128,7 +115,7 @@ RigKinematics build_kinematics(const KinematicsConfig& config, const SurfaceOf& 
         joint.point_mm = vector_of(f.joint_point_mm);
         models::JointReader reader;
         if (f.axis) {
-            out.bindings[i] = bind(config, f, surface_of);
+            out.bindings[i] = bind(config, f, surface_of, world);
             reader = out.bindings[i].position;
         }
         at_frame(config, f, [&] { out.kinematics->add_frame(f.name, f.parent, offset_of(f), joint, std::move(reader)); });
@@ -166,12 +153,8 @@ models::CollisionWatch* watch_collisions(models::World& world, RigKinematics& ri
     if (config.collisions.empty())
         return nullptr;
     std::vector<models::JointDrive> drives(rig.bindings.size());
-    for (std::size_t i = 0; i < drives.size(); ++i) {
-        const JointBinding& b = rig.bindings[i];
-        drives[i].body_key = b.body_key;
-        drives[i].velocity = b.velocity;
-        drives[i].set_obstacles = b.set_obstacles;
-    }
+    for (std::size_t i = 0; i < drives.size(); ++i)
+        drives[i] = rig.bindings[i].drive;
     auto& watch = world.emplace<models::CollisionWatch>("rig/collisions", *rig.kinematics, config.collisions,
                                                         std::move(drives));
     watch.link(world);   // after World::link_all: the watch is the last body

@@ -122,7 +122,7 @@ void McsDevice::channel_json(std::size_t i, nlohmann::json& j) const
     j["last_outcome"] = ch.last_outcome();
 }
 
-Refused McsDevice::joint(std::size_t index, JointBinding& out) const
+Refused McsDevice::axis_body_key(std::size_t index, std::string& out) const
 {
     if (index >= controller_.channel_count())
         return Refusal{404, "no channel " + std::to_string(index) + " (the device has "
@@ -130,34 +130,8 @@ Refused McsDevice::joint(std::size_t index, JointBinding& out) const
     const auto i = static_cast<std::int32_t>(index);
     if (controller_.effector(i))
         return bad("channel " + std::to_string(index) + " is an end effector (gripper, force sensor): it moves nothing");
-    // The stage's kind is the configured sensor's (the positioner it came with), not what an
-    // SST may have set since; a positioner without sensor is taken as linear.
-    const auto* sensor = sensor_type_by_symbol(section_of<McsConfig>(config_).channels[index].sensor_type);
-    const auto kind = sensor ? sensor->kind : SensorKind::Linear;
-    switch (kind) {
-    case SensorKind::Linear:
-        out.kind = JointBinding::Kind::Linear;
-        break;
-    case SensorKind::Rotary:
-        out.kind = JointBinding::Kind::Rotary;
-        break;
-    case SensorKind::Goniometer:
-        out.kind = JointBinding::Kind::Goniometer;
-        break;
-    }
     // The body is the world's: it outlives the channel's protocol state (a power cycle keeps it).
-    const models::StickSlipPositioner* body = &controller_.channel(i)->body();
-    out.body_key = body->key();
-    // nm -> mm and µ° -> degrees are the same factor.
-    out.position = [body] { return body->position_nm() * 1e-6; };
-    out.velocity = [body] { return body->velocity_nm_per_s() * 1e-6; };
-    // A collision's obstacle: the stage meets it as an end stop (a closed-loop move ends with 142,
-    // as under the stall fault; steps make no way).
-    models::StickSlipPositioner* stage = world_.find_as<models::StickSlipPositioner>(body->key());
-    out.set_obstacles = [stage](std::optional<double> min_mm, std::optional<double> max_mm) {
-        const auto nm = [](std::optional<double> mm) { return mm ? std::optional<double>(*mm * 1e6) : std::nullopt; };
-        stage->set_obstacles(nm(min_mm), nm(max_mm));
-    };
+    out = controller_.channel(i)->body().key();
     return std::nullopt;
 }
 

@@ -68,7 +68,7 @@ public:
     bool busy() const override { return controller_.busy(clock_.now()); }
     /// A positioner as a joint: linear channels in mm, rotary and goniometer channels in
     /// degrees, read from the physical position; end effectors move nothing (400).
-    Refused joint(std::size_t index, JointBinding& out) const override;
+    Refused axis_body_key(std::size_t index, std::string& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Send what the controller has to say by itself to every connection.
     void flush_outbox();
@@ -97,7 +97,7 @@ private:
 
     DeviceConfig config_;
     Clock& clock_;
-    models::World& world_;   ///< where the channels' bodies live (joint(): a collision stops them)
+    models::World& world_;   ///< where the channels' bodies live
     std::shared_ptr<spdlog::logger> log_;
     Controller controller_;
     Handler handler_;

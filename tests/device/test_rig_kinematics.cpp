@@ -161,34 +161,34 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     CHECK(k->is_tool(f.frame("sample")));
 
     const auto& rot = b[f.frame("rot")];
-    CHECK(rot.kind == JointBinding::Kind::Rotary);
+    CHECK(rot.body->kind() == models::BodyKind::Rotary);
     CHECK(rot.body_key == "apt_rot/1");
     const auto& x = b[f.frame("x")];
-    CHECK(x.kind == JointBinding::Kind::Linear);
+    CHECK(x.body->kind() == models::BodyKind::Linear);
     CHECK(x.body_key == "stack/0");
     const auto& tilt = b[f.frame("tilt")];
-    CHECK(tilt.kind == JointBinding::Kind::Goniometer);
+    CHECK(tilt.body->kind() == models::BodyKind::Goniometer);
     CHECK(tilt.body_key == "stack/3");
     const auto& piezo = b[f.frame("piezo")];
-    CHECK(piezo.kind == JointBinding::Kind::Linear);
+    CHECK(piezo.body->kind() == models::BodyKind::PiezoActuator);
     CHECK(piezo.body_key == "tpz/1");
     for (const auto* j : {&rot, &x, &tilt, &piezo}) {
         REQUIRE(j->position);
-        REQUIRE(j->velocity);
-        CHECK(j->velocity() == 0.0);
+        REQUIRE(j->drive.velocity);
+        CHECK(j->drive.velocity() == 0.0);
     }
     // A collision stops a motor or a stick-slip positioner at an obstacle in joint units; a piezo
     // pushes on (no set_obstacles).
-    REQUIRE(rot.set_obstacles);
-    REQUIRE(x.set_obstacles);
-    REQUIRE(tilt.set_obstacles);
-    CHECK_FALSE(piezo.set_obstacles);
-    x.set_obstacles(std::nullopt, 1.5);
+    REQUIRE(rot.drive.set_obstacles);
+    REQUIRE(x.drive.set_obstacles);
+    REQUIRE(tilt.drive.set_obstacles);
+    CHECK_FALSE(piezo.drive.set_obstacles);
+    x.drive.set_obstacles(std::nullopt, 1.5);
     const auto* x_body = f.rig->world().find_as<models::StickSlipPositioner>("stack/0");
     REQUIRE(x_body);
-    CHECK(x_body->obstacle_max_nm() == 1.5e6);
+    CHECK(x_body->obstacle_max_nm() == Approx(1.5e6).epsilon(1e-15));
     CHECK_FALSE(x_body->obstacle_min_nm());
-    x.set_obstacles(std::nullopt, std::nullopt);
+    x.drive.set_obstacles(std::nullopt, std::nullopt);
     CHECK_FALSE(x_body->obstacle_max_nm());
     // Physical positions: the MCS stages and the piezo start at 0; an APT stage starts in the
     // middle of its travel, where its counters read 0.
@@ -199,27 +199,30 @@ TEST_CASE("rig kinematics: the frames are bound to their channels", "[device][ki
     const double counts_per_degree = channel.stage().counts_per_mm;   // PRM1-Z8: per degree
     CHECK(counts_per_degree == Approx(1919.64).margin(0.01));
     CHECK(channel.axis().position_counts() != 0.0);
-    CHECK(rot.position() == channel.axis().position_counts() / counts_per_degree);
+    CHECK(rot.position() == Approx(channel.axis().position_counts() / counts_per_degree).epsilon(1e-15));
     // Independent of the conversion: a rotation stage powers up half a turn from its home
     // switch (180°); the goniometer stage below powers up mid-range (0° of [-10°, 10°]).
     CHECK(rot.position() == Approx(180).margin(1e-9));
-    rot.set_obstacles(rot.position() - 10, std::nullopt);
+    rot.drive.set_obstacles(rot.position() - 10, std::nullopt);
     CHECK(channel.axis().obstacle_min_counts() == Approx(channel.axis().position_counts() - 10 * counts_per_degree));
-    rot.set_obstacles(std::nullopt, std::nullopt);
+    rot.drive.set_obstacles(std::nullopt, std::nullopt);
     CHECK_FALSE(channel.axis().obstacle_min_counts());
     CHECK(k->joint_position(f.frame("rot")) == rot.position());
 
     // The rotary MCS channel is a rotary stage; the APT goniometer stage a goniometer, in degrees.
-    JointBinding sr;
-    CHECK_FALSE(f.device<mcs::McsDevice>("stack").joint(4, sr));
-    CHECK(sr.kind == JointBinding::Kind::Rotary);
-    JointBinding gonio;
+    std::string sr;
+    CHECK_FALSE(f.device<mcs::McsDevice>("stack").axis_body_key(4, sr));
+    REQUIRE(f.rig->world().find(sr));
+    CHECK(f.rig->world().find(sr)->kind() == models::BodyKind::Rotary);
+    std::string gonio_key;
     auto& apt_gonio = f.device<apt::AptDevice>("apt_gonio");
-    CHECK_FALSE(apt_gonio.joint(0, gonio));
-    CHECK(gonio.kind == JointBinding::Kind::Goniometer);
-    CHECK(gonio.body_key == "apt_gonio/1");
-    CHECK(gonio.position() == apt_gonio.channel(0).axis().position_counts() / 34304);
-    CHECK(gonio.position() == Approx(0).margin(1e-9));
+    CHECK_FALSE(apt_gonio.axis_body_key(0, gonio_key));
+    CHECK(gonio_key == "apt_gonio/1");
+    const models::Body* gonio = f.rig->world().find(gonio_key);
+    REQUIRE(gonio);
+    CHECK(gonio->kind() == models::BodyKind::Goniometer);
+    CHECK(gonio->angle_rad() * 180 / kPi == Approx(apt_gonio.channel(0).axis().position_counts() / 34304).margin(1e-12));
+    CHECK(gonio->angle_rad() == Approx(0).margin(1e-9));
 }
 
 TEST_CASE("rig kinematics: moving channels on the stepped clock moves the frames", "[device][kinematics]")
@@ -240,16 +243,16 @@ TEST_CASE("rig kinematics: moving channels on the stepped clock moves the frames
     const double counts_per_degree = rot.stage().counts_per_mm;
     rot.move_absolute(86384);
     f.rig->clock().advance_ms(20);
-    CHECK(b[f.frame("x")].velocity() > 0);
-    CHECK(b[f.frame("rot")].velocity() > 0);
+    CHECK(b[f.frame("x")].drive.velocity() > 0);
+    CHECK(b[f.frame("rot")].drive.velocity() > 0);
     f.rig->clock().advance_ms(10000);
 
     const double q_x = b[f.frame("x")].position();
     const double q_rot = b[f.frame("rot")].position();
     CHECK(q_x == Approx(2.0).margin(1e-6));
     CHECK(q_rot - q_rot_before == Approx(86384 / counts_per_degree).margin(1e-9));
-    CHECK(b[f.frame("x")].velocity() == 0.0);
-    CHECK(b[f.frame("rot")].velocity() == 0.0);
+    CHECK(b[f.frame("x")].drive.velocity() == 0.0);
+    CHECK(b[f.frame("rot")].drive.velocity() == 0.0);
 
     k.update();
     CHECK(k.joint_position(f.frame("x")) == q_x);
@@ -283,10 +286,10 @@ TEST_CASE("rig kinematics: a piezo channel's joint is the actuator's extension i
     auto session = f.device<apt::AptDevice>("tpz").open_session([](std::string_view) {}, "test");
     session->receive(frame);
     f.rig->clock().advance(1);
-    CHECK(piezo.velocity() > 0);
+    CHECK(piezo.drive.velocity() > 0);
     f.rig->clock().advance_ms(100);
     CHECK(actuator->extension_um() > 5);
-    CHECK(piezo.position() == actuator->extension_um() / 1000);
+    CHECK(piezo.position() == Approx(actuator->extension_um() / 1000).epsilon(1e-15));
     auto& k = *f.rig->kinematics();
     k.update();
     CHECK(k.world_pose(f.frame("piezo")).translation().y() == Approx(piezo.position()).margin(1e-12));

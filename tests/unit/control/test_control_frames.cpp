@@ -58,13 +58,13 @@ public:
         for (std::size_t i = 0; i < keys_.size(); ++i)
             out["channels"].push_back(json{{"index", i}});
     }
-    Refused joint(std::size_t index, JointBinding& out) const override
+    Refused axis_body_key(std::size_t index, std::string& out) const override
     {
         if (index >= keys_.size())
             return Refusal{404, "no channel"};
         if (keys_[index].empty())
             return Refusal{400, "moves nothing"};
-        out.body_key = keys_[index];
+        out = keys_[index];
         return std::nullopt;
     }
     Refused patch_channel(std::size_t, const json&) override { return std::nullopt; }

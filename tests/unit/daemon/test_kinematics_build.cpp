@@ -38,7 +38,9 @@ KinematicsConfig table_and_frame()
 std::string error_of(const KinematicsConfig& c)
 {
     try {
-        rigsim::build_kinematics(c, [](std::string_view) { return nullptr; });
+        rigsim::Clock clock;
+        rigsim::models::World world(clock);
+        rigsim::build_kinematics(c, [](std::string_view) { return nullptr; }, world);
     } catch (const ConfigError& e) {
         return e.what();
     }

@@ -3,6 +3,7 @@
 // it keeps its own resolution inside.
 
 #include "models/axis.hpp"
+#include "models/body_joint.hpp"
 #include "models/piezo_actuator.hpp"
 #include "models/solenoid.hpp"
 #include "models/stick_slip.hpp"
@@ -186,6 +187,49 @@ TEST_CASE("a body without travel has a kind and no position", "[body]")
     CHECK_FALSE(solenoid.stoppable());
     CHECK_THROWS_AS(solenoid.position_m(), std::logic_error);
     CHECK_THROWS_AS(solenoid.angle_rad(), std::logic_error);
+}
+
+TEST_CASE("a body as a joint: mm or degrees from its face, obstacles back through it", "[body]")
+{
+    CHECK(body_suits(BodyKind::Linear, JointType::Prismatic));
+    CHECK(body_suits(BodyKind::PiezoActuator, JointType::Prismatic));
+    CHECK_FALSE(body_suits(BodyKind::Linear, JointType::Revolute));
+    CHECK(body_suits(BodyKind::Rotary, JointType::Revolute));
+    CHECK_FALSE(body_suits(BodyKind::Rotary, JointType::Goniometer));
+    CHECK(body_suits(BodyKind::Goniometer, JointType::Goniometer));
+    CHECK(body_suits(BodyKind::Goniometer, JointType::Revolute));
+    CHECK_FALSE(body_suits(BodyKind::Solenoid, JointType::Prismatic));
+
+    Clock clock;
+    World world(clock);
+    auto& axis = world.emplace<Axis>("kdc/1", clock, linear_axis());
+    const JointReader q = joint_reader(axis);
+    CHECK(q() == Approx(25.0));   // mm
+    JointDrive drive = joint_drive(axis);
+    CHECK(drive.body_key == "kdc/1");
+    REQUIRE(drive.set_obstacles);
+    drive.set_obstacles(std::nullopt, 30.0);   // mm
+    REQUIRE(axis.obstacle_max_counts());
+    CHECK(*axis.obstacle_max_counts() == Approx(60'000));
+    axis.move_to(100'000, 10'000, 1e9);
+    clock.advance(1);
+    CHECK(drive.velocity() == Approx(5.0));   // mm/s
+
+    StickSlipConfig gonio;
+    gonio.kind = BodyKind::Goniometer;
+    gonio.start_position_nm = 3e6;   // µ°
+    auto& cradle = world.emplace<StickSlipPositioner>("mcs/3", clock, gonio);
+    CHECK(joint_reader(cradle)() == Approx(3.0));   // degrees
+    joint_drive(cradle).set_obstacles(-2.0, std::nullopt);
+    REQUIRE(cradle.obstacle_min_nm());
+    CHECK(*cradle.obstacle_min_nm() == Approx(-2e6));
+
+    PiezoActuatorConfig pc;
+    auto& piezo = world.emplace<PiezoActuator>("tpz/1", clock, pc);
+    CHECK_FALSE(joint_drive(piezo).set_obstacles);   // it pushes on
+    auto& solenoid = world.emplace<Solenoid>("tsc/1");
+    CHECK_THROWS_AS(joint_reader(solenoid), std::invalid_argument);
+    CHECK_THROWS_AS(joint_drive(solenoid), std::invalid_argument);
 }
 
 } // namespace test_body_face
