@@ -187,6 +187,37 @@ void Axis::set_switch_pressed(int side)
     replan();
 }
 
+void Axis::set_loop_open(bool open)
+{
+    loop_open_ = open;
+    set_jammed(faults().stalled || loop_open_);
+}
+
+void Axis::set_switch_held(int side)
+{
+    switch_held_ = side;
+    set_switch_pressed(faults().switch_pressed != 0 ? faults().switch_pressed : switch_held_);
+}
+
+std::optional<std::string> Axis::refuses(BodyFault& fault) const
+{
+    if (fault.kind != PhysicalFault::Slip)
+        return std::nullopt;
+    if (config_.drive == Drive::Servo)
+        return "slip: a servo closes its position loop on the encoder, so it loses no steps (a stepper "
+               "controller does; try stall or sensor_failure)";
+    if (!fault.slip_steps && !fault.slip_fraction)
+        return "slip needs \"counts\" (microsteps lost per move) or \"fraction\" (of each move, 0..1)";
+    return std::nullopt;
+}
+
+void Axis::apply_faults()
+{
+    set_jammed(faults().stalled || loop_open_);
+    set_slip(faults().slip_steps, faults().slip_fraction);
+    set_switch_pressed(faults().switch_pressed != 0 ? faults().switch_pressed : switch_held_);
+}
+
 int Axis::motion_direction() const
 {
     return moving_ ? sign(profile_.target() - profile_at(clock_.now())) : 0;

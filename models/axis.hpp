@@ -16,6 +16,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace rigsim::models {
@@ -123,6 +124,16 @@ public:
     void set_switch_pressed(int side);
     int switch_pressed() const { return switch_pressed_; }
 
+    /// The drive cannot move the carriage (a servo whose encoder failed has no position loop):
+    /// the axis is jammed while this or a stall fault (faults()) lasts.
+    void set_loop_open(bool open);
+    /// A limit switch held pressed by hand (a test's set-up: +1, -1, 0): it reads pressed unless a
+    /// limit_switch fault (faults()) says otherwise.
+    void set_switch_held(int side);
+    int switch_held() const { return switch_held_; }
+    /// A servo loses no steps (slip); a stepper slips by steps or a fraction, at least one.
+    std::optional<std::string> refuses(BodyFault& fault) const override;
+
     Ticks next_event(Ticks now) const override;
     void on_event(Ticks now) override;
 
@@ -136,6 +147,8 @@ protected:
     void si_place(double position) override;
     bool si_stoppable() const override { return true; }
     void si_set_obstacles(std::optional<double> min, std::optional<double> max) override;
+    /// A stall jams it, a slip loses steps, a limit_switch fault presses a switch.
+    void apply_faults() override;
 
 private:
     /// The axis at one tick of a motion.
@@ -216,6 +229,8 @@ private:
     double slip_fraction_ = 0;
     double motion_from_counts_ = 0;    ///< where the current motion started (the carriage)
     int switch_pressed_ = 0;
+    bool loop_open_ = false;
+    int switch_held_ = 0;
 };
 
 } // namespace rigsim::models

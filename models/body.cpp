@@ -126,6 +126,13 @@ void Body::set_obstacles_rad(std::optional<double> min, std::optional<double> ma
     si_set_obstacles(min, max);
 }
 
+std::optional<std::string> Body::refuses(BodyFault& fault) const
+{
+    static constexpr const char* kNames[] = {"stall", "slip", "limit_switch", "sensor_failure"};
+    return "\"kind\": " + std::string(kNames[static_cast<int>(fault.kind)]) + ": a "
+           + std::string(body_kind_name(kind())) + " (" + key_ + ") has no such fault";
+}
+
 // The defaults: a body without travel (the public forms checked travel() first, so these run
 // only on a body that declares a travel but forgot to implement it).
 double Body::si_position() const

@@ -40,6 +40,33 @@ std::string_view body_kind_name(BodyKind kind);
 enum class Travel { None, Line, Angle };
 Travel travel_of(BodyKind kind);
 
+/// The physical faults a body may suffer (the control API's device faults that act on the stage
+/// a channel drives: docs/control-api.md "Faults"). A lost reference, a power cycle and the
+/// link's faults are the device's, not the body's.
+enum class PhysicalFault {
+    Stall,           ///< the body moves no further: a servo stalls, a stepper's carriage stays, a stick-slip stage is blocked
+    Slip,            ///< part of each motion is lost (a stepper's microsteps, a stick-slip step's length)
+    LimitSwitch,     ///< a limit switch reads pressed where the carriage stands
+    SensorFailure,   ///< the position sensor (an encoder, an MCS sensor) reads nothing
+};
+
+/// One physical fault with its parameters, as the control API gives them.
+struct BodyFault {
+    PhysicalFault kind = PhysicalFault::Stall;
+    std::optional<double> slip_steps;      ///< slip: the body's own steps lost per motion (a stepper's microsteps), >= 0
+    std::optional<double> slip_fraction;   ///< slip: the part of each motion lost, 0..1
+    int switch_side = 0;                   ///< limit_switch: +1 the forward switch, -1 the reverse one
+};
+
+/// Every physical fault active on a body, combined (World::add_fault).
+struct PhysicalFaults {
+    bool stalled = false;
+    double slip_steps = 0;       ///< the sum of the slips' steps
+    double slip_fraction = 0;    ///< each slip takes its part of what the others left: 1 - Π(1 - f)
+    int switch_pressed = 0;      ///< the newest limit_switch fault's side; 0: none
+    bool sensor_failed = false;
+};
+
 /// Where a body may stand: its end stops (±infinity where it has none).
 struct TravelRange {
     double min = 0;
@@ -96,7 +123,18 @@ public:
     /// piezo settling or creeping, a solenoid cycling, a gauge sampling toward its reading.
     virtual bool settling() const { return false; }
 
+    /// Why the body cannot take `fault` (a servo loses no steps, a stick-slip positioner has no
+    /// limit switches, a piezo none of them), or std::nullopt; it may fill in a parameter's
+    /// default (a stick-slip slip without a fraction loses half of each step). The message names
+    /// the API's field ("kind", "counts", "fraction").
+    virtual std::optional<std::string> refuses(BodyFault& fault) const;
+    /// The physical faults acting on the body now (World::add_fault, World::remove_fault).
+    const PhysicalFaults& faults() const { return faults_; }
+
 protected:
+    /// faults() changed: the body applies them to its physics (a jam, a slip, a switch).
+    virtual void apply_faults() {}
+
     /// Tell the world that next_event() changed (call after every command that starts,
     /// changes or stops a motion). Harmless before the body joined a world.
     void reschedule();
@@ -117,6 +155,7 @@ private:
 
     World* world_ = nullptr;
     std::string key_;
+    PhysicalFaults faults_;
     std::uint64_t generation_ = 0;   ///< scheduled wake-ups of older generations are void
     std::vector<Body*> watchers_;    ///< told on every reschedule of this body
 };

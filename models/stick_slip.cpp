@@ -51,6 +51,29 @@ void StickSlipPositioner::si_set_obstacles(std::optional<double> min, std::optio
     set_obstacles(nm(min), nm(max));
 }
 
+std::optional<std::string> StickSlipPositioner::refuses(BodyFault& fault) const
+{
+    if (fault.kind == PhysicalFault::LimitSwitch)
+        return "\"kind\": limit_switch: a stick-slip positioner has no limit switches (its end stops are "
+               "mechanical; use stall)";
+    if (fault.kind != PhysicalFault::Slip)
+        return std::nullopt;
+    if (fault.slip_steps)
+        return "counts: a stick-slip positioner slips by a fraction of each step, not by counts (fraction)";
+    // A positioner that lost every step would not move at all: that is the stall fault.
+    if (!fault.slip_fraction)
+        fault.slip_fraction = 0.5;
+    if (*fault.slip_fraction >= 1)
+        return "fraction: a number from 0 up to (not including) 1 is required";
+    return std::nullopt;
+}
+
+void StickSlipPositioner::apply_faults()
+{
+    set_slip(faults().slip_fraction);
+    set_blocked(faults().stalled);
+}
+
 void StickSlipPositioner::set_travel(double min_nm, double max_nm)
 {
     config_.travel_min_nm = min_nm;

@@ -40,6 +40,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace rigsim::models {
@@ -162,6 +163,9 @@ public:
     void on_event(Ticks now) override;
 
     BodyKind kind() const override { return config_.kind; }
+    /// No limit switches (the end stops are mechanical); a slip is a fraction of each step
+    /// (below 1; half if none is given), never a count of steps.
+    std::optional<std::string> refuses(BodyFault& fault) const override;
     /// A motion under way (the drift at rest is no settling: it has no end).
     bool settling() const override { return motion_ != Motion::Rest; }
 
@@ -172,6 +176,8 @@ protected:
     void si_place(double position) override;
     bool si_stoppable() const override { return true; }
     void si_set_obstacles(std::optional<double> min, std::optional<double> max) override;
+    /// A stall blocks it, a slip shortens its steps; a failed sensor is the device's to read.
+    void apply_faults() override;
 
 private:
     /// m (rad) per nm (µ°).

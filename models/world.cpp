@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace rigsim::models {
 
@@ -65,6 +67,64 @@ void World::watch(Body& watched, Body& watcher)
         throw std::invalid_argument("a body watches another body of its world");
     if (std::find(watched.watchers_.begin(), watched.watchers_.end(), &watcher) == watched.watchers_.end())
         watched.watchers_.push_back(&watcher);
+}
+
+void World::add_fault(std::uint64_t id, std::string_view key, BodyFault fault)
+{
+    Body* body = find(key);
+    if (!body)
+        throw std::invalid_argument("the world has no body \"" + std::string(key) + "\"");
+    if (faults_.count(id))
+        throw std::invalid_argument("fault " + std::to_string(id) + " is active already");
+    if (const auto why = body->refuses(fault))
+        throw std::invalid_argument(*why);
+    faults_.emplace(id, std::make_pair(body, fault));
+    combine_faults(*body);
+}
+
+bool World::remove_fault(std::uint64_t id)
+{
+    const auto it = faults_.find(id);
+    if (it == faults_.end())
+        return false;
+    Body& body = *it->second.first;
+    faults_.erase(it);
+    combine_faults(body);
+    return true;
+}
+
+Body* World::fault_body(std::uint64_t id) const
+{
+    const auto it = faults_.find(id);
+    return it == faults_.end() ? nullptr : it->second.first;
+}
+
+void World::combine_faults(Body& body)
+{
+    PhysicalFaults all;
+    for (const auto& [id, entry] : faults_) {   // oldest first: the newest switch wins
+        if (entry.first != &body)
+            continue;
+        const BodyFault& f = entry.second;
+        switch (f.kind) {
+        case PhysicalFault::Stall:
+            all.stalled = true;
+            break;
+        case PhysicalFault::Slip:
+            all.slip_steps += f.slip_steps.value_or(0);
+            // Each takes its part of what the others left (one slip: exactly its fraction).
+            all.slip_fraction += f.slip_fraction.value_or(0) * (1 - all.slip_fraction);
+            break;
+        case PhysicalFault::LimitSwitch:
+            all.switch_pressed = f.switch_side;
+            break;
+        case PhysicalFault::SensorFailure:
+            all.sensor_failed = true;
+            break;
+        }
+    }
+    body.faults_ = all;
+    body.apply_faults();
 }
 
 void World::prune() const

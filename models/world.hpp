@@ -62,6 +62,16 @@ public:
     /// this world other than the watcher; std::invalid_argument otherwise).
     void watch(Body& watched, Body& watcher);
 
+    /// Starts physical fault `id` on the body under `key` (the control API's stall, slip,
+    /// limit_switch, sensor_failure, the same for every family): the body's faults() become the
+    /// combination of every fault on it, and it applies them at once. std::invalid_argument with
+    /// the reason for a missing body, a body that refuses the fault (Body::refuses) or a taken id.
+    void add_fault(std::uint64_t id, std::string_view key, BodyFault fault);
+    /// Ends fault `id` (its body's faults() are combined again); false if no such fault.
+    bool remove_fault(std::uint64_t id);
+    /// The body fault `id` acts on, or nullptr.
+    Body* fault_body(std::uint64_t id) const;
+
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
 
@@ -74,12 +84,15 @@ private:
         bool operator>(const Due& o) const { return at != o.at ? at > o.at : phase > o.phase; }
     };
     void insert(const std::string& key, std::unique_ptr<Body> body);
+    /// Recombines the faults on `body` and has it apply them.
+    void combine_faults(Body& body);
     /// Drops void wake-ups from the top of the queue.
     void prune() const;
 
     Clock& clock_;
     std::map<std::string, std::unique_ptr<Body>, std::less<>> bodies_;
     mutable std::priority_queue<Due, std::vector<Due>, std::greater<>> due_;
+    std::map<std::uint64_t, std::pair<Body*, BodyFault>> faults_;   ///< by id: oldest first
 };
 
 } // namespace rigsim::models

@@ -231,8 +231,7 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
         ch.set_homed(it->get<bool>());
     if (const auto it = body.find("limit_switch"); it != body.end()) {
         const auto side = it->get<std::string>();
-        patched_switch_[index] = side == "forward" ? 1 : side == "reverse" ? -1 : 0;
-        apply_faults(index);
+        ch.axis().set_switch_held(side == "forward" ? 1 : side == "reverse" ? -1 : 0);
     }
     if (const auto it = body.find("enabled"); it != body.end())
         ch.set_enabled(it->get<bool>());
@@ -240,75 +239,39 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
     return std::nullopt;
 }
 
-void AptDevice::apply_faults(std::size_t bay)
+Refused AptDevice::fault_body(const DeviceFault& f, std::string& out) const
 {
-    bool stalled = false;
-    bool sensor = false;
-    double counts = 0;
-    double fraction = 0;
-    int side = patched_switch_[bay];
-    for (const auto& [id, f] : faults_) {
-        if (f.bay != bay)
-            continue;
-        stalled = stalled || f.kind == FaultKind::Stall;
-        sensor = sensor || f.kind == FaultKind::SensorFailure;
-        if (f.kind == FaultKind::Slip) {
-            counts += f.counts;
-            fraction += f.fraction;
-        }
-        if (f.kind == FaultKind::LimitSwitch)
-            side = f.side;   // the latest fault's switch
-    }
-    MotorChannel& ch = *channels_[bay];
-    ch.set_stalled(stalled);
-    ch.set_encoder_failed(sensor);
-    ch.set_slip(counts, fraction);
-    ch.set_switch_pressed(side);
-}
-
-Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
-{
-    const std::string kind(fault_name(f.kind));
-    if (model_.kind != UnitKind::Motor)   // every device fault kind acts on a motor and its stage
-        return bad("\"kind\": " + kind + " is a motor fault and the " + config_.model + " (a "
-                   + unit_name(model_.kind) + " unit) has no motor; its link faults (unplugged, drop_bytes, "
+    if (model_.kind != UnitKind::Motor)   // every physical fault kind acts on a motor and its stage
+        return bad("\"kind\": " + std::string(fault_name(f.kind)) + " is a motor fault and the " + config_.model
+                   + " (a " + unit_name(model_.kind) + " unit) has no motor; its link faults (unplugged, drop_bytes, "
                    "corrupt_bytes, latency) and power_cycle act on it");
     const std::size_t bay = f.channel.value_or(0);
     if (bay >= channels_.size())
         return Refusal{404, "no channel " + std::to_string(bay) + " on " + config_.name};
-    ActiveFault fault{f.kind, bay};
-    if (f.kind == FaultKind::Slip) {
-        if (model_.motor != MotorKind::Stepper)
-            return bad("slip: the " + config_.model + " closes its position loop on the encoder, so it loses no "
-                       "steps (a stepper controller does; try stall or sensor_failure)");
-        if (!f.slip_counts && !f.slip_fraction)
-            return bad("slip needs \"counts\" (microsteps lost per move) or \"fraction\" (of each move, 0..1)");
-        fault.counts = f.slip_counts.value_or(0);
-        fault.fraction = f.slip_fraction.value_or(0);
-    }
-    fault.side = f.limit_side;
-    if (f.kind == FaultKind::ReferenceLost) {
-        channels_[bay]->set_homed(false);   // one-off: homing finds it again
-        *kept = false;
-    } else {
-        faults_[f.id] = std::move(fault);
-        apply_faults(bay);
-        *kept = true;
-    }
-    log_->info("control: fault {} ({}) on channel {}", f.id, kind, bay);
-    flush();
+    out = channels_[bay]->axis().key();
     return std::nullopt;
 }
 
-void AptDevice::remove_fault(std::uint64_t id)
+void AptDevice::faults_changed()
 {
-    const auto it = faults_.find(id);
-    if (it == faults_.end())
-        return;
-    const std::size_t bay = it->second.bay;
-    faults_.erase(it);
-    apply_faults(bay);
+    for (auto& ch : channels_)
+        ch->sync_faults();
+    flush();   // events of the change (status)
+}
+
+Refused AptDevice::add_fault(const DeviceFault& f, bool* kept)
+{
+    *kept = false;
+    std::string key;
+    if (auto refused = fault_body(f, key))   // the same checks: reference_lost is a motor's too
+        return refused;
+    if (physical(f.kind))   // the control API starts these on the body (fault_body)
+        return bad("\"kind\": " + std::string(fault_name(f.kind)) + " acts on the stage, not on the controller");
+    const std::size_t bay = f.channel.value_or(0);
+    channels_[bay]->set_homed(false);   // one-off: homing finds it again
+    log_->info("control: fault {} (reference_lost) on channel {}", f.id, bay);
     flush();
+    return std::nullopt;
 }
 
 void AptDevice::power_cycle(const PowerCycle& how)
@@ -320,8 +283,8 @@ void AptDevice::power_cycle(const PowerCycle& how)
     }
     for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
         if (how.restore_positions)
-            patched_switch_[bay] = 0;
-        apply_faults(bay);
+            channels_[bay]->axis().set_switch_held(0);
+        channels_[bay]->sync_faults();   // a stall, a slip or a dead encoder outlasts the power cycle
         was_moving_[bay] = false;
         stalled_[bay] = false;
     }

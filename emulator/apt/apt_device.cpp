@@ -124,7 +124,6 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
         modules_.push_back(make_module(bay));
         connect_events(bay);
     }
-    patched_switch_.assign(channels_.size(), 0);
     published_status_.assign(channels_.size(), 0);
     was_moving_.assign(channels_.size(), false);
     stalled_.assign(channels_.size(), false);

@@ -101,15 +101,18 @@ public:
     ControlSurface* control() override { return this; }
     void describe(nlohmann::json& out) const override;
     Refused patch_channel(std::size_t index, const nlohmann::json& body) override;
+    /// reference_lost: the bay's motor is no longer homed.
     Refused add_fault(const DeviceFault& f, bool* kept) override;
-    void remove_fault(std::uint64_t id) override;
+    /// A motor bay's stage; the other kinds of unit have no motor for a physical fault to act on.
+    Refused fault_body(const DeviceFault& f, std::string& out) const override;
+    /// Each motor bay reads its stage's faults (a failed encoder freezes its counters).
+    void faults_changed() override;
     void power_cycle(const PowerCycle& how) override;
     /// A module busy (Module::busy(): a piezo settling or running its LUT, a solenoid cycling, a
     /// gauge zeroing) or a motor's end-of-move not yet sent; status updates do not count.
     bool busy() const override;
     Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const override;
-    /// A motor bay's stage as a joint (carriage position in mm or degrees), a piezo bay's
-    /// actuator (extension in mm); solenoid outputs and gauges move nothing (400).
+    /// A motor bay's stage, a piezo bay's actuator; solenoid outputs and gauges move nothing (400).
     Refused axis_body_key(std::size_t index, std::string& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Record one frame crossing the wire of connection `peer` (notes: the client's mistakes).
@@ -167,8 +170,6 @@ private:
     nlohmann::json channel_json(std::size_t bay) const;
     /// Bay `bay`'s module publishes its events (lut_started, lut_ended, solenoid) on the stream.
     void connect_events(std::size_t bay);
-    /// What the bay's faults and PATCHes add up to, handed to its channel.
-    void apply_faults(std::size_t bay);
     /// Events "move_started", "move_ended" and "status" for the control API's listeners.
     void publish_events(std::size_t bay, const std::vector<MotorEvent>& events);
     /// The notes a status update or end-of-move message earns (the unacknowledged count).
@@ -200,18 +201,8 @@ private:
     /// (bay, SET id) -> the last accepted, as its module stores it (Module::saved_data).
     std::map<std::pair<std::size_t, std::uint16_t>, std::string> last_set_;
 
-    /// A fault of the control API acting on a bay.
-    struct ActiveFault {
-        FaultKind kind = FaultKind::Stall;
-        std::size_t bay = 0;
-        int side = 0;            ///< limit_switch: +1 forward, -1 reverse
-        double counts = 0;       ///< slip
-        double fraction = 0;     ///< slip
-    };
     WireLog wire_log_;
     std::vector<std::string> notes_;                 ///< on the frame being handled
-    std::map<std::uint64_t, ActiveFault> faults_;
-    std::vector<int> patched_switch_;                ///< per bay: PATCH limit_switch (+1, -1, 0)
     std::vector<std::uint32_t> published_status_;    ///< per bay: the status bits last published
     std::vector<bool> was_moving_;                   ///< per bay: moving after the last flush
     std::vector<bool> stalled_;                      ///< per bay: a Fault event waits for its Stopped

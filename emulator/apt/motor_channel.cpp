@@ -126,41 +126,26 @@ void MotorChannel::place(double counts)
     frozen_encoder_ = encoder();
 }
 
-void MotorChannel::set_switch_pressed(int side)
-{
-    axis_.set_switch_pressed(side);
-}
-
 int MotorChannel::switch_pressed() const
 {
     return axis_.switch_pressed();
 }
 
-void MotorChannel::sync_jam()
+bool MotorChannel::stalled() const
 {
-    // A failed encoder leaves a servo without its position loop: it cannot move.
-    axis_.set_jammed(stalled_ || (encoder_failed_ && controller_.motor != MotorKind::Stepper));
+    return axis_.faults().stalled;
 }
 
-void MotorChannel::set_stalled(bool stalled)
+void MotorChannel::sync_faults()
 {
-    stalled_ = stalled;
-    sync_jam();
-}
-
-void MotorChannel::set_slip(double counts, double fraction)
-{
-    axis_.set_slip(counts, fraction);
-}
-
-void MotorChannel::set_encoder_failed(bool failed)
-{
+    const bool failed = axis_.faults().sensor_failed;
     if (failed && !encoder_failed_) {
         frozen_position_ = position();
         frozen_encoder_ = encoder();
     }
     encoder_failed_ = failed;
-    sync_jam();
+    // A failed encoder leaves a servo without its position loop: it cannot move.
+    axis_.set_loop_open(encoder_failed_ && controller_.motor != MotorKind::Stepper);
 }
 
 MotorChannel::~MotorChannel()

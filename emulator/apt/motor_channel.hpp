@@ -130,6 +130,7 @@ public:
 
     /// The physics of this channel (World key "<device>/<bay>").
     const models::Axis& axis() const { return axis_; }
+    models::Axis& axis() { return axis_; }
 
     // ---- Control API (docs/control-api/apt.md): set-up and faults ----
     bool homed() const { return homed_; }
@@ -138,19 +139,17 @@ public:
     /// The carriage to `counts` of the axis (from a linear stage's reverse end, from 0° of a
     /// rotation stage or goniometer), at rest; the counters follow.
     void place(double counts);
-    /// A limit switch reads pressed (+1 forward, -1 reverse, 0 none): its status bit is set, a
-    /// move toward it stops at once as the switch would stop it.
-    void set_switch_pressed(int side);
+    /// A limit switch reads pressed (+1 forward, -1 reverse, 0 none: the axis's, from a
+    /// limit_switch fault or a test's set-up): its status bit is set, a move toward it stops at
+    /// once as the switch would stop it.
     int switch_pressed() const;
-    /// The motor stalls (DC servo, brushless: a move ends with the current limit or motion
-    /// error fault; stepper: the microsteps are lost, the counters run on).
-    void set_stalled(bool stalled);
-    bool stalled() const { return stalled_; }
-    /// A stepper loses microsteps in every move (models::Axis::set_slip).
-    void set_slip(double counts, double fraction);
-    /// The encoder fails: its counter stops; a servo's position loop cannot hold (motion error,
-    /// no move), a stepper (open loop) still moves.
-    void set_encoder_failed(bool failed);
+    /// The stage's stall fault (models::Axis::faults()): a DC servo or brushless motor ends a move
+    /// with the current limit or motion error fault; a stepper loses its microsteps.
+    bool stalled() const;
+    /// Read the axis's faults: when its encoder failed (sensor_failure) the counter stops and a
+    /// servo's position loop cannot hold (motion error, no move); a stepper (open loop) still
+    /// moves.
+    void sync_faults();
     bool encoder_failed() const { return encoder_failed_; }
     /// Power-up state: parameters, counters (0 where the carriage stands), not homed, enabled.
     void power_up();
@@ -184,7 +183,6 @@ private:
     void move_to(double target_physical);
     /// The power-up parameters of the stage (velocity, jog, home, limit switches).
     void set_power_up_params();
-    void sync_jam();
 
     const ControllerModel& controller_;
     const StageModel stage_;
@@ -198,8 +196,7 @@ private:
     bool homing_forward_ = false;
     VelocityParams design_velocity_;
     std::uint32_t fault_bits_ = 0;   ///< kCurrentLimit / kMotionError until the next move
-    bool stalled_ = false;           ///< control API stall fault
-    bool encoder_failed_ = false;    ///< control API sensor_failure fault
+    bool encoder_failed_ = false;    ///< the axis's sensor_failure fault, as the counters last saw it
     std::int32_t frozen_position_ = 0;   ///< counters read while the encoder has failed
     std::int32_t frozen_encoder_ = 0;
     std::vector<MotorEvent> events_;

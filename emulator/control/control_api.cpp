@@ -97,7 +97,8 @@ HttpReply not_allowed(std::string_view method, std::string_view path, const char
 ControlApi::ControlApi(Rig& rig)
     : ControlApi(rig.clock(), rig.ticker(), [&rig] { return rig.busy(); }, rig.controlled(), &rig.events(),
                  FrameSource{rig.kinematics(), joint_axes(rig.joint_bindings(), rig.controlled()),
-                             rig.collision_pairs()})
+                             rig.collision_pairs()},
+                 &rig.world())
 {
 }
 
@@ -107,9 +108,9 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
 }
 
 ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
-                       EventBus* events, FrameSource frames)
+                       EventBus* events, FrameSource frames, models::World* world)
     : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices)), events_(events),
-      faults_(clock_, devices_), frames_(std::move(frames))
+      faults_(clock_, devices_, world), frames_(std::move(frames))
 {
     if (events_ && !frames_.empty()) {
         events_->set_follow_up([this](const Event& e) { follow_up(e); });

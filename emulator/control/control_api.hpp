@@ -31,10 +31,10 @@ public:
     explicit ControlApi(Rig& rig);
     /// The routes over a clock, its ticker, "something moves" and a device list (tests).
     ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<DeviceEndpoints> devices);
-    /// The routes over a clock, its ticker, "something moves", devices, their event stream and
-    /// the rig's frames (tests).
+    /// The routes over a clock, its ticker, "something moves", devices, their event stream, the
+    /// rig's frames and the world its physical faults act in (tests).
     ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
-               EventBus* events, FrameSource frames = {});
+               EventBus* events, FrameSource frames = {}, models::World* world = nullptr);
     ~ControlApi();
     ControlApi(const ControlApi&) = delete;
     ControlApi& operator=(const ControlApi&) = delete;

@@ -4,6 +4,7 @@
 #include "emulator/core/control_surface.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rigsim::control {
 
@@ -40,7 +41,63 @@ std::uint32_t seed_of(const json& params)
     return params.contains("seed") ? static_cast<std::uint32_t>(require_int(params, "seed", 0, 0xFFFFFFFF)) : 1;
 }
 
+models::PhysicalFault physical_fault(FaultKind kind)
+{
+    switch (kind) {
+    case FaultKind::Stall:
+        return models::PhysicalFault::Stall;
+    case FaultKind::Slip:
+        return models::PhysicalFault::Slip;
+    case FaultKind::LimitSwitch:
+        return models::PhysicalFault::LimitSwitch;
+    case FaultKind::SensorFailure:
+        return models::PhysicalFault::SensorFailure;
+    case FaultKind::ReferenceLost:
+        break;
+    }
+    throw std::logic_error("reference_lost is the device's fault, not a body's");
+}
+
 } // namespace
+
+Refused start_device_fault(ControlSurface& surface, models::World* world, const DeviceFault& f, bool* kept,
+                           bool* on_body)
+{
+    *on_body = false;
+    if (!physical(f.kind))
+        return surface.add_fault(f, kept);
+    // A physical fault acts on the body the device names, through the world: the same for every
+    // family; the body says whether it can suffer it.
+    std::string key;
+    if (auto refused = surface.fault_body(f, key))
+        return refused;
+    if (!world)
+        return Refusal{400, "\"kind\": " + std::string(fault_name(f.kind)) + ": this rig has no world for it to act in"};
+    models::BodyFault body_fault;
+    body_fault.kind = physical_fault(f.kind);
+    body_fault.slip_steps = f.slip_counts;
+    body_fault.slip_fraction = f.slip_fraction;
+    body_fault.switch_side = f.limit_side;
+    try {
+        world->add_fault(f.id, key, body_fault);
+    } catch (const std::invalid_argument& e) {
+        return Refusal{400, e.what()};
+    }
+    surface.faults_changed();
+    *on_body = true;
+    *kept = true;
+    return std::nullopt;
+}
+
+void end_device_fault(ControlSurface& surface, models::World* world, std::uint64_t id, bool on_body)
+{
+    if (!on_body) {
+        surface.remove_fault(id);
+        return;
+    }
+    if (world && world->remove_fault(id))
+        surface.faults_changed();
+}
 
 const std::vector<std::string>& FaultBook::device_kinds()
 {
@@ -59,7 +116,8 @@ const std::vector<std::string>& FaultBook::link_kinds()
     return kinds;
 }
 
-FaultBook::FaultBook(const Clock& clock, std::vector<ControlledDevice>& devices) : clock_(clock), devices_(devices)
+FaultBook::FaultBook(const Clock& clock, std::vector<ControlledDevice>& devices, models::World* world)
+    : clock_(clock), devices_(devices), world_(world)
 {
 }
 
@@ -109,6 +167,7 @@ json FaultBook::add(const json& body)
                                   + " active faults already: delete some first"};
     const std::uint64_t id = next_id_;
     bool kept = true;
+    Where where = link_kind ? Where::Link : Where::Device;
     if (device_kind) {
         if (!dev.surface)
             throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no device faults"};
@@ -117,8 +176,10 @@ json FaultBook::add(const json& body)
             throw BadRequest{refused->status, refused->message};
         fault.id = id;
         fault.channel = channel;
-        if (auto refused = dev.surface->add_fault(fault, &kept))
+        bool on_body = false;
+        if (auto refused = start_device_fault(*dev.surface, world_, fault, &kept, &on_body))
             throw BadRequest{refused->status, refused->message};
+        where = on_body ? Where::Body : Where::Device;
     } else if (link_kind) {
         if (!dev.link)
             throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no wire faults"};
@@ -139,7 +200,7 @@ json FaultBook::add(const json& body)
                 {"active", kept},
                 {"since_ms", clock_.seconds(clock_.now()) * 1000.0}};
     if (kept)
-        active_.emplace(id, Record{index, link_kind, record});
+        active_.emplace(id, Record{index, where, record});
     return record;
 }
 
@@ -191,10 +252,16 @@ bool FaultBook::remove(std::uint64_t id)
     if (it == active_.end())
         return false;
     auto& dev = devices_[it->second.device];
-    if (it->second.link)
+    switch (it->second.where) {
+    case Where::Link:
         dev.link->remove(id);
-    else if (dev.surface)
-        dev.surface->remove_fault(id);
+        break;
+    case Where::Device:
+    case Where::Body:
+        if (dev.surface)
+            end_device_fault(*dev.surface, world_, id, it->second.where == Where::Body);
+        break;
+    }
     active_.erase(it);
     return true;
 }

@@ -27,8 +27,17 @@ struct Refusal {
 using Refused = std::optional<Refusal>;
 
 /// The faults that act inside a device, on the stage a channel drives (docs/control-api.md
-/// "Faults"). Each family says which of them its units have.
+/// "Faults"). Stall, slip, limit_switch and sensor_failure are physical: they act on the world
+/// body the channel moves, the same for every family (the control API starts them through
+/// models::World::add_fault on the body ControlSurface::fault_body() names, and the body says
+/// which it can suffer). reference_lost is the device's: its protocol state forgets the reference.
 enum class FaultKind { Stall, Slip, SensorFailure, ReferenceLost, LimitSwitch };
+
+/// Whether a fault of `kind` acts on a body of the world rather than on the device.
+constexpr bool physical(FaultKind kind)
+{
+    return kind != FaultKind::ReferenceLost;
+}
 
 /// Every FaultKind, in the order the API lists them.
 inline constexpr FaultKind kFaultKinds[] = {FaultKind::Stall, FaultKind::Slip, FaultKind::SensorFailure,
@@ -89,11 +98,22 @@ public:
         (void)index, (void)out;
         return Refusal{400, "this device has no axis to mount"};
     }
-    /// Start fault `f` (validating its params); a fault whose effect is one-off (reference_lost)
-    /// acts at once and is not kept (*kept = false).
+    /// The world body a physical fault `f` (physical(f.kind)) acts on: its key in `out`, after
+    /// the checks only the device can make. By default the body channel `f.channel` (0 if absent)
+    /// moves (axis_body_key); a family adds its own checks (an MCS channel needs a sensor to fail).
+    virtual Refused fault_body(const DeviceFault& f, std::string& out) const
+    {
+        return axis_body_key(f.channel.value_or(0), out);
+    }
+    /// The physical faults on one of the device's bodies changed: the device reacts as the unit
+    /// would (a move the fault ended is reported, a failed sensor freezes the readings).
+    virtual void faults_changed() {}
+    /// Start the device's own fault `f` (not physical(f.kind): reference_lost), validating its
+    /// params; a fault whose effect is one-off acts at once and is not kept (*kept = false).
     virtual Refused add_fault(const DeviceFault& f, bool* kept) = 0;
-    /// End fault `id`: its lasting effect goes away as the hardware's would once fixed.
-    virtual void remove_fault(std::uint64_t id) = 0;
+    /// End the device's own fault `id`: its lasting effect goes away as the hardware's would once
+    /// fixed (the families keep none today: reference_lost is one-off).
+    virtual void remove_fault(std::uint64_t id) { (void)id; }
     /// Power down and up: protocol state back to power-up.
     virtual void power_cycle(const PowerCycle& how) = 0;
     /// Something inside the device changes by itself that a test waits for: a calibration, a

@@ -212,71 +212,46 @@ Refused McsDevice::patch_channel(std::size_t index, const nlohmann::json& body)
     return std::nullopt;
 }
 
-void McsDevice::apply_faults(std::size_t index)
+void McsDevice::sync_sensor(std::size_t index)
 {
-    auto* ch = controller_.channel(static_cast<std::int32_t>(index));
-    if (!ch)
-        return;
-    bool stalled = false;
-    bool failed = false;
-    double slip = 0;
-    for (const auto& f : faults_) {
-        if (f.channel != index)
-            continue;
-        stalled = stalled || f.kind == FaultKind::Stall;
-        failed = failed || f.kind == FaultKind::SensorFailure;
-        if (f.kind == FaultKind::Slip)
-            slip = std::max(slip, f.fraction);
-    }
-    ch->body().set_slip(slip);
-    ch->body().set_blocked(stalled);
-    ch->set_sensor_failed(failed);
+    if (auto* ch = controller_.channel(static_cast<std::int32_t>(index)))
+        ch->set_sensor_failed(ch->body().faults().sensor_failed);
+}
+
+Refused McsDevice::fault_body(const DeviceFault& f, std::string& out) const
+{
+    const std::size_t index = f.channel.value_or(0);
+    if (auto refused = axis_body_key(index, out))
+        return refused;
+    if (f.kind == FaultKind::SensorFailure && !controller_.channel(static_cast<std::int32_t>(index))->sensor())
+        return bad("kind: channel " + std::to_string(index) + " has no sensor");
+    return std::nullopt;
+}
+
+void McsDevice::faults_changed()
+{
+    for (std::size_t i = 0; i < controller_.channel_count(); ++i)
+        sync_sensor(i);
+    tick(clock_.now());   // a movement the fault ended is over now: its 142 goes out (async mode)
 }
 
 Refused McsDevice::add_fault(const DeviceFault& f, bool* kept)
 {
     if (kept)
         *kept = false;
+    if (physical(f.kind))   // the control API starts these on the body (fault_body)
+        return bad("kind: " + std::string(fault_name(f.kind)) + " acts on the stage, not on the controller");
     const std::size_t index = f.channel.value_or(0);
-    if (f.kind == FaultKind::LimitSwitch)
-        return bad("kind: limit_switch: an MCS positioner has no limit switches (its end stops are mechanical; "
-                   "use stall)");
-    if (f.kind == FaultKind::Slip && f.slip_counts)
-        return bad("counts: an MCS positioner slips by a fraction of each step, not by counts (fraction)");
     if (index >= controller_.channel_count())
         return Refusal{404, "no channel " + std::to_string(index)};
     auto* ch = controller_.channel(static_cast<std::int32_t>(index));
     if (!ch)
         return bad("channel: channel " + std::to_string(index) + " is an end effector");
-    // A positioner that lost every step would not move at all: that is the stall fault.
-    const double fraction = f.slip_fraction.value_or(0.5);
-    if (fraction >= 1)
-        return bad("fraction: a number from 0 up to (not including) 1 is required");
-    if ((f.kind == FaultKind::SensorFailure || f.kind == FaultKind::ReferenceLost) && !ch->sensor())
+    if (!ch->sensor())
         return bad("kind: channel " + std::to_string(index) + " has no sensor");
-    if (f.kind == FaultKind::ReferenceLost) {   // one-off: the position becomes unknown now
-        ch->set_referenced(false);
-        publish_changes();
-        return std::nullopt;
-    }
-    faults_.push_back(ActiveFault{f.id, f.kind, index, fraction});
-    apply_faults(index);
-    tick(clock_.now());   // a movement the fault ended is over now: its 142 goes out (async mode)
-    if (kept)
-        *kept = true;
+    ch->set_referenced(false);   // one-off: the position becomes unknown now
+    publish_changes();
     return std::nullopt;
-}
-
-void McsDevice::remove_fault(std::uint64_t id)
-{
-    for (auto it = faults_.begin(); it != faults_.end(); ++it)
-        if (it->id == id) {
-            const auto index = it->channel;
-            faults_.erase(it);
-            apply_faults(index);
-            tick(clock_.now());
-            return;
-        }
 }
 
 void McsDevice::power_cycle(const PowerCycle& how)
@@ -287,7 +262,7 @@ void McsDevice::power_cycle(const PowerCycle& how)
         controller_.place_at_start();
     controller_.reset();   // R: the stages read 0 where they stand, position unknown
     for (std::size_t i = 0; i < controller_.channel_count(); ++i)
-        apply_faults(i);   // a stall or a dead sensor outlasts the power cycle
+        sync_sensor(i);   // a dead sensor outlasts the power cycle (a stall too: it is the body's)
     publish_changes();
 }
 

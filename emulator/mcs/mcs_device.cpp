@@ -91,7 +91,7 @@ private:
 
 McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shared_ptr<spdlog::logger> log,
                      EventBus* events)
-    : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)),
+    : config_(config), clock_(world.clock()), log_(std::move(log)),
       controller_(config_of(config), world, config.name),
       handler_(controller_), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {

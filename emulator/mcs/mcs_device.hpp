@@ -60,14 +60,18 @@ public:
     // ---- ControlSurface (docs/control-api/mcs.md) ----
     void describe(nlohmann::json& out) const override;
     Refused patch_channel(std::size_t index, const nlohmann::json& body) override;
+    /// reference_lost: the position becomes unknown (a channel with a sensor).
     Refused add_fault(const DeviceFault& f, bool* kept) override;
-    void remove_fault(std::uint64_t id) override;
+    /// The channel's positioner; a sensor_failure needs a sensor on the channel.
+    Refused fault_body(const DeviceFault& f, std::string& out) const override;
+    /// Each channel's sensor as its body's faults leave it; a movement a stall or a dead sensor
+    /// ended is reported now (142 in async mode).
+    void faults_changed() override;
     void power_cycle(const PowerCycle& how) override;
     /// A channel calibrating, waiting out a power-save move delay or holding for a finite time,
     /// or an end effector ramping or zeroing (not the keep-alive deadline).
     bool busy() const override { return controller_.busy(clock_.now()); }
-    /// A positioner as a joint: linear channels in mm, rotary and goniometer channels in
-    /// degrees, read from the physical position; end effectors move nothing (400).
+    /// The positioner's body; end effectors move nothing (400).
     Refused axis_body_key(std::size_t index, std::string& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Send what the controller has to say by itself to every connection.
@@ -80,15 +84,8 @@ public:
     void tick(Ticks now) override;
 
 private:
-    /// A fault acting on a channel (stall, slip, sensor_failure).
-    struct ActiveFault {
-        std::uint64_t id;
-        FaultKind kind;
-        std::size_t channel;
-        double fraction;   ///< slip
-    };
-    /// Channel `index`'s physics and sensor as its remaining faults make them.
-    void apply_faults(std::size_t index);
+    /// Channel `index`'s sensor as its body's faults leave it (sensor_failure).
+    void sync_sensor(std::size_t index);
     void channel_json(std::size_t index, nlohmann::json& out) const;
     /// Appendix 4.1 status code of channel `index` (positioner or end effector).
     int status_code(std::size_t index) const;
@@ -97,7 +94,6 @@ private:
 
     DeviceConfig config_;
     Clock& clock_;
-    models::World& world_;   ///< where the channels' bodies live
     std::shared_ptr<spdlog::logger> log_;
     Controller controller_;
     Handler handler_;
@@ -105,7 +101,6 @@ private:
     EventBus* events_;   ///< the control API's event stream, or nullptr
     WireLog wire_log_;
     std::string line_;   ///< scratch: the inbound command string as it crossed the wire
-    std::vector<ActiveFault> faults_;
     std::vector<int> last_status_;   ///< per channel, for "status" events
     bool status_known_ = false;      ///< last_status_ is current (someone listened last time)
 };

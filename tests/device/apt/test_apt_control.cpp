@@ -2,6 +2,7 @@
 // channel, the faults that act inside the unit, the power cycle, the wire log and the events,
 // checked on the wire (frames in -> frames out) on a stepped clock.
 #include "apt_harness.hpp"
+#include "emulator/control/fault_book.hpp"
 
 #include "emulator/core/event_bus.hpp"
 #include "emulator/core/wire_log.hpp"
@@ -51,7 +52,14 @@ Refused fault(AptHarness& h, std::uint64_t id, const std::string& kind, json par
         return r;
     f.id = id;
     f.channel = ch;
-    return h.device().add_fault(f, kept ? kept : &k);
+    bool on_body = false;
+    return rigsim::control::start_device_fault(h.device(), &h.world(), f, kept ? kept : &k, &on_body);
+}
+
+/// Ends a physical fault `fault` started, as the control API does.
+void unfault(AptHarness& h, std::uint64_t id)
+{
+    rigsim::control::end_device_fault(h.device(), &h.world(), id, true);
 }
 
 std::int32_t position_counter(AptHarness& h)
@@ -222,7 +230,7 @@ TEST_CASE("control: a stall fault ends a DC servo's move with HW_RESPONSE and th
     CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 50 01 00 " + le32(0));   // MOVE_STOPPED where it stood
     CHECK((status_of(out[1]) & status::kCurrentLimit) != 0);
     CHECK(channel(h)["position_si"].get<double>() == Approx(0.025));
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK(h.send(kMove100k) == "");
     h.advance_ms(5000);
     const auto done = frames(h.take());
@@ -268,7 +276,7 @@ TEST_CASE("control: slip makes a stepper fall short by the lost microsteps, a DC
     h.advance_ms(10'000);
     CHECK(frames(h.take()).at(0).substr(0, 35) == "64 04 0E 00 81 50 01 00 " + le32(100'000));
     CHECK(channel(h)["position_si"].get<double>() == Approx(0.025 + (100'000 - 2560) / 25'600'000.0));
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK(!fault(h, 2, "slip", {{"fraction", 0.5}}));
     CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(200'000)) == "");
     h.advance_ms(10'000);
@@ -302,7 +310,7 @@ TEST_CASE("control: sensor_failure: a DC servo's counters freeze and it cannot m
     CHECK((status_of(out[1]) & status::kMotionError) != 0);
     CHECK((status_of(out[1]) & status::kCurrentLimit) == 0);
     CHECK(channel(h)["encoder_failed"] == true);
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK((status_of(h.send("90 04 01 00 50 01")) & status::kMotionError) != 0);   // until the next move
     CHECK(h.send(kMove100k) == "");
     h.advance_ms(5000);
@@ -340,7 +348,7 @@ TEST_CASE("control: a limit_switch fault trips a switch, params and channel are 
     CHECK((status_of(h.send("90 04 01 00 50 01")) & status::kReverseHardLimit) != 0);
     CHECK(frames(h.send("53 04 06 00 D0 01 01 00 " + le32(-50'000))).at(0).substr(0, 35)
           == "64 04 0E 00 81 50 01 00 " + le32(0));
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK((status_of(h.send("90 04 01 00 50 01")) & status::kReverseHardLimit) == 0);
 
     auto r = fault(h, 2, "limit_switch", {{"side", "up"}});

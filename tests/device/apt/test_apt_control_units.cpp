@@ -3,6 +3,7 @@
 // bay (the LUT's input trigger, manual p. 108) and noise_um of a gauge, the output trace, the
 // lut_started / lut_ended / solenoid events, and motor faults refused on units without a motor.
 #include "apt_harness.hpp"
+#include "emulator/control/fault_book.hpp"
 
 #include "emulator/core/event_bus.hpp"
 #include "models/piezo_actuator.hpp"
@@ -335,7 +336,8 @@ TEST_CASE("control units: motor faults on a unit without a motor are 400 naming 
                                                      f));
             f.id = 1;
             bool kept = false;
-            const auto r = h.device().add_fault(f, &kept);
+            bool on_body = false;
+            const auto r = rigsim::control::start_device_fault(h.device(), &h.world(), f, &kept, &on_body);
             REQUIRE(r);
             CHECK(r->status == 400);
             CHECK(r->message.find("\"kind\"") == 0);

@@ -1,6 +1,7 @@
 // The control API's side of an MCS device (docs/control-api/mcs.md): describe(), PATCH,
 // faults and their effect on the wire, power cycle, wire log and its notes, events.
 #include "mcs_harness.hpp"
+#include "emulator/control/fault_book.hpp"
 
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/event_bus.hpp"
@@ -39,8 +40,14 @@ rigsim::Refused fault(McsHarness& h, std::uint64_t id, const std::string& kind, 
     f.id = id;
     f.channel = channel;
     bool k = false;
-    auto r = h.device().add_fault(f, kept ? kept : &k);
-    return r;
+    bool on_body = false;
+    return rigsim::control::start_device_fault(h.device(), &h.world(), f, kept ? kept : &k, &on_body);
+}
+
+/// Ends a physical fault `fault` started, as the control API does.
+void unfault(McsHarness& h, std::uint64_t id)
+{
+    rigsim::control::end_device_fault(h.device(), &h.world(), id, true);
 }
 
 /// The notes of every logged entry whose bytes are `bytes`, joined.
@@ -186,7 +193,7 @@ TEST_CASE("MCS stall: closed-loop moves end at once with 142, steps make no way"
     CHECK(h.send(":MST0,100,4095,1000\n") == "");
     h.advance_ms(200);
     CHECK(h.send(":GP0\n") == ":P0,0\n");
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK(h.send(":MPA0,1000000,0\n") == "");
     h.advance_ms(200);
     CHECK(h.send(":GS0\n:GP0\n") == ":S0,0\n:P0,1000000\n");
@@ -219,7 +226,7 @@ TEST_CASE("MCS slip: steps shorter, closed-loop moves slower", "[device][mcs][co
     CHECK(h.send(":GS0\n") == ":S0,4\n");
     h.advance_ms(60);
     CHECK(h.send(":GS0\n:GP0\n") == ":S0,0\n:P0,1000000\n");
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK(h.send(":MPA0,2000000,0\n") == ":E0,0\n");
     h.advance_ms(110);
     CHECK(h.send(":GS0\n") == ":S0,0\n");
@@ -265,7 +272,7 @@ TEST_CASE("MCS sensor_failure: 129 for closed loop, position lost, steps still r
     CHECK(h.send(":MST0,5,4095,1000\n") == ":E0,0\n");
     h.advance_ms(10);
     CHECK(h.send(":GS0\n") == ":S0,0\n");
-    h.device().remove_fault(7);
+    unfault(h, 7);
     CHECK(h.send(":GP0\n:GPPK0\n") == ":P0,0\n:PPK0,0\n");   // reading restarts at 0, position unknown
     CHECK(describe(h)["channels"][0]["position_si"].get<double>() > 0.0009);
 }
@@ -420,7 +427,7 @@ TEST_CASE("MCS stall: a reference search meets end stops both ways at once, 144"
     CHECK_FALSE(fault(h, 1, "stall"));
     CHECK(h.send(":FRM0,0,0,0\n") == ":E0,144\n");
     CHECK(h.send(":GS0\n:GPPK0\n") == ":S0,0\n:PPK0,0\n");
-    h.device().remove_fault(1);
+    unfault(h, 1);
     CHECK(h.send(":FRM0,1,0,0\n") == "");   // toward the mark at physical 0: 2 s at 1 mm/s
     h.advance_ms(500);
     CHECK_FALSE(fault(h, 2, "stall"));   // stalled on the way

@@ -4,6 +4,8 @@
 #include "emulator/control/control_api.hpp"
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/wire_log.hpp"
+#include "models/stick_slip.hpp"
+#include "models/world.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -45,27 +47,34 @@ public:
         }
         return std::nullopt;
     }
+    /// The device's own faults (reference_lost).
     Refused add_fault(const DeviceFault& f, bool* kept) override
     {
-        if (f.kind == FaultKind::LimitSwitch)
-            return Refusal{400, "\"kind\": no limit switches here"};
         added.push_back(f.id);
         last_kind = f.kind;
         last_channel = f.channel;
-        last_fraction = f.slip_fraction;
-        *kept = f.kind != FaultKind::ReferenceLost;
+        *kept = false;
         return std::nullopt;
     }
     void remove_fault(std::uint64_t id) override { removed.push_back(id); }
+    /// Channel 0 moves the world body "dev/0".
+    Refused fault_body(const DeviceFault& f, std::string& out) const override
+    {
+        if (f.channel.value_or(0) != 0)
+            return Refusal{404, "no channel " + std::to_string(*f.channel)};
+        out = "dev/0";
+        return std::nullopt;
+    }
+    void faults_changed() override { ++changes; }
     void power_cycle(const PowerCycle& how) override { cycles.push_back(how); }
     WireLog& wire_log() override { return log_; }
 
     double position = 0;
     bool moving = false;
     std::vector<std::uint64_t> added, removed;
+    int changes = 0;   ///< faults_changed() calls
     std::optional<FaultKind> last_kind;
     std::optional<std::size_t> last_channel;
-    std::optional<double> last_fraction;
     std::vector<PowerCycle> cycles;
 
 private:
@@ -99,6 +108,8 @@ struct Fixture {
     boost::asio::io_context io;
     Clock clock{1000};
     Ticker ticker{io, clock, 1.0, Ticker::Start::Paused};
+    models::World world{clock};
+    models::StickSlipPositioner& stage = world.emplace<models::StickSlipPositioner>("dev/0", clock, models::StickSlipConfig{});
     EventBus bus;
     FakeSurface surface{clock, &bus};
     NullDevice null_device;
@@ -106,7 +117,7 @@ struct Fixture {
     ControlApi api{clock, ticker, [] { return false; },
                    std::vector<ControlledDevice>{ControlledDevice{
                        DeviceEndpoints{"dev", "mcs", "MCS-3D", "127.0.0.1:1", "/tmp/x/dev", "1.2.44"}, &surface, &link}},
-                   &bus};
+                   &bus, {}, &world};
 };
 
 } // namespace
@@ -149,7 +160,8 @@ TEST_CASE("PATCH a channel: the device's answer, its refusals as their status, t
     CHECK(got["moving"] == true);
 }
 
-TEST_CASE("POST /api/faults: a device fault goes to the device with its params, is listed and removed", "[control]")
+TEST_CASE("POST /api/faults: a physical fault goes to the body the device names, with its params, is listed and removed",
+          "[control]")
 {
     Fixture f;
     const auto [status, record] = f.call("POST", "/api/faults", R"({"device":"dev","channel":0,"kind":"slip","fraction":0.25})");
@@ -157,13 +169,16 @@ TEST_CASE("POST /api/faults: a device fault goes to the device with its params, 
     CHECK(record["id"] == 1);
     CHECK(record["active"] == true);
     CHECK(record["params"] == json{{"fraction", 0.25}});
-    CHECK(f.surface.last_kind == FaultKind::Slip);   // parsed once, typed
-    CHECK(f.surface.last_channel == std::optional<std::size_t>(0));
-    CHECK(f.surface.last_fraction == std::optional<double>(0.25));
+    CHECK(f.stage.faults().slip_fraction == 0.25);   // parsed once, typed, on the body
+    CHECK(f.stage.slip() == 0.25);
+    CHECK(f.surface.changes == 1);   // the device heard of it
+    CHECK(f.surface.added.empty());  // not the device's own fault
     CHECK(f.call("GET", "/api/faults").second["faults"].size() == 1);
     CHECK(f.call("GET", "/api/devices/dev").second["faults"][0]["kind"] == "slip");
     CHECK(f.call("DELETE", "/api/faults/1").second == json{{"id", 1}, {"removed", true}});
-    CHECK(f.surface.removed == std::vector<std::uint64_t>{1});
+    CHECK(f.stage.faults().slip_fraction == 0.0);
+    CHECK(f.surface.changes == 2);
+    CHECK(f.surface.removed.empty());
     CHECK(f.error_of("DELETE", "/api/faults/1", "", 404) == "no active fault \"1\"");
     CHECK(f.call("GET", "/api/faults").second["faults"].empty());
 }
@@ -186,7 +201,9 @@ TEST_CASE("POST /api/faults refuses what is wrong by name, and the device's own 
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"limit_switch","side":"up"})", 400)
           == "\"side\": \"forward\" or \"reverse\" is required, got \"up\"");
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"limit_switch","side":"forward"})", 400)
-          == "\"kind\": no limit switches here");   // the device's own refusal
+          .find("\"kind\": limit_switch: a stick-slip positioner has no limit switches") == 0);   // the body's refusal
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"stall","channel":2})", 404)
+          == "no channel 2");   // the device's
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"unplugged","channel":0})", 400)
           == "\"channel\": a unplugged fault acts on the whole device");
     CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"latency"})", 400)
@@ -223,6 +240,8 @@ TEST_CASE("link faults act on the device's link, and one-off faults act and are 
     CHECK_FALSE(f.surface.cycles[0].restore_positions);
     const auto [s3, lost] = f.call("POST", "/api/faults", R"({"device":"dev","kind":"reference_lost"})");
     CHECK(lost["active"] == false);
+    CHECK(f.surface.last_kind == FaultKind::ReferenceLost);   // the device's own, typed
+    CHECK(f.surface.last_channel == std::nullopt);
     CHECK(f.call("GET", "/api/faults").second["faults"].size() == 2);
     CHECK(f.call("DELETE", "/api/faults").second["removed"].size() == 2);
     CHECK(f.call("GET", "/api/faults").second["faults"].empty());
@@ -272,7 +291,8 @@ TEST_CASE("POST /api/reset: every fault ends, every device power-cycles to its s
     const auto [status, answer] = f.call("POST", "/api/reset", "");
     CHECK(status == 200);
     CHECK(answer["reset"] == json::array({"dev"}));
-    CHECK(f.surface.removed == std::vector<std::uint64_t>{1});
+    CHECK_FALSE(f.stage.faults().stalled);   // the stall left the body
+    CHECK_FALSE(f.stage.blocked());
     CHECK_FALSE(f.link.unplugged());
     REQUIRE(f.surface.cycles.size() == 1);
     CHECK(f.surface.cycles[0].keep_saved);

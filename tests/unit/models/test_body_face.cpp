@@ -232,4 +232,81 @@ TEST_CASE("a body as a joint: mm or degrees from its face, obstacles back throug
     CHECK_THROWS_AS(joint_drive(solenoid), std::invalid_argument);
 }
 
+TEST_CASE("physical faults act on a body by its key, combined, and end one by one", "[body][faults]")
+{
+    Clock clock;
+    World world(clock);
+    AxisConfig c = linear_axis();
+    c.drive = Drive::Stepper;
+    auto& axis = world.emplace<Axis>("bsc/1", clock, c);
+
+    BodyFault slip{PhysicalFault::Slip, 10.0, 0.5, 0};
+    world.add_fault(1, "bsc/1", slip);
+    BodyFault slip2{PhysicalFault::Slip, 5.0, 0.5, 0};
+    world.add_fault(2, "bsc/1", slip2);
+    CHECK(axis.faults().slip_steps == 15.0);
+    CHECK(axis.faults().slip_fraction == 0.75);   // the second takes half of what the first left
+    world.add_fault(3, "bsc/1", BodyFault{PhysicalFault::LimitSwitch, {}, {}, +1});
+    world.add_fault(4, "bsc/1", BodyFault{PhysicalFault::LimitSwitch, {}, {}, -1});
+    CHECK(axis.switch_pressed() == -1);   // the newest switch
+    CHECK(world.fault_body(4) == &axis);
+    CHECK(world.remove_fault(4));
+    CHECK(axis.switch_pressed() == +1);
+    CHECK_FALSE(world.remove_fault(4));
+    CHECK(world.fault_body(4) == nullptr);
+
+    // A switch held by hand (a test's set-up) reads pressed once no fault presses one.
+    axis.set_switch_held(-1);
+    CHECK(axis.switch_pressed() == +1);
+    world.remove_fault(3);
+    CHECK(axis.switch_pressed() == -1);
+    axis.set_switch_held(0);
+    CHECK(axis.switch_pressed() == 0);
+
+    world.add_fault(5, "bsc/1", BodyFault{PhysicalFault::Stall, {}, {}, 0});
+    CHECK(axis.jammed());
+    world.add_fault(6, "bsc/1", BodyFault{PhysicalFault::SensorFailure, {}, {}, 0});
+    CHECK(axis.faults().sensor_failed);
+    world.remove_fault(5);
+    CHECK_FALSE(axis.jammed());
+    axis.set_loop_open(true);   // the device's: a servo without its encoder
+    CHECK(axis.jammed());
+    axis.set_loop_open(false);
+    CHECK_FALSE(axis.jammed());
+
+    CHECK_THROWS_WITH(world.add_fault(1, "bsc/1", BodyFault{}), "fault 1 is active already");
+    CHECK_THROWS_WITH(world.add_fault(7, "nope/0", BodyFault{}), "the world has no body \"nope/0\"");
+}
+
+TEST_CASE("a body refuses the faults it cannot suffer, in the API's words", "[body][faults]")
+{
+    Clock clock;
+    World world(clock);
+    world.emplace<Axis>("kdc/1", clock, linear_axis());   // a servo
+    CHECK_THROWS_WITH(world.add_fault(1, "kdc/1", BodyFault{PhysicalFault::Slip, 10.0, {}, 0}),
+                      Catch::StartsWith("slip: a servo closes its position loop on the encoder"));
+    AxisConfig c = linear_axis();
+    c.drive = Drive::Stepper;
+    world.emplace<Axis>("bsc/1", clock, c);
+    CHECK_THROWS_WITH(world.add_fault(2, "bsc/1", BodyFault{PhysicalFault::Slip, {}, {}, 0}),
+                      Catch::StartsWith("slip needs \"counts\""));
+
+    auto& stage = world.emplace<StickSlipPositioner>("mcs/0", clock, StickSlipConfig{});
+    CHECK_THROWS_WITH(world.add_fault(3, "mcs/0", BodyFault{PhysicalFault::LimitSwitch, {}, {}, 1}),
+                      Catch::StartsWith("\"kind\": limit_switch: a stick-slip positioner has no limit switches"));
+    CHECK_THROWS_WITH(world.add_fault(4, "mcs/0", BodyFault{PhysicalFault::Slip, 3.0, {}, 0}),
+                      Catch::StartsWith("counts: a stick-slip positioner slips by a fraction"));
+    CHECK_THROWS_WITH(world.add_fault(5, "mcs/0", BodyFault{PhysicalFault::Slip, {}, 1.0, 0}),
+                      Catch::StartsWith("fraction: a number from 0 up to (not including) 1"));
+    world.add_fault(6, "mcs/0", BodyFault{PhysicalFault::Slip, {}, {}, 0});
+    CHECK(stage.slip() == 0.5);   // half of each step when no fraction is given
+    world.add_fault(7, "mcs/0", BodyFault{PhysicalFault::Stall, {}, {}, 0});
+    CHECK(stage.blocked());
+
+    world.emplace<Solenoid>("tsc/1");
+    CHECK_THROWS_WITH(world.add_fault(8, "tsc/1", BodyFault{PhysicalFault::Stall, {}, {}, 0}),
+                      "\"kind\": stall: a solenoid (tsc/1) has no such fault");
+    CHECK(world.fault_body(8) == nullptr);
+}
+
 } // namespace test_body_face
