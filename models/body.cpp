@@ -17,6 +17,8 @@ std::string_view body_kind_name(BodyKind kind)
         return "goniometer";
     case BodyKind::PiezoActuator:
         return "piezo_actuator";
+    case BodyKind::Gripper:
+        return "gripper";
     case BodyKind::Solenoid:
         return "solenoid";
     case BodyKind::StrainGauge:
@@ -36,6 +38,7 @@ Travel travel_of(BodyKind kind)
     case BodyKind::Rotary:
     case BodyKind::Goniometer:
         return Travel::Angle;
+    case BodyKind::Gripper:
     case BodyKind::Solenoid:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:

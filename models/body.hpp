@@ -28,6 +28,7 @@ enum class BodyKind {
     Rotary,          ///< a rotation stage: no end stops (rad)
     Goniometer,      ///< a cradle turning about a centre above it, between end stops (rad)
     PiezoActuator,   ///< a piezo stack that extends along a line (m); it pushes on: no obstacle stops it
+    Gripper,         ///< jaws on a drive voltage closing on an object: no travel of its own (voltage, force)
     Solenoid,        ///< an output that opens and closes: no travel
     StrainGauge,     ///< a sensor: no travel
     Watch,           ///< not a part: a watch over others (collisions)

@@ -35,6 +35,7 @@ bool body_suits(BodyKind kind, JointType type)
         return type == JointType::Revolute;
     case BodyKind::Goniometer:
         return type == JointType::Goniometer || type == JointType::Revolute;
+    case BodyKind::Gripper:
     case BodyKind::Solenoid:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:

@@ -1,5 +1,7 @@
 #include "emulator/mcs/controller.hpp"
 
+#include "models/gripper.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -37,10 +39,12 @@ Controller::Controller(const McsConfig& config, models::World& world, const std:
     for (std::size_t i = 0; i < config.channels.size(); ++i) {
         const auto& c = config.channels[i];
         if (c.kind == "end_effector") {
-            channels_.push_back(nullptr);   // no positioner: nothing of it in the world
-            effectors_.push_back(std::make_unique<EndEffector>(
-                clock_, EndEffectorModel{static_cast<std::int32_t>(c.gripper_contact_cv),
-                                        static_cast<std::int32_t>(c.gripper_stiffness_dun_per_cv)}));
+            channels_.push_back(nullptr);   // no positioner: its body in the world is the gripper
+            auto& gripper = world.emplace<models::Gripper>(
+                device + "/" + std::to_string(i), world.clock(),
+                models::GripperConfig{static_cast<std::int32_t>(c.gripper_contact_cv),
+                                      static_cast<std::int32_t>(c.gripper_stiffness_dun_per_cv)});
+            effectors_.push_back(std::make_unique<EndEffector>(gripper));
         } else {
             channels_.push_back(std::make_unique<Channel>(static_cast<int>(i), c, config.firmware, world,
                                                              device + "/" + std::to_string(i)));
@@ -207,8 +211,7 @@ Ticks Controller::next_change(Ticks now) const
 bool Controller::busy(Ticks now) const
 {
     return std::any_of(positioners_.begin(), positioners_.end(), [now](const auto* c) { return c->next_change(now) != kNever; })
-        || std::any_of(effectors_.begin(), effectors_.end(),
-                       [now](const auto& e) { return e && e->next_change(now) != kNever; });
+        || std::any_of(effectors_.begin(), effectors_.end(), [](const auto& e) { return e && e->busy(); });
 }
 
 void Controller::tick(Ticks now)

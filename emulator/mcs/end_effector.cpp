@@ -25,12 +25,14 @@ bool in_range(std::int32_t value, std::int32_t lo, std::int32_t hi)
 
 } // namespace
 
-EndEffector::EndEffector(const Clock& clock, EndEffectorModel model) : clock_(clock), model_(model)
+EndEffector::EndEffector(models::Gripper& gripper) : clock_(gripper.clock()), gripper_(gripper)
 {
-    if (model_.stiffness_dun_per_cv <= 0)
-        throw std::invalid_argument("end effector stiffness_dun_per_cv must be positive");
-    if (model_.contact_cv < 0)
-        throw std::invalid_argument("end effector contact_cv must not be negative");
+    gripper_.set_listener([this] { end_ramp(); });
+}
+
+EndEffector::~EndEffector()
+{
+    gripper_.set_listener({});   // the world outlives its devices
 }
 
 ChannelStatus EndEffector::status() const
@@ -93,7 +95,7 @@ std::int32_t EndEffector::max_voltage_cv() const
 void EndEffector::reset()
 {
     stop();
-    voltage_cv_ = 0;
+    gripper_.set_voltage(0);
     zero_offset_dun_ = 0;
     completed_ = false;
 }
@@ -126,7 +128,7 @@ std::optional<ErrorCode> EndEffector::set_type(std::int32_t type, std::int32_t p
     type_ = new_type;
     param1_ = param1;
     param2_ = param2;
-    voltage_cv_ = 0;
+    gripper_.set_voltage(0);
     zero_offset_dun_ = 0;
     return std::nullopt;
 }
@@ -137,7 +139,6 @@ std::optional<ErrorCode> EndEffector::move_opening_absolute(std::int32_t opening
         return ErrorCode::WrongEndEffectorType;
     if (!in_range(opening_cv, 0, kMaxOpening_cv) || !in_range(speed_v_per_s, 1, kMaxSpeed_v_per_s))
         return ErrorCode::InvalidParameter;
-    sample(clock_.now());
     // MGOA: "the channel will stop at the maximum voltage".
     const double target = std::min(opening_cv, max_voltage_cv());
     start_ramp(target, speed_v_per_s, Activity::MovingOpening);
@@ -150,10 +151,9 @@ std::optional<ErrorCode> EndEffector::move_opening_relative(std::int32_t diff_cv
         return ErrorCode::WrongEndEffectorType;
     if (!in_range(diff_cv, -kMaxOpening_cv, kMaxOpening_cv) || !in_range(speed_v_per_s, 1, kMaxSpeed_v_per_s))
         return ErrorCode::InvalidParameter;
-    sample(clock_.now());
     // MGOR is relative to the voltage applied now, not to a running ramp's target; beyond
     // 0 or the maximum voltage "the channel will stop at the boundary".
-    const double target = std::clamp(voltage_cv_ + diff_cv, 0.0, static_cast<double>(max_voltage_cv()));
+    const double target = std::clamp(gripper_.voltage_cv() + diff_cv, 0.0, static_cast<double>(max_voltage_cv()));
     start_ramp(target, speed_v_per_s, Activity::MovingOpening);
     return std::nullopt;
 }
@@ -168,7 +168,6 @@ std::optional<ErrorCode> EndEffector::move_force_absolute(std::int32_t force_dun
         return ErrorCode::InvalidParameter;
     // holdTime "has not been implemented yet" (MGFA): accepted and ignored; the force is
     // held until S.
-    sample(clock_.now());
     start_ramp(force_target_cv(force_dun), speed_v_per_s, Activity::TargetingForce);
     return std::nullopt;
 }
@@ -178,20 +177,21 @@ double EndEffector::raw_force_dun() const
     // Only a force gripper presses on something; a bare force sensor sees no load.
     if (type_ != EndEffectorType::ForceGripper)
         return 0;
-    return std::max(0.0, voltage_now_cv() - model_.contact_cv) * model_.stiffness_dun_per_cv;
+    return gripper_.force_dun();
 }
 
 double EndEffector::force_target_cv(std::int32_t force_dun) const
 {
     const double raw = force_dun + zero_offset_dun_;
     const double max_cv = max_voltage_cv();
+    const auto& held = gripper_.config();   // the closed loop meets the object's stiffness
     if (raw > 0)
-        return std::min(model_.contact_cv + raw / model_.stiffness_dun_per_cv, max_cv);
+        return std::min(held.contact_cv + raw / held.stiffness_dun_per_cv, max_cv);
     // Below the contact the sensor reads a constant: a zero raw force is met anywhere up
     // to the contact, so the loop stops at the first such voltage; a negative raw force is
     // never met, so the loop winds the voltage down to 0 (fully open).
     if (raw == 0)
-        return std::min(voltage_cv_, static_cast<double>(model_.contact_cv));
+        return std::min(gripper_.voltage_cv(), static_cast<double>(held.contact_cv));
     return 0;
 }
 
@@ -199,7 +199,7 @@ std::optional<ErrorCode> EndEffector::opening_cv(std::int32_t& out) const
 {
     if (!has_gripper())
         return ErrorCode::WrongEndEffectorType;
-    out = static_cast<std::int32_t>(std::lround(voltage_now_cv()));
+    out = static_cast<std::int32_t>(std::lround(gripper_.voltage_cv()));
     return std::nullopt;
 }
 
@@ -224,43 +224,14 @@ std::optional<ErrorCode> EndEffector::zero_force()
 
 void EndEffector::start_ramp(double target_cv, std::int32_t speed_v_per_s, Activity activity)
 {
-    const Ticks now = clock_.now();
-    ramp_from_cv_ = voltage_cv_;
-    ramp_to_cv_ = target_cv;
-    ramp_cv_per_tick_ = speed_v_per_s * 100.0 / clock_.tick_hz();   // V/s -> 1/100 V per tick
-    ramp_start_ = now;
-    ramp_end_ = now + static_cast<Ticks>(std::ceil(std::abs(target_cv - voltage_cv_) / ramp_cv_per_tick_ - 1e-9));
-    activity_ = activity;
-    if (ramp_end_ <= now)
-        end_ramp();
-}
-
-double EndEffector::voltage_now_cv() const
-{
-    const Ticks now = clock_.now();
-    switch (activity_) {
-    case Activity::MovingOpening:
-    case Activity::TargetingForce:
-        break;
-    case Activity::Idle:
-    case Activity::HoldingForce:
-    case Activity::ZeroingForce:
-        return voltage_cv_;
-    }
-    if (now >= ramp_end_)
-        return ramp_to_cv_;
-    const double step = ramp_cv_per_tick_ * static_cast<double>(now - ramp_start_);
-    return ramp_to_cv_ >= ramp_from_cv_ ? ramp_from_cv_ + step : ramp_from_cv_ - step;
-}
-
-void EndEffector::sample(Ticks /*now*/)
-{
-    voltage_cv_ = voltage_now_cv();
+    activity_ = activity;   // before the ramp: one with nowhere to go ends at once (end_ramp)
+    gripper_.ramp_to(target_cv, speed_v_per_s);
+    ramp_ended_ = false;    // ended at once: within the command, not a wake-up of the world
 }
 
 void EndEffector::end_ramp()
 {
-    voltage_cv_ = ramp_to_cv_;
+    ramp_ended_ = true;
     switch (activity_) {
     case Activity::MovingOpening:
         activity_ = Activity::Idle;
@@ -280,7 +251,7 @@ void EndEffector::end_ramp()
 
 void EndEffector::stop()
 {
-    sample(clock_.now());
+    gripper_.hold();
     activity_ = Activity::Idle;
 }
 
@@ -291,29 +262,19 @@ bool EndEffector::take_completed()
 
 Ticks EndEffector::next_change(Ticks now) const
 {
-    switch (activity_) {
-    case Activity::Idle:
-    case Activity::HoldingForce:
-        return kNever;
-    case Activity::MovingOpening:
-    case Activity::TargetingForce:
-        return std::max(ramp_end_, now + 1);   // the voltage is sampled when read
-    case Activity::ZeroingForce:
-        return std::max(zeroing_end_, now + 1);
-    }
-    return kNever;
+    if (ramp_ended_)
+        return now + 1;
+    return activity_ == Activity::ZeroingForce ? std::max(zeroing_end_, now + 1) : kNever;
 }
 
 void EndEffector::tick(Ticks now)
 {
+    ramp_ended_ = false;
     switch (activity_) {
     case Activity::Idle:
     case Activity::HoldingForce:
-        return;
     case Activity::MovingOpening:
     case Activity::TargetingForce:
-        if (now >= ramp_end_)
-            end_ramp();
         return;
     case Activity::ZeroingForce:
         if (now >= zeroing_end_) {

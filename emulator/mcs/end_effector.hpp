@@ -4,6 +4,7 @@
 // No I/O: the handler calls it, the Clock advances it.
 
 #include "models/clock.hpp"
+#include "models/gripper.hpp"
 #include "emulator/mcs/errors.hpp"
 
 #include <cstdint>
@@ -16,14 +17,6 @@ enum class ChannelStatus : int;
 /// SEET types.
 enum class EndEffectorType : int { None = 0, Gripper = 1, ForceSensor = 2, ForceGripper = 3 };
 
-/// Physical model of what the gripper holds (config): jaws touch the object at
-/// `contact_cv` (1/100 V); beyond it the force sensor reads `stiffness_dun_per_cv`
-/// tenths of µN per 1/100 V.
-struct EndEffectorModel {
-    std::int32_t contact_cv = 8'000;
-    std::int32_t stiffness_dun_per_cv = 5;
-};
-
 class EndEffector {
 public:
     /// Limits of appendix/command descriptions.
@@ -32,9 +25,12 @@ public:
     static constexpr std::int32_t kMaxForce_dun = 100'000;     ///< MGFA range
     static constexpr Ticks kZeroForce_ms = 1000;               ///< SZF "takes about one second"
 
-    /// Power-up state: type None (SEET required), voltage 0, stopped.
-    /// Throws std::invalid_argument for a model with stiffness <= 0 or contact < 0.
-    EndEffector(const Clock& clock, EndEffectorModel model = {});
+    /// Power-up state: type None (SEET required), voltage 0, stopped. The jaws, their drive
+    /// voltage and what they hold are `gripper`, a body of the world that outlives the channel.
+    explicit EndEffector(models::Gripper& gripper);
+    ~EndEffector();
+    EndEffector(const EndEffector&) = delete;
+    EndEffector& operator=(const EndEffector&) = delete;
 
     /// Status code of appendix 4.1: 0 stopped, 8 gripper moving (MGOA/MGOR),
     /// 4 targeting then 3 holding (MGFA), 6 calibrating (SZF).
@@ -77,11 +73,14 @@ public:
     /// True once after a movement or SZF has completed (for SRC reports); clears the flag.
     bool take_completed();
 
-    /// Tickable protocol (models/clock.hpp): the end of a ramp or of SZF, kNever when idle
-    /// or holding; the voltage in between is a function of clock time, sampled when read.
+    /// Tickable protocol (models/clock.hpp): the tick after the gripper's ramp ended (the world
+    /// woke it; the controller reports it now), the end of SZF, else kNever (the gripper's ramp
+    /// is the world's to wake).
     Ticks next_change(Ticks now) const;
-    /// Bring the voltage (or the SZF wait) up to tick `now`.
+    /// The SZF wait up to tick `now`; a ramp's end is taken.
     void tick(Ticks now);
+    /// A ramp under way or SZF waiting: something changes by itself.
+    bool busy() const { return gripper_.settling() || activity_ == Activity::ZeroingForce; }
 
 private:
     /// What the channel is doing; each maps to one status code of appendix 4.1.
@@ -95,24 +94,17 @@ private:
     /// Voltage at which MGFA's closed loop settles for `force_dun` (clipped to 0..max).
     double force_target_cv(std::int32_t force_dun) const;
     void start_ramp(double target_cv, std::int32_t speed_v_per_s, Activity activity);
-    /// The voltage at the clock's now (1/100 V).
-    double voltage_now_cv() const;
-    void sample(Ticks now);
+    /// The gripper's ramp reached its target (its listener).
     void end_ramp();
 
     const Clock& clock_;
-    EndEffectorModel model_;
+    models::Gripper& gripper_;
     EndEffectorType type_ = EndEffectorType::None;
     std::int32_t param1_ = 0;
     std::int32_t param2_ = 0;
 
     Activity activity_ = Activity::Idle;
-    double voltage_cv_ = 0;            ///< applied gripper voltage (1/100 V)
-    double ramp_from_cv_ = 0;
-    double ramp_to_cv_ = 0;
-    double ramp_cv_per_tick_ = 0;
-    Ticks ramp_start_ = 0;
-    Ticks ramp_end_ = 0;               ///< tick at which the voltage reaches ramp_to_cv_
+    bool ramp_ended_ = false;          ///< the world woke the gripper at its ramp's end: tick now
     Ticks zeroing_end_ = 0;            ///< tick at which SZF takes the offset
     double zero_offset_dun_ = 0;       ///< raw force that reads 0 (SZF)
     bool completed_ = false;

@@ -1,6 +1,7 @@
 // End effector channels through the protocol: SEET/GEET, MGOA/MGOR/GGO, MGFA/GF, SZF
 // (3.2-3.4), status 8 and 6, 145, SRC reports, channel type 1.
 #include "mcs_harness.hpp"
+#include "models/gripper.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -90,12 +91,32 @@ TEST_CASE("K stops positioners only, R opens the gripper and keeps its type", "[
     CHECK(h.send(":GS1\n:GGO1\n:GEET1\n") == ":S1,0\n:GO1,0\n:EET1,1,10000,0\n");
 }
 
-TEST_CASE("an end effector channel has no positioner in the world", "[device][mcs][end-effector]")
+TEST_CASE("an end effector channel's body in the world is its gripper, not a positioner", "[device][mcs][end-effector]")
 {
     McsHarness h(with_gripper());
-    CHECK(h.world().find("mcs-test/0") != nullptr);   // the positioner of channel 0
-    CHECK(h.world().find("mcs-test/1") == nullptr);   // the gripper: nothing that could be moved or mounted
-    CHECK(h.world().size() == 1);
+    REQUIRE(h.world().find("mcs-test/0") != nullptr);   // the positioner of channel 0
+    CHECK(h.world().find("mcs-test/0")->kind() == rigsim::models::BodyKind::Linear);
+    const auto* gripper = h.world().find_as<rigsim::models::Gripper>("mcs-test/1");
+    REQUIRE(gripper);
+    CHECK(gripper->kind() == rigsim::models::BodyKind::Gripper);
+    CHECK(h.world().size() == 2);
+    // Nothing that could be mounted on a joint.
+    std::string key;
+    const auto refused = h.device().axis_body_key(1, key);
+    REQUIRE(refused);
+    CHECK(refused->message.find("end effector") != std::string::npos);
+    // SEET1 (a gripper of 100 V), MGOA to 50 V at 100 V/s: the world wakes the gripper at the
+    // ramp's end, and the controller reports it there (status 8 until then).
+    CHECK(h.send(":SEET1,1,10000,0\n") == ":E-1,0\n");
+    CHECK(h.send(":MGOA1,5000,100\n") == ":E1,0\n");
+    CHECK(gripper->settling());
+    h.advance_ms(499);
+    CHECK(h.send(":GS1\n") == ":S1,8\n");
+    h.advance_ms(1);
+    CHECK_FALSE(gripper->settling());
+    CHECK(gripper->voltage_v() == Approx(50.0));
+    CHECK(h.send(":GS1\n") == ":S1,0\n");
+    CHECK(h.send(":GGO1\n") == ":GO1,5000\n");
 }
 
 } // namespace test_mcs_end_effectors

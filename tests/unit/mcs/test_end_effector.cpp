@@ -1,6 +1,8 @@
 // MCS end effector: SEET/GEET, MGOA/MGOR/GGO ramps, SZF/GF and the MGFA force loop,
 // stepped by a real Clock (manual 3.2-3.4, appendix 4.1/4.2).
 #include "emulator/mcs/end_effector.hpp"
+#include "models/gripper.hpp"
+#include "models/world.hpp"
 
 #include "models/clock.hpp"
 
@@ -26,10 +28,11 @@ struct Adapter : Tickable {
     EndEffector& ee;
 };
 
-/// One end effector on its own clock.
+/// One end effector on its own clock, its gripper a body of the world.
 struct Rig {
-    explicit Rig(std::uint32_t tick_hz = Clock::kDefaultTickHz, EndEffectorModel model = {})
-        : clock(tick_hz), ee(clock, model), adapter(ee)
+    explicit Rig(std::uint32_t tick_hz = Clock::kDefaultTickHz, models::GripperConfig model = {})
+        : clock(tick_hz), world(clock), gripper(world.emplace<models::Gripper>("mcs/0", clock, model)), ee(gripper),
+          adapter(ee)
     {
         clock.add(&adapter);
     }
@@ -51,6 +54,8 @@ struct Rig {
     }
 
     Clock clock;
+    models::World world;   // added to the clock first: it wakes the gripper before the controller
+    models::Gripper& gripper;
     EndEffector ee;
     Adapter adapter;
 };
@@ -185,9 +190,10 @@ TEST_CASE("MGOA ramps the voltage linearly with status 8, then completes", "[uni
     // MGOA0,5000,50: 50 V/s = 5000 cV/s, so 5000 cV take one second.
     REQUIRE_FALSE(r.ee.move_opening_absolute(5'000, 50));
     CHECK(r.status() == 8);
-    // Event-driven: the clock wakes the channel at the ramp's end only; the voltage in
-    // between is a function of clock time, sampled when read.
-    CHECK(r.ee.next_change(r.clock.now()) == r.clock.now() + 1000);
+    // Event-driven: the world wakes the gripper at the ramp's end only (the channel has nothing
+    // of its own to wait for); the voltage in between is a function of clock time, sampled when read.
+    CHECK(r.world.next_change(r.clock.now()) == r.clock.now() + 1000);
+    CHECK(r.ee.next_change(r.clock.now()) == kNever);
     CHECK(r.ggo() == 0);
 
     r.clock.advance_ms(1);
@@ -658,12 +664,35 @@ TEST_CASE("S mid-MGFA stops the voltage where it is", "[unit][mcs][end_effector]
     CHECK(r.ee.take_completed());
 }
 
-TEST_CASE("end effector rejects an impossible model", "[unit][mcs][end_effector]")
+TEST_CASE("a gripper refuses an impossible object", "[unit][mcs][end_effector]")
 {
     Clock clock;
-    CHECK_THROWS_AS(EndEffector(clock, EndEffectorModel{8'000, 0}), std::invalid_argument);
-    CHECK_THROWS_AS(EndEffector(clock, EndEffectorModel{-1, 5}), std::invalid_argument);
-    CHECK_NOTHROW(EndEffector(clock, EndEffectorModel{0, 1}));
+    CHECK_THROWS_AS(models::Gripper(clock, models::GripperConfig{8'000, 0}), std::invalid_argument);
+    CHECK_THROWS_AS(models::Gripper(clock, models::GripperConfig{-1, 5}), std::invalid_argument);
+    CHECK_NOTHROW(models::Gripper(clock, models::GripperConfig{0, 1}));
+}
+
+TEST_CASE("the gripper is a body of the world: its ramp wakes it, its face is in volts and newtons",
+          "[unit][mcs][end_effector]")
+{
+    Rig r;
+    CHECK(r.gripper.kind() == models::BodyKind::Gripper);
+    CHECK(r.gripper.travel() == models::Travel::None);
+    REQUIRE_FALSE(r.ee.set_type(3, 100, 20'000));   // a force gripper, 100 dun/V, 200 V max
+    REQUIRE_FALSE(r.ee.move_opening_absolute(10'000, 100));   // to 100 V at 100 V/s: 1 s
+    CHECK(r.gripper.settling());
+    CHECK(r.world.next_change(0) == 1000);   // the world wakes it at the ramp's end, not before
+    CHECK(r.ee.busy());
+    r.clock.advance_ms(500);
+    CHECK(r.gripper.voltage_v() == Approx(50.0));
+    r.clock.advance_ms(500);
+    CHECK_FALSE(r.gripper.settling());
+    CHECK_FALSE(r.ee.busy());
+    CHECK(r.status() == 0);
+    CHECK(r.gripper.voltage_v() == Approx(100.0));
+    // 20 V past the contact at 80 V, 5 dun per cV: 10,000 dun = 1 mN.
+    CHECK(r.gripper.force_n() == Approx(1e-3));
+    CHECK(r.gf() == 10'000);
 }
 
 } // namespace test_end_effector
