@@ -69,6 +69,11 @@ void World::watch(Body& watched, Body& watcher)
         watched.watchers_.push_back(&watcher);
 }
 
+bool World::settling() const
+{
+    return std::any_of(bodies_.begin(), bodies_.end(), [](const auto& b) { return b.second->settling(); });
+}
+
 void World::add_fault(std::uint64_t id, std::string_view key, BodyFault fault)
 {
     Body* body = find(key);

@@ -62,6 +62,10 @@ public:
     /// this world other than the watcher; std::invalid_argument otherwise).
     void watch(Body& watched, Body& watcher);
 
+    /// Some body is settling (Body::settling(): a motion under way, a piezo creeping toward its
+    /// extension, a gripper ramping): the world still changes by itself.
+    bool settling() const;
+
     /// Starts physical fault `id` on the body under `key` (the control API's stall, slip,
     /// limit_switch, sensor_failure, the same for every family): the body's faults() become the
     /// combination of every fault on it, and it applies them at once. std::invalid_argument with

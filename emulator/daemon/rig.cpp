@@ -219,7 +219,7 @@ void Rig::stop()
 
 bool Rig::busy() const
 {
-    if (world_.next_change(clock_.now()) != kNever)
+    if (world_.next_change(clock_.now()) != kNever || world_.settling())
         return true;
     return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) {
         const auto* surface = e->device->control();
