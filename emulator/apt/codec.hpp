@@ -60,6 +60,42 @@ enum class Family {
     template <class S> static auto fields(S& s) { return std::tie(__VA_ARGS__); }                                     \
     static constexpr std::string_view field_names = #__VA_ARGS__
 
+/// Which units read a field whose range a SET must keep.
+enum class ReadBy : std::uint8_t {
+    AnyUnit,     ///< every unit that takes the message
+    WheelUnit,   ///< a unit with a top-panel wheel only (ControllerModel::mmi_wheel): the others take any value
+};
+
+/// One field's range as a SET of its block must keep it (out_of_range(), set_ranges.hpp).
+struct FieldRange {
+    std::string_view name;   ///< as the log names it: "<name> <value> (<min>..<max>)"
+    std::int64_t value;
+    std::int64_t min;
+    std::int64_t max;
+    ReadBy read_by = ReadBy::AnyUnit;
+};
+
+/// A signed long's largest value: the upper end of a count or velocity that has no other.
+inline constexpr std::int64_t kMaxLong = 2'147'483'647;
+
+namespace codec_detail {
+template <std::size_t N> std::array<FieldRange, N> field_ranges(const FieldRange (&ranges)[N])
+{
+    std::array<FieldRange, N> out{};
+    for (std::size_t i = 0; i < N; ++i)
+        out[i] = ranges[i];
+    return out;
+}
+} // namespace codec_detail
+
+/// Lists, next to RIGSIM_APT_FIELDS, the ranges (the manual's, or a later issue's public source's: a
+/// comment above cites it) that a SET of the block must keep: `{"name", s.member, min, max}` each (a fifth
+/// ReadBy::WheelUnit for a field only some units read), in the order out_of_range() checks them. A field
+/// without an entry takes any value; a block without the macro has no ranges.
+#define RIGSIM_APT_RANGES(...)                                                                                        \
+    template <class S> static auto ranges(const S& s) { return codec_detail::field_ranges({__VA_ARGS__}); }         \
+    static constexpr bool has_ranges = true
+
 /// True when message `id` is a bare header in its table layout (messages.def); an ID the table
 /// does not know does not compile.
 constexpr bool header_only_in_table(std::uint16_t id)
@@ -151,6 +187,7 @@ struct Untyped {
 
 #include "emulator/apt/codec_kcube.hpp"
 #undef RIGSIM_APT_FIELDS
+#undef RIGSIM_APT_RANGES
 
 namespace rigsim::apt {
 namespace msg {

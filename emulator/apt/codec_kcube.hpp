@@ -21,6 +21,8 @@ struct PowerParams {
     std::uint16_t rest_factor = 0;   ///< 1..100 %
     std::uint16_t move_factor = 0;   ///< 1..100 %
     RIGSIM_APT_FIELDS(s.chan_ident, s.rest_factor, s.move_factor);
+    // Issue 16 p. 44: "in the range 1 to 100 (i.e. 1% to 100% of full power)".
+    RIGSIM_APT_RANGES({"RestFactor", s.rest_factor, 1, 100}, {"MoveFactor", s.move_factor, 1, 100});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEMMIPARAMS: the K-Cube's top-panel wheel and display.
@@ -45,6 +47,15 @@ struct KCubeMmiParams {
     RIGSIM_APT_FIELDS(s.chan_ident, s.js_mode, s.js_max_vel, s.js_accn, s.dir_sense, s.preset_pos1, s.preset_pos2,
                       s.disp_brightness, s.disp_timeout, s.disp_dim_level, s.preset_pos3, s.js_sensitivity,
                       s.reserved);
+    // quantumion/thorlabs_cube kdc.py (and the issue 37 client's checks): JSMode 1 velocity, 2 jog,
+    // 3 go to position; DirSense 0..2; DispBrightness 0..100; DispTimeout 0..480 minutes; DispDimLevel 0..10.
+    // The wheel's words are the motor cubes'. A KSC101 has no wheel: Kinesis' KSC_MMIParams calls the ten
+    // words before the display "unused", and MSLNZ/msl-equipment thorlabs/ksc.py sends them as 0 (JSMode 0),
+    // which the unit takes.
+    RIGSIM_APT_RANGES({"JSMode", s.js_mode, 1, 3, ReadBy::WheelUnit},
+                      {"DirSense", s.dir_sense, 0, 2, ReadBy::WheelUnit},
+                      {"DispBrightness", s.disp_brightness, 0, 100}, {"DispTimeout", s.disp_timeout, 0, 480},
+                      {"DispDimLevel", s.disp_dim_level, 0, 10});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBETRIGIOCONFIG: what the TRIG1 and TRIG2 ports do.
@@ -60,6 +71,9 @@ struct KCubeTrigIoConfig {
     std::uint16_t trig2_polarity = 1;
     std::array<char, 12> reserved{};
     RIGSIM_APT_FIELDS(s.chan_ident, s.trig1_mode, s.trig1_polarity, s.trig2_mode, s.trig2_polarity, s.reserved);
+    // Polarity 1 active high, 2 active low (Kinesis' KMOT_TRIG_POLHIGH / KMOT_TRIG_POLLOW). The modes
+    // are a set, not a range: KCubeParams checks them.
+    RIGSIM_APT_RANGES({"Trig1Polarity", s.trig1_polarity, 1, 2}, {"Trig2Polarity", s.trig2_polarity, 1, 2});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEPOSTRIGPARAMS: the output pulses at positions of a trigger port
@@ -81,6 +95,9 @@ struct KCubePosTrigParams {
     std::array<char, 12> reserved{};
     RIGSIM_APT_FIELDS(s.chan_ident, s.start_pos_fwd, s.interval_fwd, s.num_pulses_fwd, s.start_pos_rev,
                       s.interval_rev, s.num_pulses_rev, s.pulse_width, s.num_cycles, s.reserved);
+    // quantumion kdc.py: pulse width "from 1 us to 1000000 us"; counts of pulses and cycles.
+    RIGSIM_APT_RANGES({"NumPulsesFwd", s.num_pulses_fwd, 0, kMaxLong}, {"NumPulsesRev", s.num_pulses_rev, 0, kMaxLong},
+                      {"PulseWidth", s.pulse_width, 1, 1'000'000}, {"NumCycles", s.num_cycles, 0, kMaxLong});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_KCUBEKSTLOOPPARAMS: a KST101's position loop (encoded stages).
@@ -98,6 +115,8 @@ struct KCubeKstLoopParams {
     std::int32_t pid_tol = 0;
     std::uint32_t encoder_const = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.loop_mode, s.prop, s.integral, s.diff, s.pid_clip, s.pid_tol, s.encoder_const);
+    // KMOT_KST_OPENLOOP 1, KMOT_KST_CLOSEDLOOP 2.
+    RIGSIM_APT_RANGES({"LoopMode", s.loop_mode, 1, 2});
 };
 
 using SetPowerParams = Set<PowerParams>;

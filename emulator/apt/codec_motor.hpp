@@ -44,6 +44,9 @@ struct VelParams {
     std::int32_t acceleration = 0;
     std::int32_t max_velocity = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.min_velocity, s.acceleration, s.max_velocity);
+    // p. 30: acceleration and maximum velocity are unsigned longs; a zero would never move.
+    RIGSIM_APT_RANGES({"minimum velocity", s.min_velocity, 0, kMaxLong}, {"acceleration", s.acceleration, 1, kMaxLong},
+                      {"maximum velocity", s.max_velocity, 1, kMaxLong});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_JOGPARAMS (p. 32).
@@ -61,6 +64,11 @@ struct JogParams {
     std::uint16_t jog_stop_mode = 0;   ///< 1 immediate, 2 profiled
     RIGSIM_APT_FIELDS(s.chan_ident, s.jog_mode, s.jog_step_size, s.jog_min_velocity, s.jog_acceleration,
                       s.jog_max_velocity, s.jog_stop_mode);
+    // p. 32: jog mode 1 continuous, 2 single step; stop mode 1 immediate, 2 profiled.
+    RIGSIM_APT_RANGES({"jog mode", s.jog_mode, 1, 2}, {"jog step size", s.jog_step_size, 0, kMaxLong},
+                      {"jog minimum velocity", s.jog_min_velocity, 0, kMaxLong},
+                      {"jog acceleration", s.jog_acceleration, 1, kMaxLong},
+                      {"jog maximum velocity", s.jog_max_velocity, 1, kMaxLong}, {"stop mode", s.jog_stop_mode, 1, 2});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_GENMOVEPARAMS (p. 34): the backlash.
@@ -139,6 +147,9 @@ struct DcPidParams {
     std::int32_t integral_limit = 0;
     std::uint16_t filter_control = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.proportional, s.integral, s.differential, s.integral_limit, s.filter_control);
+    // p. 51: proportional, integral, differential and integral limit 0..32767.
+    RIGSIM_APT_RANGES({"proportional", s.proportional, 0, 32767}, {"integral", s.integral, 0, 32767},
+                      {"differential", s.differential, 0, 32767}, {"integral limit", s.integral_limit, 0, 32767});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_AVMODES (p. 53): the LED modes.
@@ -183,6 +194,8 @@ struct ButtonParams {
     std::uint16_t time_out_ms = 0;
     std::uint16_t not_used = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.mode, s.position1, s.position2, s.time_out_ms, s.not_used);
+    // p. 58: mode 1 jog, 2 go to position.
+    RIGSIM_APT_RANGES({"mode", s.mode, 1, 2});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDPOSITIONLOOPPARAMS (p. 61).
@@ -205,6 +218,12 @@ struct PmdPositionLoopParams {
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.kp_pos, s.ki_pos, s.integral_limit, s.kd_pos, s.kd_time_pos, s.kout_pos,
                       s.kvff_pos, s.kaff_pos, s.pos_err_lim, s.not_used1, s.not_used2);
+    // p. 61. The PosErrLim text says "0 to 7FFFFFF" (seven Fs); the dword's other limit
+    // field, Integral Limit, says 7FFFFFFF: taken for both.
+    RIGSIM_APT_RANGES({"Kp", s.kp_pos, 0, 32767}, {"Ki", s.ki_pos, 0, 32767},
+                      {"integral limit", s.integral_limit, 0, kMaxLong}, {"Kd", s.kd_pos, 0, 32767},
+                      {"KdTimePos", s.kd_time_pos, 1, 32767}, {"KvffPos", s.kvff_pos, 0, 32767},
+                      {"KaffPos", s.kaff_pos, 0, 32767}, {"PosErrLim", s.pos_err_lim, 0, kMaxLong});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDMOTOROUTPUTPARAMS (p. 64).
@@ -222,6 +241,9 @@ struct PmdMotorOutputParams {
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.cont_current_lim, s.energy_lim, s.motor_lim, s.motor_bias, s.not_used1,
                       s.not_used2);
+    // p. 63-64: MotorBias "-32767 to 32768" in a signed word: -32767..32767.
+    RIGSIM_APT_RANGES({"ContCurrentLim", s.cont_current_lim, 0, 32767}, {"EnergyLim", s.energy_lim, 0, 32767},
+                      {"MotorLim", s.motor_lim, 0, 32767}, {"MotorBias", s.motor_bias, -32767, 32767});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDTRACKSETTLEPARAMS (p. 66).
@@ -237,6 +259,8 @@ struct PmdTrackSettleParams {
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.time_cycles, s.settle_window, s.track_window, s.not_used1, s.not_used2);
+    // p. 66: settle time 0..32767 cycles; both windows 0..65535 (any word).
+    RIGSIM_APT_RANGES({"settle time", s.time_cycles, 0, 32767});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDPROFILEMODEPARAMS (p. 69).
@@ -251,6 +275,8 @@ struct PmdProfileModeParams {
     std::uint16_t not_used1 = 0;
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.mode, s.jerk, s.not_used1, s.not_used2);
+    // p. 69: mode 0 trapezoidal, 2 S-curve (1 is no mode); jerk 0..4294967295 (any dword).
+    RIGSIM_APT_RANGES({"mode", s.mode, 0, 2});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDCURRENTLOOPPARAMS (p. 71).
@@ -270,6 +296,11 @@ struct PmdCurrentLoopParams {
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.phase, s.kp_current, s.ki_current, s.i_lim_current, s.i_dead_band, s.kff,
                       s.not_used1, s.not_used2);
+    // p. 71: phase 0 A, 1 B, 2 A and B; gains, limit, dead band, feed-forward 0..32767.
+    RIGSIM_APT_RANGES({"phase", s.phase, 0, 2}, {"KpCurrent", s.kp_current, 0, 32767},
+                      {"KiCurrent", s.ki_current, 0, 32767},
+                      {"ILimCurrent", s.i_lim_current, 0, 32767}, {"IDeadBand", s.i_dead_band, 0, 32767},
+                      {"Kff", s.kff, 0, 32767});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDSETTLEDCURRENTLOOPPARAMS (p. 73).
@@ -289,6 +320,11 @@ struct PmdSettledCurrentLoopParams {
     std::uint16_t not_used2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.phase, s.kp_settled, s.ki_settled, s.i_lim_settled, s.i_dead_band_settled,
                       s.kff_settled, s.not_used1, s.not_used2);
+    // p. 73: as the current loop's.
+    RIGSIM_APT_RANGES({"phase", s.phase, 0, 2}, {"KpSettled", s.kp_settled, 0, 32767},
+                      {"KiSettled", s.ki_settled, 0, 32767},
+                      {"ILimSettled", s.i_lim_settled, 0, 32767}, {"IDeadBandSettled", s.i_dead_band_settled, 0, 32767},
+                      {"KffSettled", s.kff_settled, 0, 32767});
 };
 
 /// MGMSG_MOT_SET/REQ/GET_PMDSTAGEAXISPARAMS (p. 75): 74 bytes; the field list omits the

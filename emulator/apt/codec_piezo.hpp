@@ -30,6 +30,8 @@ struct PzOutputPos {
     std::uint16_t chan_ident = 1;
     std::uint16_t position_sw = 0;   ///< 0..32767: 0..100 % of the travel (ERRATA)
     RIGSIM_APT_FIELDS(s.chan_ident, s.position_sw);
+    // p. 97: 0..32767 = 0..100 % of the travel.
+    RIGSIM_APT_RANGES({"PositionSW", s.position_sw, 0, 32767});
 };
 /// MGMSG_PZ_SET/REQ/GET_INPUTVOLTSSRC (p. 98).
 struct PzInputVoltsSrc {
@@ -40,6 +42,8 @@ struct PzInputVoltsSrc {
     std::uint16_t chan_ident = 1;
     std::uint16_t volt_src = 0;   ///< the SET table's PositionSW (ERRATA)
     RIGSIM_APT_FIELDS(s.chan_ident, s.volt_src);
+    // p. 98: software, + external input (1), + potentiometer (2).
+    RIGSIM_APT_RANGES({"VoltSrc", s.volt_src, 0, 3});
 };
 /// MGMSG_PZ_SET/REQ/GET_PICONSTS (p. 100).
 struct PzPiConsts {
@@ -51,6 +55,8 @@ struct PzPiConsts {
     std::uint16_t prop_const = 0;
     std::uint16_t int_const = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.prop_const, s.int_const);
+    // p. 100.
+    RIGSIM_APT_RANGES({"PropConst", s.prop_const, 0, 255}, {"IntConst", s.int_const, 0, 255});
 };
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTLUT (p. 106).
 struct PzOutputLut {
@@ -90,6 +96,8 @@ struct TpzDispSettings {
     static constexpr Family family = Family::Piezo;
     std::uint16_t disp_intensity = 0;
     RIGSIM_APT_FIELDS(s.disp_intensity);
+    // p. 114.
+    RIGSIM_APT_RANGES({"DispIntensity", s.disp_intensity, 0, 255});
 };
 /// MGMSG_PZ_SET/REQ/GET_TPZ_IOSETTINGS (p. 115).
 struct TpzIoSettings {
@@ -103,6 +111,8 @@ struct TpzIoSettings {
     std::uint16_t future_use1 = 0;
     std::uint16_t future_use2 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.voltage_limit, s.hub_analog_input, s.future_use1, s.future_use2);
+    // p. 115: VoltageLimit 1 75 V, 2 100 V, 3 150 V; HubAnalogInput 1 hub A, 2 hub B, 3 SMA.
+    RIGSIM_APT_RANGES({"VoltageLimit", s.voltage_limit, 1, 3}, {"HubAnalogInput", s.hub_analog_input, 1, 3});
 };
 /// MGMSG_PZ_SET/REQ/GET_IOSETTINGS (p. 119).
 struct PzIoSettings {
@@ -127,6 +137,8 @@ struct PzOutputMaxVolts {
     std::uint16_t voltage = 0;   ///< 0.1 V steps
     std::uint16_t flags = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.voltage, s.flags);
+    // p. 121: 0.1 V steps, up to 150 V.
+    RIGSIM_APT_RANGES({"Voltage", s.voltage, 0, 1500});
 };
 /// MGMSG_PZ_SET/REQ/GET_TPZ_SLEWRATES (p. 123).
 struct TpzSlewRates {
@@ -138,6 +150,8 @@ struct TpzSlewRates {
     std::uint16_t slew_open = 0;
     std::uint16_t slew_closed = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.slew_open, s.slew_closed);
+    // p. 123.
+    RIGSIM_APT_RANGES({"SlewOpen", s.slew_open, 0, 32767}, {"SlewClosed", s.slew_closed, 0, 32767});
 };
 /// MGMSG_PZ_SET/REQ/GET_TSG_IOSETTINGS (p. 127).
 struct TsgIoSettings {
@@ -154,6 +168,10 @@ struct TsgIoSettings {
     std::uint16_t future_use3 = 0;
     RIGSIM_APT_FIELDS(s.chan_ident, s.hub_analogue_output, s.display_mode, s.force_calib, s.future_use1,
                       s.future_use2, s.future_use3);
+    // p. 127: HubAnalogueOutput 1 hub A, 2 hub B pairs; DisplayMode 1 position, 2 voltage, 3 force.
+    // ForceCalib "between 1 and 1000" N in 0.001 N steps does not fit its word: 1..65535 (D-22).
+    RIGSIM_APT_RANGES({"HubAnalogueOutput", s.hub_analogue_output, 1, 2}, {"DisplayMode", s.display_mode, 1, 3},
+                      {"ForceCalib", s.force_calib, 1, 65535});
 };
 /// MGMSG_PZ_SET_POSCONTROLMODE (p. 94).
 struct PzSetPosControlMode {

@@ -42,6 +42,9 @@ struct SolCycleParams {
     std::int32_t off_time_250us = 0;    ///< OffTime: 250 us steps, 100 ms..10,000 s
     std::int32_t num_cycles = 0;        ///< 'Auto' mode only: 0..1,000,000, 0 cycles indefinitely
     RIGSIM_APT_FIELDS(s.chan_ident, s.on_time_250us, s.off_time_250us, s.num_cycles);
+    // p. 87: OnTime and OffTime in 250 us steps, 100 ms..10,000 s; NumCycles 0 (forever)..1,000,000.
+    RIGSIM_APT_RANGES({"OnTime", s.on_time_250us, 400, 40'000'000}, {"OffTime", s.off_time_250us, 400, 40'000'000},
+                      {"NumCycles", s.num_cycles, 0, 1'000'000});
 };
 
 /// MGMSG_MOT_SET_SOL_INTERLOCKMODE (p. 89).
