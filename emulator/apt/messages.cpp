@@ -16,9 +16,10 @@ constexpr Group S = Group::StrainGauge;
 // One entry per line of messages.def; the name is the constant's own spelling, so it can never
 // drift from its ID.
 constexpr MessageInfo kTable[] = {
-#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER) {NAME, std::string_view(#NAME), LENGTH, CHAPTER},
-#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER) {NAME, std::string_view(#NAME), LENGTH, CHAPTER, true},
-#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS)                                                      \
+#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER, LISTS) {NAME, std::string_view(#NAME), LENGTH, CHAPTER},
+#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER, LISTS)                                             \
+    {NAME, std::string_view(#NAME), LENGTH, CHAPTER, true},
+#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS, LISTS)                                              \
     {NAME, std::string_view(#NAME), LENGTH, CHAPTER, false, true, FIELDS},
 #include "emulator/apt/messages.def"
 #undef RIGSIM_APT_TABLE

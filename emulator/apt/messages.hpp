@@ -15,8 +15,9 @@
 // IDs and lengths follow the detailed section of each message, corrected by the errata
 // (docs/protocol/errata.md) where that section is itself wrong; every choice made where
 // the manual is ambiguous is a comment at the message's line in messages.def, the one place
-// that declares a message's ID, name, length and chapter.
+// that declares a message's ID, name, length, chapter and the takes lists that name it.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -71,9 +72,9 @@ struct MessageTable {
 MessageTable all_messages();
 
 // The constants, one per line of messages.def, e.g. MGMSG_MOT_MOVE_ABSOLUTE = 0x0453.
-#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER) constexpr std::uint16_t NAME = ID;
-#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER) constexpr std::uint16_t NAME = ID;
-#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS) constexpr std::uint16_t NAME = ID;
+#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER, LISTS) constexpr std::uint16_t NAME = ID;
+#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER, LISTS) constexpr std::uint16_t NAME = ID;
+#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS, LISTS) constexpr std::uint16_t NAME = ID;
 #include "emulator/apt/messages.def"
 #undef RIGSIM_APT_TABLE
 #undef RIGSIM_APT_TABLE_SHORT_FORM_TOO
@@ -87,9 +88,9 @@ constexpr std::int16_t data_length_of(std::uint16_t id)
 {
     constexpr std::int16_t H = -1;
     switch (id) {
-#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER) case ID: return LENGTH;
-#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER) case ID: return LENGTH;
-#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS) case ID: return LENGTH;
+#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER, LISTS) case ID: return LENGTH;
+#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER, LISTS) case ID: return LENGTH;
+#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS, LISTS) case ID: return LENGTH;
 #include "emulator/apt/messages.def"
 #undef RIGSIM_APT_TABLE
 #undef RIGSIM_APT_TABLE_SHORT_FORM_TOO
@@ -98,5 +99,56 @@ constexpr std::int16_t data_length_of(std::uint16_t id)
         return kNotInTable;
     }
 }
+
+/// The takes lists a message is on, as bits (messages.def's last column, where each list's source and
+/// choices are given): a unit of the manual's cross-reference tables acts on the messages of its
+/// model's lists only (ControllerModel::takes and later_takes, catalogue.cpp).
+using TakesLists = std::uint16_t;
+inline constexpr TakesLists kTsc = 1U << 0;          ///< TSC001, KSC101 (p. 138; D-3, D-4)
+inline constexpr TakesLists kTpz = 1U << 1;          ///< TPZ001, KPZ101 (p. 133; D-5)
+inline constexpr TakesLists kBpc = 1U << 2;          ///< a BPC301/BPC303 bay (p. 132; D-6)
+inline constexpr TakesLists kTsg = 1U << 3;          ///< TSG001, KSG101 (p. 134)
+inline constexpr TakesLists kKscLater = 1U << 4;     ///< a KSC101 of the later generation, beyond kTsc
+inline constexpr TakesLists kKpzLater = 1U << 5;     ///< a KPZ101 of the later generation, beyond kTpz
+inline constexpr TakesLists kKsgLater = 1U << 6;     ///< a KSG101 of the later generation, beyond kTsg
+inline constexpr TakesLists kTCubeLater = 1U << 7;   ///< a TPZ001 or TSG001 of the later generation
+
+namespace messages_detail {
+/// A message's ID and takes lists, one per line of messages.def.
+struct Listed {
+    std::uint16_t id;
+    TakesLists lists;
+};
+inline constexpr Listed kListed[] = {
+#define RIGSIM_APT_TABLE(NAME, ID, LENGTH, CHAPTER, LISTS) {ID, LISTS},
+#define RIGSIM_APT_TABLE_SHORT_FORM_TOO(NAME, ID, LENGTH, CHAPTER, LISTS) {ID, LISTS},
+#define RIGSIM_APT_TABLE_LATER(NAME, ID, LENGTH, CHAPTER, FIELDS, LISTS) {ID, LISTS},
+#include "emulator/apt/messages.def"
+#undef RIGSIM_APT_TABLE
+#undef RIGSIM_APT_TABLE_SHORT_FORM_TOO
+#undef RIGSIM_APT_TABLE_LATER
+};
+
+constexpr std::size_t count_on(TakesLists list)
+{
+    std::size_t n = 0;
+    for (const auto& m : kListed)
+        n += (m.lists & list) != 0 ? 1 : 0;
+    return n;
+}
+
+template <TakesLists List> constexpr std::array<std::uint16_t, count_on(List)> ids_on()
+{
+    std::array<std::uint16_t, count_on(List)> ids{};
+    std::size_t n = 0;
+    for (const auto& m : kListed)
+        if ((m.lists & List) != 0)
+            ids[n++] = m.id;
+    return ids;
+}
+} // namespace messages_detail
+
+/// The IDs of the messages on takes list `List` (one of kTsc, ...), in the table's order, at compile time.
+template <TakesLists List> inline constexpr auto kIdsOnList = messages_detail::ids_on<List>();
 
 } // namespace rigsim::apt

@@ -222,6 +222,76 @@ TEST_CASE("catalogue: each new unit's message set is its cross-reference table w
     CHECK_FALSE(find_controller("TPZ001")->takes.contains(MGMSG_PZ_SET_ZERO));
 }
 
+namespace {
+
+/// The IDs messages.def's last column puts on any of `lists`.
+Ids on_lists(TakesLists lists)
+{
+    Ids out;
+    for (const auto& m : messages_detail::kListed)
+        if ((m.lists & lists) != 0)
+            out.insert(m.id);
+    return out;
+}
+
+Ids ids_of(const MessageSet& s)
+{
+    return Ids(s.ids, s.ids + s.count);
+}
+
+template <TakesLists List> Ids derived()
+{
+    return Ids(kIdsOnList<List>.begin(), kIdsOnList<List>.end());
+}
+
+} // namespace
+
+TEST_CASE("catalogue: each model's takes lists are messages.def's lists, message for message",
+          "[unit][apt][catalogue]")
+{
+    // The lists derived at compile time are the column's.
+    CHECK(derived<kTsc>() == on_lists(kTsc));
+    CHECK(derived<kTpz>() == on_lists(kTpz));
+    CHECK(derived<kBpc>() == on_lists(kBpc));
+    CHECK(derived<kTsg>() == on_lists(kTsg));
+    CHECK(derived<kKscLater>() == on_lists(kKscLater));
+    CHECK(derived<kKpzLater>() == on_lists(kKpzLater));
+    CHECK(derived<kKsgLater>() == on_lists(kKsgLater));
+    CHECK(derived<kTCubeLater>() == on_lists(kTCubeLater));
+    struct Row {
+        std::string_view name;
+        TakesLists takes;
+        TakesLists later_takes;
+    };
+    const Row rows[]{
+        {"TDC001", 0, 0},
+        {"KDC101", 0, 0},
+        {"TST001", 0, 0},
+        {"KST101", 0, 0},
+        {"BSC203", 0, 0},
+        {"BBD203", 0, 0},
+        {"TSC001", kTsc, 0},
+        {"KSC101", kTsc, kKscLater},
+        {"TPZ001", kTpz, kTCubeLater},
+        {"KPZ101", kTpz, kKpzLater},
+        {"BPC301", kBpc, 0},
+        {"BPC303", kBpc, 0},
+        {"TSG001", kTsg, kTCubeLater},
+        {"KSG101", kTsg, kKsgLater},
+    };
+    for (const auto firmware : {Firmware::Issue3, Firmware::Issue44_1}) {
+        for (const auto& row : rows) {
+            INFO(row.name << (firmware == Firmware::Issue3 ? " issue-3" : " issue-44.1"));
+            const auto* c = find_controller(row.name, firmware);
+            REQUIRE(c);
+            CHECK(ids_of(c->takes) == on_lists(row.takes));
+            CHECK(c->takes.count == on_lists(row.takes).size());
+            CHECK(ids_of(c->later_takes) == on_lists(row.later_takes));
+            CHECK(c->later_takes.count == on_lists(row.later_takes).size());
+        }
+    }
+}
+
 TEST_CASE("catalogue: the solenoid, piezo and strain gauge units' identity, ACK and LUT figures",
           "[unit][apt][catalogue]")
 {
