@@ -11,8 +11,9 @@ the table lacks, with each row's "kinds" cell as the sources give it; the per-un
 the markers is left as it is.
 
 Reads the cross-reference tables (manual pp.131-138) from the manual's text, and what rigsim
-does from its sources: the message IDs (emulator/apt/messages.def), each model's kind, `takes`
-list, rack flag and fault report form (emulator/apt/catalogue.cpp), and the messages each module
+does from its sources: the message IDs and the takes lists that name each message
+(emulator/apt/messages.def), each model's kind, `takes` list (the one it names), rack flag and
+fault report form (emulator/apt/catalogue.cpp), and the messages each module
 class and the unit shell have a handler for (the MGMSG_ name in the `///` line of each `on()` in
 module.hpp, apt_device.hpp, rack_modules.hpp and the kind's module header). A message of a
 unit's table counts as implemented when the unit acts on it (host->unit: a handler, and the
@@ -98,6 +99,15 @@ def message_ids(text):
             for m in re.finditer(r"^RIGSIM_APT_TABLE\w*\((MGMSG_\w+), 0x([0-9A-Fa-f]+),", text, re.M)}
 
 
+def message_lists(text):
+    """{takes list (kTsc, ...): [MGMSG names]} from messages.def's last column ("kTpz | kBpc"; 0: none)."""
+    lists = {}
+    for m in re.finditer(r"^RIGSIM_APT_TABLE\w*\((MGMSG_\w+), [^)]*, ([^,)]+)\)", text, re.M):
+        for token in re.findall(r"k\w+", m.group(2)):
+            lists.setdefault(token, []).append(m.group(1))
+    return lists
+
+
 def handlers(text):
     """MGMSG names of the on() overloads of a header (the `///` comment on or above the line)."""
     names = set()
@@ -110,10 +120,9 @@ def handlers(text):
     return names
 
 
-def catalogue(text):
-    """{model: {kind, motor, takes (names), rack, rich}} from catalogue.cpp."""
-    arrays = {m.group(1): re.findall(r"MGMSG_\w+", m.group(2))
-              for m in re.finditer(r"constexpr std::uint16_t (k\w+Takes)\[\]\{(.*?)\};", text, re.S)}
+def catalogue(text, lists):
+    """{model: {kind, motor, takes (names), rack, rich}} from catalogue.cpp; `lists` (message_lists)
+    gives the messages of the takes list a model names (`listed<kTsc>()`)."""
     functions = {}
     for m in re.finditer(r"constexpr ControllerModel (\w+)\(([^)]*)\)\s*\{(.*?)\n\}", text, re.S):
         functions[m.group(1)] = m.group(3)
@@ -122,9 +131,9 @@ def catalogue(text):
         body = functions.get(fn, "")
         facts = {"takes": None, "kind": None, "motor": None, "rack": "c.rack = true" in body,
                  "rich": "rich_fault_reports = true" in body}
-        t = re.search(r"message_set\((k\w+Takes)\)", body)
+        t = re.search(r"listed<(k\w+)>\(\)", body)
         if t:
-            facts["takes"] = arrays[t.group(1)]
+            facts["takes"] = lists[t.group(1)]
         k = re.search(r"UnitKind::(\w+)", body)
         if k:
             facts["kind"] = k.group(1)
@@ -161,9 +170,10 @@ class Sources:
     def __init__(self, root):
         apt = os.path.join(root, "emulator", "apt")
         self.apt = apt
-        self.ids = message_ids(read(os.path.join(apt, "messages.def")))
+        table = read(os.path.join(apt, "messages.def"))
+        self.ids = message_ids(table)
         self.names = {v: k for k, v in self.ids.items()}
-        self.models = catalogue(read(os.path.join(apt, "catalogue.cpp")))
+        self.models = catalogue(read(os.path.join(apt, "catalogue.cpp")), message_lists(table))
         self.generic = handlers(read(os.path.join(apt, "module.hpp"))) | handlers(read(os.path.join(apt, "apt_device.hpp")))
         self.rack = handlers(read(os.path.join(apt, "rack_modules.hpp")))
         for model in ORDER:

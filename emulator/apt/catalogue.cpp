@@ -117,111 +117,14 @@ constexpr ControllerModel bbd203()
 }
 
 // ---- Solenoid, piezo and strain-gauge units ----
-// Their message sets are the manual's cross-reference tables (TSC001 p. 138, TPZ001 p. 133,
-// BPC30x p. 132, TSG001 p. 134) without the generic messages (the shell handles those), with
-// the choices of docs/protocol/errata.md: TSC001 D-3/D-4, TPZ001 D-5, BPC30x D-6. The K-Cubes
-// take their T-Cube's set (the manual predates them).
+// Their message sets are takes lists of messages.def (its last column: the manual's cross-reference
+// tables, p. 132-138, without the generic messages, with the choices of docs/protocol/errata.md; the
+// K-Cubes take their T-Cube's list, and with the later generation their own messages beyond it).
 
-// TSC001 (p. 138). MOVE_ABSOLUTE, MOVE_STOP and MOVE_COMPLETED are in its table, but the
-// solenoid chapter (p. 84-92) gives them no meaning: left out, ignored and logged (D-4). The
-// host acknowledges its status updates with MOT_ACK_DCSTATUSUPDATE like a motor's (D-3).
-constexpr std::uint16_t kSolenoidTakes[]{
-    MGMSG_MOT_SET_AVMODES, MGMSG_MOT_REQ_AVMODES, MGMSG_MOT_GET_AVMODES,
-    MGMSG_MOT_SET_BUTTONPARAMS, MGMSG_MOT_REQ_BUTTONPARAMS, MGMSG_MOT_GET_BUTTONPARAMS,
-    MGMSG_MOT_SET_EEPROMPARAMS, MGMSG_MOT_GET_STATUSUPDATE, MGMSG_MOT_ACK_DCSTATUSUPDATE,
-    MGMSG_MOT_SET_SOL_OPERATINGMODE, MGMSG_MOT_REQ_SOL_OPERATINGMODE, MGMSG_MOT_GET_SOL_OPERATINGMODE,
-    MGMSG_MOT_SET_SOL_CYCLEPARAMS, MGMSG_MOT_REQ_SOL_CYCLEPARAMS, MGMSG_MOT_GET_SOL_CYCLEPARAMS,
-    MGMSG_MOT_SET_SOL_INTERLOCKMODE, MGMSG_MOT_REQ_SOL_INTERLOCKMODE, MGMSG_MOT_GET_SOL_INTERLOCKMODE,
-    MGMSG_MOT_SET_SOL_STATE, MGMSG_MOT_REQ_SOL_STATE, MGMSG_MOT_GET_SOL_STATE,
-};
-
-// TPZ001 (p. 133) plus three its table omits (D-5): PZSTATUSBITS (p. 101 has a TPZ001 bit
-// table), ACK_PZSTATUSUPDATE (p. 105: the 10 Hz updates it sends stop without it) and
-// TPZ_SLEWRATES (p. 123, named for the TPZ).
-constexpr std::uint16_t kTpzTakes[]{
-    MGMSG_PZ_SET_POSCONTROLMODE, MGMSG_PZ_REQ_POSCONTROLMODE, MGMSG_PZ_GET_POSCONTROLMODE,
-    MGMSG_PZ_SET_OUTPUTVOLTS, MGMSG_PZ_REQ_OUTPUTVOLTS, MGMSG_PZ_GET_OUTPUTVOLTS,
-    MGMSG_PZ_SET_OUTPUTPOS, MGMSG_PZ_REQ_OUTPUTPOS, MGMSG_PZ_GET_OUTPUTPOS,
-    MGMSG_PZ_SET_INPUTVOLTSSRC, MGMSG_PZ_REQ_INPUTVOLTSSRC, MGMSG_PZ_GET_INPUTVOLTSSRC,
-    MGMSG_PZ_SET_PICONSTS, MGMSG_PZ_REQ_PICONSTS, MGMSG_PZ_GET_PICONSTS,
-    MGMSG_PZ_GET_PZSTATUSUPDATE,
-    MGMSG_PZ_SET_OUTPUTLUT, MGMSG_PZ_REQ_OUTPUTLUT, MGMSG_PZ_GET_OUTPUTLUT,
-    MGMSG_PZ_SET_OUTPUTLUTPARAMS, MGMSG_PZ_REQ_OUTPUTLUTPARAMS, MGMSG_PZ_GET_OUTPUTLUTPARAMS,
-    MGMSG_PZ_START_LUTOUTPUT, MGMSG_PZ_STOP_LUTOUTPUT, MGMSG_PZ_SET_EEPROMPARAMS,
-    MGMSG_PZ_SET_TPZ_DISPSETTINGS, MGMSG_PZ_REQ_TPZ_DISPSETTINGS, MGMSG_PZ_GET_TPZ_DISPSETTINGS,
-    MGMSG_PZ_SET_TPZ_IOSETTINGS, MGMSG_PZ_REQ_TPZ_IOSETTINGS, MGMSG_PZ_GET_TPZ_IOSETTINGS,
-    // D-5
-    MGMSG_PZ_REQ_PZSTATUSBITS, MGMSG_PZ_GET_PZSTATUSBITS, MGMSG_PZ_ACK_PZSTATUSUPDATE,
-    MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES, MGMSG_PZ_GET_TPZ_SLEWRATES,
-};
-
-// A BPC30x bay (p. 132; its table spells the slew rates PZ_SET_SLEWRATES) plus MAXTRAVEL,
-// whose own example (p. 118) addresses bay 0x22 (D-6).
-constexpr std::uint16_t kBpcTakes[]{
-    MGMSG_PZ_SET_POSCONTROLMODE, MGMSG_PZ_REQ_POSCONTROLMODE, MGMSG_PZ_GET_POSCONTROLMODE,
-    MGMSG_PZ_SET_OUTPUTVOLTS, MGMSG_PZ_REQ_OUTPUTVOLTS, MGMSG_PZ_GET_OUTPUTVOLTS,
-    MGMSG_PZ_SET_OUTPUTPOS, MGMSG_PZ_REQ_OUTPUTPOS, MGMSG_PZ_GET_OUTPUTPOS,
-    MGMSG_PZ_SET_INPUTVOLTSSRC, MGMSG_PZ_REQ_INPUTVOLTSSRC, MGMSG_PZ_GET_INPUTVOLTSSRC,
-    MGMSG_PZ_SET_PICONSTS, MGMSG_PZ_REQ_PICONSTS, MGMSG_PZ_GET_PICONSTS,
-    MGMSG_PZ_REQ_PZSTATUSBITS, MGMSG_PZ_GET_PZSTATUSBITS,
-    MGMSG_PZ_GET_PZSTATUSUPDATE, MGMSG_PZ_ACK_PZSTATUSUPDATE,
-    MGMSG_PZ_SET_OUTPUTLUT, MGMSG_PZ_REQ_OUTPUTLUT, MGMSG_PZ_GET_OUTPUTLUT,
-    MGMSG_PZ_SET_OUTPUTLUTPARAMS, MGMSG_PZ_REQ_OUTPUTLUTPARAMS, MGMSG_PZ_GET_OUTPUTLUTPARAMS,
-    MGMSG_PZ_START_LUTOUTPUT, MGMSG_PZ_STOP_LUTOUTPUT, MGMSG_PZ_SET_ZERO,
-    MGMSG_PZ_SET_OUTPUTMAXVOLTS, MGMSG_PZ_REQ_OUTPUTMAXVOLTS, MGMSG_PZ_GET_OUTPUTMAXVOLTS,
-    MGMSG_PZ_SET_TPZ_SLEWRATES, MGMSG_PZ_REQ_TPZ_SLEWRATES, MGMSG_PZ_GET_TPZ_SLEWRATES,
-    MGMSG_MOT_SET_PZSTAGEPARAMDEFAULTS,
-    // D-6
-    MGMSG_PZ_REQ_MAXTRAVEL, MGMSG_PZ_GET_MAXTRAVEL,
-};
-
-// TSG001 (p. 134), as printed.
-constexpr std::uint16_t kTsgTakes[]{
-    MGMSG_PZ_GET_PZSTATUSUPDATE, MGMSG_PZ_ACK_PZSTATUSUPDATE, MGMSG_PZ_SET_EEPROMPARAMS,
-    MGMSG_PZ_SET_TPZ_DISPSETTINGS, MGMSG_PZ_REQ_TPZ_DISPSETTINGS, MGMSG_PZ_GET_TPZ_DISPSETTINGS,
-    MGMSG_PZ_SET_ZERO, MGMSG_PZ_REQ_MAXTRAVEL, MGMSG_PZ_GET_MAXTRAVEL,
-    MGMSG_PZ_SET_TSG_IOSETTINGS, MGMSG_PZ_REQ_TSG_IOSETTINGS, MGMSG_PZ_GET_TSG_IOSETTINGS,
-    MGMSG_PZ_REQ_TSG_READING, MGMSG_PZ_GET_TSG_READING,
-};
-
-// ---- What the K-Cubes of the later generation ("issue-44.1") take beyond their T-Cube's set ----
-// Their own messages of the later protocol issues (docs/protocol/apt.md "K-Cube units" gives the
-// public source of each); the manual's generation ignores and logs them, as a 2012 unit would.
-
-// KSC101: MOT_REQ_STATUSBITS (MSLNZ/msl-equipment thorlabs/ksc.py reads the shutter and key from
-// its status bits), MOT_REQ_STATUSUPDATE (quantumion/thorlabs_cube tcube/tsc.py, inherited by
-// kcube/ksc.py), and the K-Cube motor messages of its display and trigger ports (ksc.py).
-constexpr std::uint16_t kKscLaterTakes[]{
-    MGMSG_MOT_REQ_STATUSBITS, MGMSG_MOT_GET_STATUSBITS, MGMSG_MOT_REQ_STATUSUPDATE,
-    MGMSG_MOT_SET_KCUBEMMIPARAMS, MGMSG_MOT_REQ_KCUBEMMIPARAMS, MGMSG_MOT_GET_KCUBEMMIPARAMS,
-    MGMSG_MOT_SET_KCUBETRIGIOCONFIG, MGMSG_MOT_REQ_KCUBETRIGIOCONFIG, MGMSG_MOT_GET_KCUBETRIGIOCONFIG,
-};
-
-// KPZ101: its MMI and trigger blocks, and PZ_REQ_PZSTATUSUPDATE.
-constexpr std::uint16_t kKpzLaterTakes[]{
-    MGMSG_PZ_REQ_PZSTATUSUPDATE,
-    MGMSG_KPZ_SET_KCUBEMMIPARAMS, MGMSG_KPZ_REQ_KCUBEMMIPARAMS, MGMSG_KPZ_GET_KCUBEMMIPARAMS,
-    MGMSG_KPZ_SET_KCUBETRIGIOCONFIG, MGMSG_KPZ_REQ_KCUBETRIGIOCONFIG, MGMSG_KPZ_GET_KCUBETRIGIOCONFIG,
-};
-
-// KSG101: its MMI and trigger blocks, and PZ_REQ_PZSTATUSUPDATE.
-constexpr std::uint16_t kKsgLaterTakes[]{
-    MGMSG_PZ_REQ_PZSTATUSUPDATE,
-    MGMSG_KSG_SET_KCUBEMMIPARAMS, MGMSG_KSG_REQ_KCUBEMMIPARAMS, MGMSG_KSG_GET_KCUBEMMIPARAMS,
-    MGMSG_KSG_SET_KCUBETRIGIOCONFIG, MGMSG_KSG_REQ_KCUBETRIGIOCONFIG, MGMSG_KSG_GET_KCUBETRIGIOCONFIG,
-};
-
-// TPZ001, TSG001: PZ_REQ_PZSTATUSUPDATE, which pyLabLib (AlexShkarin/pyLabLib kinesis.py,
-// KinesisPiezoController "TPZ/KPZ series": _pzctl_get_status_n queries 0x0660 and reads the
-// status dword at data 6) sends to the T-Cubes as to the K-Cubes.
-constexpr std::uint16_t kTCubeLaterTakes[]{
-    MGMSG_PZ_REQ_PZSTATUSUPDATE,
-};
-
-template <std::size_t N>
-constexpr MessageSet message_set(const std::uint16_t (&ids)[N])
+/// The messages on takes list `List` (messages.def's last column).
+template <TakesLists List> constexpr MessageSet listed()
 {
-    return MessageSet{ids, N};
+    return MessageSet{kIdsOnList<List>.data(), kIdsOnList<List>.size()};
 }
 
 /// A cube (HW_GET_INFO type 31) driving something else than a motor.
@@ -240,14 +143,14 @@ constexpr ControllerModel unit_cube(std::string_view name, std::uint32_t serial_
 // Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
 constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
-    return unit_cube(name, serial_prefix, UnitKind::Solenoid, message_set(kSolenoidTakes), notes);
+    return unit_cube(name, serial_prefix, UnitKind::Solenoid, listed<kTsc>(), notes);
 }
 
 // TPZ001 LUT: indices 0..512 (p. 106), timing in 250 µs samples (p. 109); its loop runs at
 // that 4 kHz rate.
 constexpr ControllerModel piezo_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
-    auto c = unit_cube(name, serial_prefix, UnitKind::Piezo, message_set(kTpzTakes), notes);
+    auto c = unit_cube(name, serial_prefix, UnitKind::Piezo, listed<kTpz>(), notes);
     c.lut_max_index = 512;
     c.lut_base_interval_us = 250;
     c.loop_rate_hz = 4'000;
@@ -256,7 +159,7 @@ constexpr ControllerModel piezo_cube(std::string_view name, std::uint32_t serial
 
 constexpr ControllerModel gauge_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
-    return unit_cube(name, serial_prefix, UnitKind::StrainGauge, message_set(kTsgTakes), notes);
+    return unit_cube(name, serial_prefix, UnitKind::StrainGauge, listed<kTsg>(), notes);
 }
 
 constexpr ControllerModel rich(ControllerModel c)
@@ -281,7 +184,7 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     ControllerModel c;
     c.name = name;
     c.kind = UnitKind::Piezo;
-    c.takes = message_set(kBpcTakes);
+    c.takes = listed<kBpc>();
     c.ack_id = MGMSG_PZ_ACK_PZSTATUSUPDATE;
     c.lut_max_index = 7'999;
     c.lut_base_interval_us = 1'000;
@@ -299,15 +202,15 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
 constexpr std::array<ControllerModel, 14> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
-    later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), message_set(kKscLaterTakes)),
-    later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), message_set(kTCubeLaterTakes)),
-    later_unit(rich(piezo_cube("KPZ101", 29, "Piezo Controller")), message_set(kKpzLaterTakes)),
+    later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), listed<kKscLater>()),
+    later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), listed<kTCubeLater>()),
+    later_unit(rich(piezo_cube("KPZ101", 29, "Piezo Controller")), listed<kKpzLater>()),
     // BPC303: Thorlabs' prefix 71; BPC301: 41 after the 40/70 single/three-channel pattern of
     // 2.2 (the least certain of D-1).
     bpc("BPC301", 41, 1),
     bpc("BPC303", 71, 3),
-    later_unit(gauge_cube("TSG001", 84, "APT Strain Gauge Reader"), message_set(kTCubeLaterTakes)),
-    later_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), message_set(kKsgLaterTakes)),
+    later_unit(gauge_cube("TSG001", 84, "APT Strain Gauge Reader"), listed<kTCubeLater>()),
+    later_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), listed<kKsgLater>()),
 };
 
 // ---- The later generation ("issue-44.1"; docs/protocol/apt.md, "Firmware generations") ----

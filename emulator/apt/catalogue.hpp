@@ -20,7 +20,8 @@ enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge };
 
 /// The message IDs a model takes beyond the generic ones (identify, enable state, info, update
 /// messages, bays): its column of the manual's "Message Cross Reference by Unit Part Number"
-/// tables. Empty: the module's own handlers decide (the motor controllers).
+/// tables, a takes list of messages.def (catalogue.cpp names each model's). Empty: the module's
+/// own handlers decide (the motor controllers).
 struct MessageSet {
     const std::uint16_t* ids = nullptr;
     std::size_t count = 0;

@@ -9,7 +9,7 @@ namespace rigsim::apt::msg {
 
 // ---- Piezo Control Messages (p. 93-126) and the TSG001 strain gauge reader (p. 127-129) ----
 // PiezoModule (TPZ001, KPZ101, BPC30x bays) and StrainGaugeModule (TSG001, KSG101) act on the
-// ones their model's takes list names (catalogue.cpp); the other modules ignore and log them.
+// ones their model's takes lists name (messages.def, catalogue.cpp); the other modules ignore and log them.
 
 /// MGMSG_PZ_SET/REQ/GET_OUTPUTVOLTS (p. 96).
 struct PzOutputVolts {

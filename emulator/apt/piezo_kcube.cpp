@@ -1,6 +1,6 @@
 // The KPZ101's own messages of the later protocol issues (PiezoModule, piezo_module.hpp): its MMI
 // (wheel and display) and trigger-port blocks, kept and answered, and PZ_REQ_PZSTATUSUPDATE. Only a
-// KPZ101 of the later firmware generation takes them (catalogue.cpp kKpzLaterTakes); sources and
+// KPZ101 of the later firmware generation takes them (messages.def's takes list kKpzLater); sources and
 // layouts: docs/protocol/apt.md "K-Cube units". rigsim has no wheel, display or trigger ports to
 // drive: the blocks change nothing physical.
 

@@ -68,7 +68,7 @@ public:
     void on(const msg::SetButtonParams& m);       ///< MGMSG_MOT_SET_BUTTONPARAMS (p. 58)
     void on(const msg::ReqButtonParams& m);       ///< MGMSG_MOT_REQ_BUTTONPARAMS (p. 58)
     void on(const msg::SetEepromParams& m);       ///< MGMSG_MOT_SET_EEPROMPARAMS (p. 60)
-    // A KSC101 of the later generation (catalogue.cpp kKscLaterTakes; the TSC001 ignores them, D-4).
+    // A KSC101 of the later generation (messages.def's takes list kKscLater; the TSC001 ignores them, D-4).
     void on(const msg::ReqStatusBits& m);         ///< MGMSG_MOT_REQ_STATUSBITS (p. 81; KSC101, later generation)
     void on(const msg::ReqStatusUpdate& m);       ///< MGMSG_MOT_REQ_STATUSUPDATE (p. 78; KSC101, later generation)
     /// MGMSG_MOT_SET_KCUBETRIGIOCONFIG (later issue; KSC101): a solenoid cube's port modes first.

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
@@ -643,6 +644,42 @@ TEST_CASE("apt manual examples that the ERRATA correct", "[unit][apt][messages]"
             CHECK(get_u32(p.data[0], 10) == 0x80000400u);
             check_rejected(encode_header_only(id, 0x01, 0x00, kHost, kGenericUsb));
         }
+    }
+}
+
+TEST_CASE("messages: each takes list's IDs are the lines of messages.def that name it, in the table's order",
+          "[unit][apt][messages]")
+{
+    auto scanned = [](TakesLists list) {
+        std::vector<std::uint16_t> ids;
+        for (const auto& m : messages_detail::kListed)
+            if ((m.lists & list) != 0)
+                ids.push_back(m.id);
+        return ids;
+    };
+    auto derived = [](const auto& ids) { return std::vector<std::uint16_t>(ids.begin(), ids.end()); };
+    CHECK(derived(kIdsOnList<kTsc>) == scanned(kTsc));
+    CHECK(derived(kIdsOnList<kTpz>) == scanned(kTpz));
+    CHECK(derived(kIdsOnList<kBpc>) == scanned(kBpc));
+    CHECK(derived(kIdsOnList<kTsg>) == scanned(kTsg));
+    CHECK(derived(kIdsOnList<kKscLater>) == scanned(kKscLater));
+    CHECK(derived(kIdsOnList<kKpzLater>) == scanned(kKpzLater));
+    CHECK(derived(kIdsOnList<kKsgLater>) == scanned(kKsgLater));
+    CHECK(derived(kIdsOnList<kTCubeLater>) == scanned(kTCubeLater));
+    CHECK(kIdsOnList<kTsc>.size() == 21);
+    CHECK(kIdsOnList<kTpz>.size() == 37);
+    CHECK(kIdsOnList<kBpc>.size() == 37);
+    CHECK(kIdsOnList<kTsg>.size() == 14);
+    CHECK(kIdsOnList<kKscLater>.size() == 9);
+    CHECK(kIdsOnList<kKpzLater>.size() == 7);
+    CHECK(kIdsOnList<kKsgLater>.size() == 7);
+    CHECK(kIdsOnList<kTCubeLater>.size() == 1);
+    // One line per message of the table, in its order; no generic message is on a list (the shell's).
+    REQUIRE(std::size(messages_detail::kListed) == all_messages().size());
+    for (std::size_t i = 0; i < all_messages().size(); ++i) {
+        CHECK(messages_detail::kListed[i].id == all_messages()[i].id);
+        if (all_messages()[i].group == Group::Generic)
+            CHECK(messages_detail::kListed[i].lists == 0);
     }
 }
 
