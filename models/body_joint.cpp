@@ -44,31 +44,45 @@ bool body_suits(BodyKind kind, JointType type)
     return false;
 }
 
+// A body's kind may change after the joint was bound (an MCS channel told of another positioner
+// type): every read asks the body how it travels now. mm per m and degrees per radian keep the
+// joint's numbers where the body's own resolution is the same (nm and µ° both read as 1e-6).
+
+namespace {
+
+double joint_position(const Body& b)
+{
+    return b.travel() == Travel::Line ? b.position_m() * joint_per_si(b) : b.angle_rad() * joint_per_si(b);
+}
+
+double joint_velocity(const Body& b)
+{
+    return b.travel() == Travel::Line ? b.velocity_m_per_s() * joint_per_si(b)
+                                      : b.angular_velocity_rad_per_s() * joint_per_si(b);
+}
+
+} // namespace
+
 JointReader joint_reader(const Body& body)
 {
-    const double k = joint_per_si(body);
+    joint_per_si(body);   // std::invalid_argument now for a body without travel
     const Body* b = &body;
-    if (body.travel() == Travel::Line)
-        return [b, k] { return b->position_m() * k; };
-    return [b, k] { return b->angle_rad() * k; };
+    return [b] { return joint_position(*b); };
 }
 
 JointDrive joint_drive(Body& body)
 {
-    const double k = joint_per_si(body);
+    joint_per_si(body);
     Body* b = &body;
     JointDrive d;
     d.body_key = body.key();
-    const bool line = body.travel() == Travel::Line;
-    if (line)
-        d.velocity = [b, k] { return b->velocity_m_per_s() * k; };
-    else
-        d.velocity = [b, k] { return b->angular_velocity_rad_per_s() * k; };
+    d.velocity = [b] { return joint_velocity(*b); };
     if (!body.stoppable())
         return d;   // it pushes on: a contact only reports it
-    d.set_obstacles = [b, k, line](std::optional<double> min, std::optional<double> max) {
+    d.set_obstacles = [b](std::optional<double> min, std::optional<double> max) {
+        const double k = joint_per_si(*b);
         const auto si = [k](std::optional<double> q) { return q ? std::optional<double>(*q / k) : std::nullopt; };
-        if (line)
+        if (b->travel() == Travel::Line)
             b->set_obstacles_m(si(min), si(max));
         else
             b->set_obstacles_rad(si(min), si(max));

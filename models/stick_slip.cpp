@@ -74,6 +74,13 @@ void StickSlipPositioner::apply_faults()
     set_blocked(faults().stalled);
 }
 
+void StickSlipPositioner::set_kind(BodyKind kind)
+{
+    if (travel_of(kind) == Travel::None)
+        throw std::invalid_argument("a stick-slip positioner is linear, rotary or a goniometer");
+    config_.kind = kind;
+}
+
 void StickSlipPositioner::set_travel(double min_nm, double max_nm)
 {
     config_.travel_min_nm = min_nm;

@@ -95,6 +95,9 @@ public:
     void set_listener(std::function<void()> listener) { listener_ = std::move(listener); }
     /// Mechanical end stops (±infinity: none, an endless rotary stage). At rest only.
     void set_travel(double min_nm, double max_nm);
+    /// What the stage is from now on (linear, rotary, goniometer: the controller was told another
+    /// positioner type, MCS SST); the positions keep their numbers (nm become µ°).
+    void set_kind(BodyKind kind);
     double travel_min_nm() const { return config_.travel_min_nm; }
     double travel_max_nm() const { return config_.travel_max_nm; }
     /// The end stops the stage meets now: the mechanical ones, or the obstacle of a stall,

@@ -1,5 +1,7 @@
 #include "emulator/control/control_api.hpp"
 
+#include "emulator/control/body_state.hpp"
+
 #include "emulator/control/json_reply.hpp"
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/wire_log.hpp"
@@ -110,7 +112,7 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
 ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy, std::vector<ControlledDevice> devices,
                        EventBus* events, FrameSource frames, models::World* world)
     : clock_(clock), ticker_(ticker), busy_(std::move(busy)), devices_(std::move(devices)), events_(events),
-      faults_(clock_, devices_, world), frames_(std::move(frames))
+      world_(world), faults_(clock_, devices_, world), frames_(std::move(frames))
 {
     if (events_ && !frames_.empty()) {
         events_->set_follow_up([this](const Event& e) { follow_up(e); });
@@ -215,7 +217,7 @@ HttpReply ControlApi::device_route(std::string_view method, const std::vector<st
             return not_allowed(method, path, "GET, PATCH");
         ticker_.sync();
         auto state = json::object();
-        surface(d).describe(state);
+        describe_device(surface(d), world_, state);
         const auto& channels = state["channels"];
         for (const auto& ch : channels)
             if (ch.value("index", -1) >= 0 && std::to_string(ch.value("index", -1)) == parts[4])
@@ -236,7 +238,7 @@ HttpReply ControlApi::get_device(const ControlledDevice& d)
                {"firmware", d.endpoints.firmware},
                {"endpoints", {{"tcp", d.endpoints.tcp}, {"pty", d.endpoints.pty}}}};
     if (d.surface)
-        d.surface->describe(state);
+        describe_device(*d.surface, world_, state);
     state["faults"] = faults_.list(&d.endpoints.name);
     if (d.link)
         state["link"] = json{{"unplugged", d.link->unplugged()},
@@ -260,7 +262,7 @@ HttpReply ControlApi::patch_channel(ControlledDevice& d, const std::string& inde
     if (refused)
         throw BadRequest{refused->status, refused->message};
     auto state = json::object();
-    s.describe(state);
+    describe_device(s, world_, state);
     for (const auto& ch : state["channels"])
         if (ch.value("index", -1) == static_cast<int>(n)) {
             publish(d.endpoints.name, "channel_set", json{{"channel", n}, {"set", body}});

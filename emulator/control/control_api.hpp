@@ -75,6 +75,7 @@ private:
     std::function<bool()> busy_;
     std::vector<ControlledDevice> devices_;
     EventBus* events_;
+    models::World* world_;   ///< the rig's bodies (nullptr in tests without one)
     FaultBook faults_;   ///< after devices_, which it refers to
     FrameBook frames_;
 };

@@ -8,6 +8,20 @@ namespace rigsim::mcs {
 
 namespace {
 
+/// What a positioner with sensor `sensor` is (one without is taken as linear).
+models::BodyKind kind_of(const SensorType* sensor)
+{
+    switch (sensor ? sensor->kind : SensorKind::Linear) {
+    case SensorKind::Linear:
+        return models::BodyKind::Linear;
+    case SensorKind::Rotary:
+        return models::BodyKind::Rotary;
+    case SensorKind::Goniometer:
+        return models::BodyKind::Goniometer;
+    }
+    return models::BodyKind::Linear;
+}
+
 models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
 {
     models::StickSlipConfig s;
@@ -18,19 +32,8 @@ models::StickSlipConfig stick_slip_config(int index, const McsChannelConfig& c)
     s.scan_range_nm = static_cast<double>(c.scan_range_nm);
     s.drift_nm_per_s = static_cast<double>(c.drift_nm_per_s);
     // The stage is what the configured sensor says it came with (a positioner without one is
-    // taken as linear); an SST later changes how the controller reads it, not the stage.
-    const auto* sensor = c.sensor_type == "none" ? nullptr : sensor_type_by_symbol(c.sensor_type);
-    switch (sensor ? sensor->kind : SensorKind::Linear) {
-    case SensorKind::Linear:
-        s.kind = models::BodyKind::Linear;
-        break;
-    case SensorKind::Rotary:
-        s.kind = models::BodyKind::Rotary;
-        break;
-    case SensorKind::Goniometer:
-        s.kind = models::BodyKind::Goniometer;
-        break;
-    }
+    // taken as linear); an SST says another positioner is attached (set_sensor_type).
+    s.kind = kind_of(c.sensor_type == "none" ? nullptr : sensor_type_by_symbol(c.sensor_type));
     return s;
 }
 
@@ -130,6 +133,7 @@ std::optional<ErrorCode> Channel::set_sensor_type(std::int32_t code)
         return ErrorCode::InvalidParameter;
     stop();   // "If this command is issued, the positioner is implicitly stopped." (SST)
     sensor_ = type;
+    body_.set_kind(kind_of(sensor_));
     body_.set_travel(travel_min(), travel_max());
     return std::nullopt;
 }
@@ -562,6 +566,7 @@ void Channel::restore_defaults()
     safe_direction_ = 0;
     es_default_mode_ = 0;
     es_mode_ = 0;
+    body_.set_kind(kind_of(sensor_));
     body_.set_travel(travel_min(), travel_max());
 }
 

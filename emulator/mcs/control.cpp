@@ -94,12 +94,10 @@ void McsDevice::channel_json(std::size_t i, nlohmann::json& j) const
     const auto& ch = *controller_.channel(index);
     const auto& body = ch.body();
     j["kind"] = ch.rotary() ? "rotary" : "linear";
-    j["position_si"] = si_of(ch, body.position_nm());
-    j["si_unit"] = ch.rotary() ? "rad" : "m";
+    // position_si, velocity_si, si_unit: the body's, added by the control API (body_state.cpp).
     const bool readable = ch.rotary() ? !ch.check_angular_sensor() : !ch.check_linear_sensor();
     j["position_protocol"] = readable ? nlohmann::json(ch.position()) : nlohmann::json(nullptr);
     j["protocol_unit"] = ch.rotary() ? "udeg" : "nm";
-    j["velocity_si"] = si_of(ch, body.velocity_nm_per_s());
     j["referenced"] = ch.physical_position_known();
     const auto [tmin, tmax] = ch.travel();
     nlohmann::json range = nullptr;

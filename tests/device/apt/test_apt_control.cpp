@@ -2,6 +2,7 @@
 // channel, the faults that act inside the unit, the power cycle, the wire log and the events,
 // checked on the wire (frames in -> frames out) on a stepped clock.
 #include "apt_harness.hpp"
+#include "emulator/control/body_state.hpp"
 #include "emulator/control/fault_book.hpp"
 
 #include "emulator/core/event_bus.hpp"
@@ -24,7 +25,7 @@ namespace {
 json describe(AptHarness& h)
 {
     json out = json::object();
-    h.device().describe(out);
+    rigsim::control::describe_device(h.device(), &h.world(), out);   // as the control API does
     return out;
 }
 
@@ -229,8 +230,15 @@ TEST_CASE("control: a stall fault ends a DC servo's move with HW_RESPONSE and th
     CHECK(out[0] == "80 00 00 00 01 50");   // HW_RESPONSE (p. 19)
     CHECK(out[1].substr(0, 35) == "66 04 0E 00 81 50 01 00 " + le32(0));   // MOVE_STOPPED where it stood
     CHECK((status_of(out[1]) & status::kCurrentLimit) != 0);
-    CHECK(channel(h)["position_si"].get<double>() == Approx(0.025));
+    const auto stalled = channel(h);
+    CHECK(stalled["position_si"].get<double>() == Approx(0.025));
+    // The channel's body, as every family shows it: its key in the world, its kind, its faults.
+    CHECK(stalled["body"]["key"] == "cube/1");
+    CHECK(stalled["body"]["kind"] == "linear");
+    CHECK(stalled["body"]["faults"]["stalled"] == true);
+    CHECK(stalled["body"]["settling"] == false);
     unfault(h, 1);
+    CHECK(channel(h)["body"]["faults"]["stalled"] == false);
     CHECK(h.send(kMove100k) == "");
     h.advance_ms(5000);
     const auto done = frames(h.take());

@@ -2,6 +2,7 @@
 // a goniometer on a KDC101 homes to its limit switch and stops at its end stops, in degrees; a
 // stage's limit switches and home direction are its power-up LIMSWITCHPARAMS and HOMEPARAMS.
 #include "apt_harness.hpp"
+#include "emulator/control/body_state.hpp"
 
 #include "emulator/daemon/rig_families.hpp"
 
@@ -57,7 +58,7 @@ std::uint32_t status_of(const std::string& frame_hex)
 json channel(AptHarness& h)
 {
     json out = json::object();
-    h.device().describe(out);
+    rigsim::control::describe_device(h.device(), &h.world(), out);   // as the control API does
     return out["channels"].at(0);
 }
 

@@ -2,6 +2,7 @@
 // the operating modes on the stepped clock, the interlock, the triggered mode through the
 // control API's TRIG IN, EEPROM saves across a power cycle, bad parameters ignored.
 #include "apt_harness.hpp"
+#include "emulator/control/body_state.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -41,7 +42,7 @@ std::string set_mode(int mode)
 json channel(AptHarness& h)
 {
     json out = json::object();
-    h.device().describe(out);
+    rigsim::control::describe_device(h.device(), &h.world(), out);   // as the control API does
     return out["channels"].at(0);
 }
 

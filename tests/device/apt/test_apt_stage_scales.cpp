@@ -4,6 +4,7 @@
 // the emulated carriage by that unit, and velocities set from the published per-mm/s figures
 // run the carriage at the speed they mean, on the stepped clock.
 #include "apt_harness.hpp"
+#include "emulator/control/body_state.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -34,7 +35,7 @@ DeviceConfig unit(const std::string& model, const std::string& stage, Firmware f
 double carriage_si(AptHarness& h)
 {
     nlohmann::json out = nlohmann::json::object();
-    h.device().describe(out);
+    rigsim::control::describe_device(h.device(), &h.world(), out);   // as the control API does
     return out["channels"].at(0)["position_si"].get<double>();
 }
 

@@ -1,6 +1,7 @@
 // The control API's side of an MCS device (docs/control-api/mcs.md): describe(), PATCH,
 // faults and their effect on the wire, power cycle, wire log and its notes, events.
 #include "mcs_harness.hpp"
+#include "emulator/control/body_state.hpp"
 #include "emulator/control/fault_book.hpp"
 
 #include "emulator/core/control_surface.hpp"
@@ -22,7 +23,7 @@ namespace {
 json describe(McsHarness& h)
 {
     json out = json::object();
-    h.device().describe(out);
+    rigsim::control::describe_device(h.device(), &h.world(), out);   // as the control API does
     return out;
 }
 
@@ -442,6 +443,7 @@ TEST_CASE("MCS describe and PATCH on a rotary channel: radians and micro degrees
     CHECK_FALSE(patch(h, 0, {{"position_si", 3.14159265358979323846 / 2}}));
     const auto ch = describe(h)["channels"][0];
     CHECK(ch["kind"] == "rotary");
+    CHECK(ch["body"]["kind"] == "rotary");   // SST: another positioner is attached; the body follows
     CHECK(ch["si_unit"] == "rad");
     CHECK(ch["protocol_unit"] == "udeg");
     CHECK(ch["position_si"].get<double>() == Approx(3.14159265358979323846 / 2));
