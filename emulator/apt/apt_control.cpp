@@ -222,8 +222,13 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
     }
     if (ch.moving())
         return Refusal{409, "channel " + std::to_string(index) + " is moving"};
-    if (const auto it = body.find("position_si"); it != body.end())
-        ch.place(it->get<double>() / k);
+    if (const auto it = body.find("position_si"); it != body.end()) {   // through the body's physical face
+        models::Axis& axis_body = ch.axis();
+        if (axis_body.travel() == models::Travel::Line)
+            axis_body.place_m(it->get<double>());
+        else
+            axis_body.place_rad(it->get<double>());
+    }
     if (const auto it = body.find("referenced"); it != body.end())
         ch.set_homed(it->get<bool>());
     if (const auto it = body.find("limit_switch"); it != body.end()) {

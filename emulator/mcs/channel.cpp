@@ -521,11 +521,6 @@ void Channel::tick(Ticks now)
     }
 }
 
-void Channel::place(double physical)
-{
-    body_.place(physical);
-}
-
 void Channel::set_referenced(bool known)
 {
     if (known) {

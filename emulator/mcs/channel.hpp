@@ -195,8 +195,6 @@ public:
     /// How the last movement ended: "completed", "stopped", "end_stop" (142), "range_limit"
     /// (147), "reference_not_found" (144), "stalled", "sensor_failure"; "" before any.
     const char* last_outcome() const { return outcome_; }
-    /// The stage put at `physical` (nm or µ°), at rest; a sensor that is on sees the move.
-    void place(double physical);
     /// The physical position becomes known (as after FRM at the configured mark) or unknown
     /// (the reading stays where it is, GPPK answers 0).
     void set_referenced(bool known);

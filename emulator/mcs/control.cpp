@@ -65,6 +65,15 @@ Refusal bad(std::string message)
     return Refusal{400, std::move(message)};
 }
 
+/// PATCH position_si: the body is put there through its physical face (m or rad, by its kind).
+void place_si(models::Body& body, double si)
+{
+    if (body.travel() == models::Travel::Line)
+        body.place_m(si);
+    else
+        body.place_rad(si);
+}
+
 } // namespace
 
 int McsDevice::status_code(std::size_t i) const
@@ -199,11 +208,8 @@ Refused McsDevice::patch_channel(std::size_t index, const nlohmann::json& body)
     if (const auto it = body.find("sensor"); it != body.end())
         ch->set_sensor_mode(*it == "enabled" ? SensorMode::Enabled
                                              : *it == "disabled" ? SensorMode::Disabled : SensorMode::PowerSave);
-    if (const auto it = body.find("position_si"); it != body.end()) {
-        const double si = it->get<double>();
-        const auto [lo, hi] = ch->travel();
-        ch->place(std::clamp(ch->rotary() ? si * 180.0 / kPi * 1e6 : si * 1e9, lo, hi));
-    }
+    if (const auto it = body.find("position_si"); it != body.end())
+        place_si(ch->body(), it->get<double>());
     if (const auto it = body.find("referenced"); it != body.end())
         ch->set_referenced(it->get<bool>());
     publish_changes();
