@@ -33,8 +33,13 @@ public:
         : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log)
     {
         device_.attach(this);
+        device_.announce_change();
     }
-    ~AptSession() override { device_.detach(this); }
+    ~AptSession() override
+    {
+        device_.detach(this);
+        device_.announce_change();
+    }
 
     void receive(std::string_view bytes) override
     {
@@ -66,6 +71,7 @@ public:
         if (dropped > 0)
             log_.warn("{}: skipped {} byte(s) that start no valid APT message", peer_, dropped);
         device_.flush();
+        device_.announce_change();   // a message may have started a timer (models/clock.hpp, "The schedule")
     }
 
     void send(std::string_view frame) { send_(frame); }
@@ -132,7 +138,12 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
         for (std::size_t bay = modules_.size(); bay < unit_.built_in_bays; ++bay)
             empty_bays_.push_back(std::make_unique<EmptyBay>(unit_, bay, model_.motor != MotorKind::Stepper, *log_));
     }
-    clock_.add(this);
+    // Its timers move in its tick(), in a session (announced there), through a body's event (a
+    // tick of the clock) or a control request (Ticker::reschedule()). A TPZ001's or KPZ101's
+    // closed loop also wakes when its feedback input starts or stops reading a gauge, which the
+    // gauge reader's commands route (TSG_IOSETTINGS, another device): it is asked every time.
+    const bool reads_another_device = model_.kind == UnitKind::Piezo && !model_.rack;
+    clock_.add(this, reads_another_device ? Clock::Schedule::Asked : Clock::Schedule::Announced);
 }
 
 void AptDevice::power_up()

@@ -92,6 +92,9 @@ public:
 
     Ticks next_change(Ticks now) const override;
     void tick(Ticks now) override;
+    /// Its next change may have moved outside a tick (a session's messages handled, a session
+    /// opened or closed): tell the clock (models/clock.hpp, "The schedule").
+    void announce_change() { clock_.changed(*this); }
 
     /// Send end-of-move messages and what the modules sent by themselves to every connection.
     void flush();

@@ -21,6 +21,7 @@ public:
         link_.held_frames_ -= held_.size();
         auto& s = link_.sessions_;
         s.erase(std::remove(s.begin(), s.end(), this), s.end());
+        link_.clock_.changed(link_);
     }
 
     void receive(std::string_view bytes) override
@@ -54,6 +55,7 @@ public:
         held_.clear();
         held_bytes_ = 0;
         line_free_ = 0;
+        link_.clock_.changed(link_);
     }
     std::size_t held() const { return held_.size(); }
 
@@ -89,6 +91,7 @@ private:
         ++link_.held_frames_;
         // A serial line keeps its order: a later answer never overtakes an earlier one.
         held_.emplace_back(std::max(at, held_.empty() ? at : held_.back().first), std::string(bytes));
+        link_.clock_.changed(link_);   // held: the link is due when they are
     }
 
     Link& link_;
@@ -102,7 +105,9 @@ private:
 
 Link::Link(Device& inner, Clock& clock) : inner_(inner), clock_(clock)
 {
-    clock_.add(this);
+    // Its next change moves only when it holds an answer (announced there), when held answers
+    // go (a tick, a session closed, a reset) or when the clock ticks.
+    clock_.add(this, Clock::Schedule::Announced);
 }
 
 Link::~Link()

@@ -40,7 +40,7 @@ private:
         {
             ticker_.sync();
             inner_->receive(bytes);
-            ticker_.reschedule();
+            ticker_.reschedule_announced();   // the device announced what its commands changed
         }
 
     private:
@@ -142,6 +142,11 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         joint_bindings_ = std::move(built.bindings);
         collision_pairs_ = config.kinematics->collisions;
     }
+    // From here every change outside a tick is announced: a device's by the device after each
+    // batch of client bytes and each session opened or closed, a link's by the link, a control
+    // request's by Ticker::reschedule() (models/clock.hpp, "The schedule").
+    clock_.changed_all();
+    clock_.keep_schedule();
 
     for (std::size_t i = 0; i < config.devices.size(); ++i) {
         const auto& dc = config.devices[i];

@@ -43,6 +43,17 @@ void Ticker::sync()
 
 void Ticker::reschedule()
 {
+    clock_.changed_all();
+    arm();
+}
+
+void Ticker::reschedule_announced()
+{
+    arm();
+}
+
+void Ticker::arm()
+{
     if (stopped_ || paused_ || !jobs_.empty())
         return;
     const Ticks next = clock_.next_wakeup();
@@ -63,7 +74,7 @@ void Ticker::on_timer(const boost::system::error_code& ec)
     armed_for_ = SteadyClock::time_point::max();
     last_fire_ = timer_.expiry();
     sync();
-    reschedule();
+    arm();   // the ticks asked every Tickable afresh
 }
 
 void Ticker::stop()

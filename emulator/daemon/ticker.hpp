@@ -39,8 +39,14 @@ public:
 
     /// Advance the clock to the tick that is due at the current wall time.
     void sync();
-    /// Arm the timer for the clock's next wake-up (call after anything that may start motion).
+    /// Arm the timer for the clock's next wake-up (call after anything that may start motion),
+    /// every Tickable asked afresh (Clock::changed_all()): after a control request, whose changes
+    /// nobody announced one by one.
     void reschedule();
+    /// The same when every change since the last wake-up was announced (Clock::changed()): after
+    /// a batch of client bytes, whose device announced what it handled. Asks only the announced
+    /// Tickables and the Asked ones (models/clock.hpp, "The schedule").
+    void reschedule_announced();
     void stop();
 
     double time_scale() const { return time_scale_; }
@@ -87,6 +93,8 @@ private:
     SteadyClock::time_point wall_of(Ticks t) const;
     Ticks due_at(SteadyClock::time_point wall) const;
     void on_timer(const boost::system::error_code& ec);
+    /// reschedule() without asking anything afresh.
+    void arm();
     /// The wall time of the current tick is now (after a change of mode or a jump).
     void reanchor();
     void disarm();

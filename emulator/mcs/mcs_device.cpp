@@ -20,8 +20,13 @@ public:
           paced_(peer_.rfind("pty", 0) == 0)
     {
         device_.attach(this);
+        clock_.changed(device_);
     }
-    ~McsSession() override { device_.detach(this); }
+    ~McsSession() override
+    {
+        device_.detach(this);
+        clock_.changed(device_);
+    }
 
     /// Unprompted output (asynchronous mode).
     void send(std::string_view bytes) { send_(bytes); }
@@ -75,6 +80,7 @@ public:
         }
         device_.flush_outbox();
         device_.publish_changes();
+        clock_.changed(device_);   // a command may have started a timer (models/clock.hpp, "The schedule")
     }
 
 private:
@@ -96,7 +102,9 @@ McsDevice::McsDevice(const DeviceConfig& config, models::World& world, std::shar
       handler_(controller_), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {
     wire_log_.set_decoder([](const WireEntry& e, nlohmann::json& out) { decode_line(e.bytes, e.inbound, out); });
-    clock_.add(this);
+    // Its timers move in its tick(), in a session (announced there), through a body's event (a
+    // tick of the clock) or a control request (Ticker::reschedule()).
+    clock_.add(this, Clock::Schedule::Announced);
 }
 
 McsDevice::~McsDevice()

@@ -111,6 +111,19 @@ public:
         started_ = true;
         world_.link_all();
         power_up_in_phases(units_, [](auto& unit) -> Device& { return *unit->device; });
+        clock_.changed_all();   // powered up: as the rig does
+        if (keep_schedule_)
+            clock_.keep_schedule();
+    }
+    /// Run the clock as the daemon's rig does (models/clock.hpp, "The schedule"): from start() on
+    /// it keeps the devices' next changes between their announcements. Only for tests that reach
+    /// the devices through their sessions and the clock alone (the control API announces its
+    /// requests; a test calling a device's ControlSurface directly does not).
+    void keep_schedule()
+    {
+        keep_schedule_ = true;
+        if (started_)
+            clock_.keep_schedule();
     }
     /// Hex in to device `d`; hex of everything device `d` sent since the last call out.
     std::string send(const std::string& hex_in, std::size_t d = 0)
@@ -155,12 +168,14 @@ private:
     models::World world_{clock_};
     std::vector<std::unique_ptr<Unit>> units_;
     bool started_ = false;
+    bool keep_schedule_ = false;
 
     /// A device added after start(): linked and powered up at once.
     void start_last()
     {
         world_.link_all();
         units_.back()->device->power_up();
+        clock_.changed_all();
     }
 };
 

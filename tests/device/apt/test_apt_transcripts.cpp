@@ -176,11 +176,12 @@ std::int64_t advance_ms(const std::string& where, const std::string& text)
     return 0;
 }
 
-void replay(const std::string& name)
+/// Replay `name` once; `keep`: on a clock that keeps its schedule, as the daemon's does.
+void replay_on(const std::string& name, bool keep)
 {
     const std::string path = RIGSIM_SOURCE_DIR "/tests/device/apt/transcripts/" + name;
     std::ifstream in(path);
-    INFO("transcript " << path);
+    INFO("transcript " << path << (keep ? ", the clock keeping its schedule (models/clock.hpp)" : ""));
     REQUIRE(in);
     std::unique_ptr<AptHarness> harness;
     int steps = 0;
@@ -228,6 +229,8 @@ void replay(const std::string& name)
                 harness->add_device(device_from(where, rest.substr(1), "transcript" + std::to_string(harness->device_count() + 1)));
             else
                 harness = std::make_unique<AptHarness>(device_from(where, rest, "transcript"));
+            if (keep)
+                harness->keep_schedule();
             continue;
         }
         if (!harness)
@@ -253,6 +256,14 @@ void replay(const std::string& name)
     }
     settle();
     CHECK(steps > 0);
+}
+
+/// Replay `name` as the tests step the clock (every Tickable asked afresh at each call), then as
+/// the daemon runs it (the schedule kept between announcements): the bytes must be the same.
+void replay(const std::string& name)
+{
+    replay_on(name, false);
+    replay_on(name, true);
 }
 
 /// Every transcript has a test case below.

@@ -56,6 +56,16 @@ public:
         return device_.open_session([&sink](std::string_view b) { sink.append(b); }, std::move(peer));
     }
 
+    /// Run the clock as the daemon's rig does (models/clock.hpp, "The schedule"): it keeps the
+    /// device's next change between its announcements. Only for tests that reach the device
+    /// through its sessions and the clock alone (the control API announces its requests; a test
+    /// calling the device's ControlSurface directly does not).
+    void keep_schedule()
+    {
+        clock_.changed_all();
+        clock_.keep_schedule();
+    }
+
     void advance_ms(std::int64_t ms) { clock_.advance_ms(ms); }
     void advance_ticks(Ticks n) { clock_.advance(n); }
     Clock& clock() { return clock_; }

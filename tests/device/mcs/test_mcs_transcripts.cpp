@@ -25,8 +25,10 @@ using rigsim::test::McsHarness;
 
 namespace {
 
-void replay(const std::string& path)
+/// Replay `path` once; `keep`: on a clock that keeps its schedule, as the daemon's does.
+void replay_on(const std::string& path, bool keep)
 {
+    INFO(path << (keep ? ", the clock keeping its schedule (models/clock.hpp)" : ""));
     std::ifstream in(path);
     REQUIRE(in);
     std::unique_ptr<McsHarness> harness;
@@ -51,11 +53,15 @@ void replay(const std::string& path)
             REQUIRE(rest.rfind("config ", 0) == 0);
             const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/" + rest.substr(7));
             harness = std::make_unique<McsHarness>(rig.devices.at(0), rig.tick_hz);
+            if (keep)
+                harness->keep_schedule();
             continue;
         }
         if (!harness) {   // the default rig's MCS, as the e2e replay of the same file uses
             const auto rig = rigsim::default_rig_config();
             harness = std::make_unique<McsHarness>(rig.devices.at(0), rig.tick_hz);
+            if (keep)
+                harness->keep_schedule();
         }
         auto& h = *harness;
         if (kind == '>') {
@@ -84,6 +90,14 @@ void replay(const std::string& path)
     }
     settle(last_command_line);
     CHECK(commands > 0);
+}
+
+/// Replay `path` as the tests step the clock (every Tickable asked afresh at each call), then as
+/// the daemon runs it (the schedule kept between announcements): the answers must be the same.
+void replay(const std::string& path)
+{
+    replay_on(path, false);
+    replay_on(path, true);
 }
 
 /// Every transcript in tests/device/transcripts/ is replayed by a test case below.

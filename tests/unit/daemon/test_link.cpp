@@ -152,6 +152,36 @@ TEST_CASE("latency holds answers for clock time, in order, and a step releases t
     CHECK(f.out == "abc");
 }
 
+TEST_CASE("a clock that keeps its schedule sees every answer the link holds, and when the last goes",
+          "[link][clock]")
+{
+    // The daemon's clock asks the link again only when the link announces a change
+    // (models/clock.hpp, "The schedule"): an answer held and not announced would never go out.
+    Fixture f;
+    f.clock.keep_schedule();
+    CHECK(f.clock.next_wakeup() == kNever);
+    LatencyFault late;
+    late.id = 4;
+    late.latency = 30;
+    f.link.add(late);
+    f.session->receive("a");
+    CHECK(f.clock.next_wakeup() == 30);
+    f.clock.advance(10);
+    f.session->receive("b");
+    CHECK(f.clock.next_wakeup() == 30);   // "b" goes out after "a", at 40
+    f.clock.advance(20);
+    CHECK(f.out == "a");
+    CHECK(f.clock.next_wakeup() == 40);
+    f.clock.advance(10);
+    CHECK(f.out == "ab");
+    CHECK(f.clock.next_wakeup() == kNever);
+    f.session->receive("c");
+    f.link.reset();   // held answers dropped: the link is idle again
+    CHECK(f.clock.next_wakeup() == kNever);
+    f.clock.advance(100);
+    CHECK(f.out == "ab");
+}
+
 TEST_CASE("a paused clock holds late answers: nothing goes out without clock time", "[link]")
 {
     Fixture f;
