@@ -202,6 +202,7 @@ void PtyEndpoint::stop()
     session_.reset();
     leftovers_.clear();
     queue_.clear();
+    front_written_ = 0;
     queued_bytes_ = 0;
     // Remove the symlink only if it is still ours.
     char target[PATH_MAX] = {};
@@ -281,10 +282,27 @@ void PtyEndpoint::send(std::string_view bytes)
         return;
     }
     dropping_ = false;
+    std::size_t written = 0;
+    if (queue_.empty() && device_.serial_baud() == 0) {
+        // Nothing ahead of it and no line to pace: written now, as far as the pty takes it (an
+        // answer, whole); only what it leaves waits for the client to read.
+        keep_echo_off();
+        const auto n = ::write(master_.native_handle(), bytes.data(), bytes.size());
+        if (n < 0 && errno != EAGAIN && errno != EINTR) {
+            log_->error("pty {}: write failed: {}", symlink_path_, std::strerror(errno));
+            return;
+        }
+        written = n > 0 ? static_cast<std::size_t>(n) : 0;
+        if (written == bytes.size())
+            return;
+    }
+    // Counted whole until written whole, its part already written included.
     queued_bytes_ += cost;
     queue_.emplace_back(bytes);
-    if (queue_.size() == 1)
+    if (queue_.size() == 1) {
+        front_written_ = written;
         write();
+    }
 }
 
 void PtyEndpoint::write()
@@ -317,6 +335,7 @@ void PtyEndpoint::drop_abandoned_front()
     abandon_front_ = false;
     queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
     queue_.pop_front();
+    front_written_ = 0;
     if (!queue_.empty())
         write();
 }
@@ -338,7 +357,8 @@ void PtyEndpoint::paced_write()
     // echo of this write would come back as input.
     keep_echo_off();
     std::weak_ptr<bool> alive = alive_;
-    asio::async_write(master_, asio::buffer(queue_.front()),
+    const auto& front = queue_.front();
+    asio::async_write(master_, asio::buffer(front.data() + front_written_, front.size() - front_written_),
         [this, alive](const boost::system::error_code& ec, std::size_t) {
             if (!alive.lock() || stopped_)
                 return;
@@ -351,12 +371,14 @@ void PtyEndpoint::paced_write()
                 // The pending frames are lost; an empty queue lets the next answer try again.
                 log_->error("pty {}: write failed: {}", symlink_path_, ec.message());
                 queue_.clear();
+                front_written_ = 0;
                 queued_bytes_ = 0;
                 abandon_front_ = false;
                 return;
             }
             queued_bytes_ -= queue_.front().size() + kQueuedFrameOverhead;
             queue_.pop_front();
+            front_written_ = 0;
             // Written in part before the close cancelled it, the rest after the close
             // flushed the pty: flush it too. A next opener may have the port already, but
             // its answers queue behind this frame: nothing of its own is in the pty yet.

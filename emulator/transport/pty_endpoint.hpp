@@ -118,6 +118,7 @@ private:
     std::unique_ptr<Session> session_;
     std::array<char, 4096> buffer_{};
     std::deque<std::string> queue_;
+    std::size_t front_written_ = 0;   ///< bytes of the front frame send() wrote before queuing it
     std::size_t queued_bytes_ = 0;
     bool dropping_ = false;
     bool abandon_front_ = false;   ///< the front frame was queued for a client now gone

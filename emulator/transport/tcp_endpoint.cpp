@@ -12,7 +12,8 @@ namespace rigsim {
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-/// One client connection: reads into the session, writes each queued frame in one write.
+/// One client connection: reads into the session; writes each frame at once when nothing is
+/// queued ahead of it, and queues what the kernel does not take, written in order as it does.
 ///
 /// The session is released as soon as the connection ends, never later: the io_context may
 /// outlive the device, and handlers still pending then must not reach it. It is never
@@ -28,6 +29,7 @@ public:
         const auto remote = socket_.remote_endpoint(ec);
         peer_ = ec ? "tcp ?" : "tcp " + remote.address().to_string() + ":" + std::to_string(remote.port());
         socket_.set_option(tcp::no_delay(true), ec);
+        socket_.non_blocking(true, ec);   // send() writes at once what the kernel takes, never waits
     }
 
     const std::string& peer() const { return peer_; }
@@ -103,22 +105,46 @@ private:
     {
         if (closed_)
             return;
-        queued_bytes_ += bytes.size() + TcpEndpoint::kQueuedFrameOverhead;
-        if (queued_bytes_ > TcpEndpoint::kMaxQueuedBytes) {
+        const std::size_t cost = bytes.size() + TcpEndpoint::kQueuedFrameOverhead;
+        if (queued_bytes_ + cost > TcpEndpoint::kMaxQueuedBytes) {
+            queued_bytes_ += cost;
             log_.warn("{}: client reads nothing ({} bytes queued): closing the connection", peer_, queued_bytes_);
             ++device_calls_;
             end();
             --device_calls_;
             return;
         }
+        std::size_t written = 0;
+        if (queue_.empty()) {
+            // Nothing ahead of it: written now, as far as the kernel takes it (an answer, whole);
+            // only what it leaves waits for the socket.
+            boost::system::error_code ec;
+            written = socket_.write_some(asio::buffer(bytes.data(), bytes.size()), ec);
+            if (ec == asio::error::would_block || ec == asio::error::try_again) {
+                written = 0;
+            } else if (ec) {
+                log_.warn("{}: write failed: {}", peer_, ec.message());
+                ++device_calls_;
+                end();
+                --device_calls_;
+                return;
+            }
+            if (written == bytes.size())
+                return;
+        }
+        // Counted whole until written whole, its part already written included.
+        queued_bytes_ += cost;
         queue_.emplace_back(bytes);
-        if (queue_.size() == 1)
+        if (queue_.size() == 1) {
+            front_written_ = written;
             write();
+        }
     }
 
     void write()
     {
-        asio::async_write(socket_, asio::buffer(queue_.front()),
+        const auto& front = queue_.front();
+        asio::async_write(socket_, asio::buffer(front.data() + front_written_, front.size() - front_written_),
             [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                 self->on_write(ec);
             });
@@ -138,6 +164,7 @@ private:
         }
         queued_bytes_ -= queue_.front().size() + TcpEndpoint::kQueuedFrameOverhead;
         queue_.pop_front();
+        front_written_ = 0;
         if (!queue_.empty())
             write();
     }
@@ -167,6 +194,7 @@ private:
     std::unique_ptr<Session> session_;
     std::array<char, 4096> buffer_{};
     std::deque<std::string> queue_;
+    std::size_t front_written_ = 0;   ///< bytes of the front frame send() wrote before queuing it
     std::size_t queued_bytes_ = 0;
     int device_calls_ = 0;   ///< nesting depth of calls into or from the device
     bool closed_ = false;    ///< the socket is closed

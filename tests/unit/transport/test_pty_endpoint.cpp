@@ -95,6 +95,28 @@ TEST_CASE("transport pty: a large answer read slowly in small pieces arrives who
     CHECK(f.pty_never_failed());
 }
 
+TEST_CASE("transport pty: an answer with nothing queued ahead of it is written at once, before the loop runs "
+          "again, and one queued behind a partly written frame waits its turn",
+          "[unit][transport][pty]")
+{
+    Fixture f;
+    auto client = open_pty(f.endpoint.symlink_path());
+    CHECK(f.echo(client, "hello\n") == "hello\n");
+    const auto session = f.device.sessions.back();
+    session->send("at once\n");   // outside the loop: no handler runs before the client reads
+    std::string got;
+    CHECK(client.read_some(got) == ClientFd::Read::Data);
+    CHECK(got == "at once\n");
+
+    constexpr std::size_t kBig = 64 * 1024;   // many times what the pty holds
+    session->send(stream_bytes(0, kBig));
+    session->send("after");
+    got = read_in_pieces(f.io, client, kBig + 5, 997);
+    CHECK(difference(got, stream_bytes(0, kBig) + "after") == "");
+    CHECK(f.log.count("dropping output") == 0);
+    CHECK(f.pty_never_failed());
+}
+
 TEST_CASE("transport pty: output a client does not read is dropped beyond kMaxQueuedBytes, whole "
           "frames at a time, while the port stays open and the other devices keep working",
           "[unit][transport][pty]")

@@ -110,6 +110,28 @@ TEST_CASE("transport tcp: a large answer read slowly in small pieces arrives who
     CHECK(f.log.count("reads nothing") == 0);
 }
 
+TEST_CASE("transport tcp: an answer with nothing queued ahead of it is written at once, before the loop runs "
+          "again, and one queued behind a partly written frame waits its turn",
+          "[unit][transport][tcp]")
+{
+    Fixture f;
+    auto client = connect_tcp(f.endpoint.port(), kSmallReceiveBuffer);
+    const auto session = f.session_of(f.device, client);
+    session->send("at once\n");   // outside the loop: no handler runs before the client reads
+    std::string got;
+    CHECK(client.read_some(got) == ClientFd::Read::Data);
+    CHECK(got == "at once\n");
+
+    // More than the socket takes: the rest of it is queued, and so is what follows it.
+    constexpr std::size_t kBig = 1 << 20;
+    static_assert(kBig + 5 + 2 * TcpEndpoint::kQueuedFrameOverhead <= TcpEndpoint::kMaxQueuedBytes);
+    session->send(stream_bytes(0, kBig));
+    session->send("after");
+    got = read_in_pieces(f.io, client, kBig + 5, 65536);
+    CHECK(difference(got, stream_bytes(0, kBig) + "after") == "");
+    CHECK(f.log.count("reads nothing") == 0);
+}
+
 TEST_CASE("transport tcp: a client that stops reading is dropped once its queue passes "
           "kMaxQueuedBytes, and the other clients and devices keep working",
           "[unit][transport][tcp]")
