@@ -12,11 +12,12 @@
 //   - after every tick in which anything ran, every Tickable (a body's event starts a device's
 //     timer; a device's answer is held on its wire);
 //   - a Tickable registered Schedule::Asked (the default): at every next_wakeup(), as its next
-//     change may follow anything (the World, whose bodies any command may start; a piezo
-//     driver, whose feedback another device's gauge reader routes; a test's Tickable);
+//     change may follow anything (the World, whose bodies any command may start; a test's
+//     Tickable);
 //   - a Tickable registered Schedule::Announced: when it is announced, changed(t) (after
 //     anything outside its tick() that may move its next change: a command it handled, a
-//     session opened or closed), or changed_all() (a control request, a power-up).
+//     session opened or closed, another device's command it follows), or changed_all() (a
+//     control request, a power-up).
 // A clock keeps the Announced answers only once its owner promises those announcements,
 // keep_schedule() (the daemon's rig, whose devices announce their commands and whose control
 // API announces its requests through Ticker::reschedule()). Until then (a test that steps the

@@ -141,9 +141,9 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
     // Its timers move in its tick(), in a session (announced there), through a body's event (a
     // tick of the clock) or a control request (Ticker::reschedule()). A TPZ001's or KPZ101's
     // closed loop also wakes when its feedback input starts or stops reading a gauge, which the
-    // gauge reader's commands route (TSG_IOSETTINGS, another device): it is asked every time.
-    const bool reads_another_device = model_.kind == UnitKind::Piezo && !model_.rack;
-    clock_.add(this, reads_another_device ? Clock::Schedule::Asked : Clock::Schedule::Announced);
+    // gauge reader's commands route (TSG_IOSETTINGS, another device): the gauge announces that
+    // (connect_feedback()).
+    clock_.add(this, Clock::Schedule::Announced);
 }
 
 void AptDevice::power_up()
@@ -228,8 +228,15 @@ void AptDevice::connect_feedback(std::size_t bay)
     if (model_.kind != UnitKind::Piezo || model_.rack)
         return;
     const auto* actuator = world_.find_as<models::PiezoActuator>(config_.name + "/" + std::to_string(bay + 1));
-    if (actuator)
-        static_cast<PiezoModule&>(*modules_[bay]).set_feedback(gauge_feedback(world_, *actuator));
+    if (!actuator)
+        return;
+    static_cast<PiezoModule&>(*modules_[bay]).set_feedback(gauge_feedback(world_, *actuator));
+    // Whether that input reads the gauge follows the reader's hub output, another device's
+    // command: the gauge tells this device's clock (models/clock.hpp, "The schedule").
+    if (auto* gauge = find_mounted_gauge(world_, *actuator)) {
+        gauge->on_route_change([this] { announce_change(); });
+        routed_gauge_ = gauge;
+    }
 }
 
 std::unique_ptr<MotorModule> AptDevice::make_motor_module(std::size_t bay, Module::SaveToEeprom save)
@@ -342,6 +349,8 @@ std::uint8_t AptDevice::address_of(std::size_t bay) const
 
 AptDevice::~AptDevice()
 {
+    if (routed_gauge_)   // the world outlives its devices
+        routed_gauge_->on_route_change({});
     clock_.remove(this);
 }
 

@@ -37,6 +37,7 @@ class StateStore;   // emulator/core/state_store.hpp (nlohmann/json, spdlog: kep
 namespace rigsim::apt {
 
 class AptSession;
+class WiredStrainGauge;   // strain_gauge_module.hpp
 
 class AptDevice : public Device, public Tickable, public ControlSurface {
 public:
@@ -199,6 +200,7 @@ private:
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     bool linked_ = false;                   ///< power_up() ran: the world's bodies are linked
+    WiredStrainGauge* routed_gauge_ = nullptr;   ///< the gauge whose route this TPZ/KPZ's input follows
     StateStore* store_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
     /// (bay, SET id) -> the last accepted, as its module stores it (Module::saved_data).

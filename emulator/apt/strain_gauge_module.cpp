@@ -10,10 +10,10 @@
 
 namespace rigsim::apt {
 
-const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator)
+WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator)
 {
     for (const auto& key : world.keys())
-        if (const auto* gauge = world.find_as<WiredStrainGauge>(key); gauge && gauge->actuator() == &actuator)
+        if (auto* gauge = world.find_as<WiredStrainGauge>(key); gauge && gauge->actuator() == &actuator)
             return gauge;
     return nullptr;
 }

@@ -41,16 +41,26 @@ public:
     /// Whether the signal reaches driver input `input` (TPZ_IOSETTINGS HubAnalogInput, p. 115:
     /// 1 hub A, 2 hub B, 3 SMA).
     bool reaches(std::uint16_t input) const { return on_hub_ ? input == hub_output_ : input == 3; }
-    /// The reader's HubAnalogueOutput (1 hub A, 2 hub B).
-    void set_hub_output(std::uint16_t output) { hub_output_ = output; }
+    /// The reader's HubAnalogueOutput (1 hub A, 2 hub B); the reading driver hears of it.
+    void set_hub_output(std::uint16_t output)
+    {
+        hub_output_ = output;
+        if (route_changed_)
+            route_changed_();
+    }
+    /// Called after every set_hub_output() (empty: nobody): the driver whose feedback input reads
+    /// this gauge (AptDevice::connect_feedback) tells its clock that whether its closed loop is
+    /// fed may have changed (models/clock.hpp, "The schedule").
+    void on_route_change(std::function<void()> f) { route_changed_ = std::move(f); }
 
 private:
     bool on_hub_;
     std::uint16_t hub_output_ = 1;
+    std::function<void()> route_changed_;
 };
 
 /// The gauge of the world mounted on `actuator`, or nullptr (none, or not linked yet).
-const WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator);
+WiredStrainGauge* find_mounted_gauge(const models::World& world, const models::PiezoActuator& actuator);
 
 /// A TPZ001/KPZ101's feedback input (PiezoModule::Feedback): the reading (µm from the gauge's
 /// zero, p. 129's 500 Hz sample) of the gauge mounted on `actuator` when its signal reaches

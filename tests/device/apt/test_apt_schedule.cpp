@@ -93,7 +93,7 @@ TEST_CASE("apt schedule: a TPZ001's closed loop notices the hub output its TSG00
           "[device][apt][piezo][gauge][clock]")
 {
     // The reader's TSG_IOSETTINGS (another device) decides whether the driver's feedback input reads
-    // a gauge: the driver's next change follows it without being announced (it is Asked).
+    // a gauge, and so whether the driver's closed loop wakes: the gauge announces the driver.
     Twin t({tpz(), tsg()});
     t.send(kClosedLoop);
     REQUIRE(t.send(kReqMode) == kModeClosed);
