@@ -29,23 +29,27 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     if (e.peer != peer)   // mostly the same connection as the entry it overwrites: no copy
         e.peer.assign(peer);
     e.bytes.assign(bytes);
-    e.notes = std::move(notes);
+    if (!notes.empty() || !e.notes.empty())   // mostly none, and none overwritten
+        e.notes = std::move(notes);
     if (++next_ == ring_.size())
         next_ = 0;
-    count_ = std::min(count_ + 1, ring_.size());
+    if (count_ < ring_.size())
+        ++count_;
     if (!e.notes.empty())
         ++noted_;
     // Debug level only: a client's mistakes are already warned about where the protocol's
     // log does (rate-limited); a flood of bad commands must not flood the log twice.
-    const bool debug = log_ && log_->should_log(spdlog::level::debug);
-    const bool listened = bus_ && bus_->active();
-    if (!debug && !listened)
-        return;
+    if ((bus_ && bus_->active()) || (log_ && log_->should_log(spdlog::level::debug)))
+        show(e);
+}
+
+void WireLog::show(const WireEntry& e) const
+{
     const auto j = entry_json(e);
-    if (debug)
+    if (log_ && log_->should_log(spdlog::level::debug))
         log_->debug("wire: {}", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-    if (listened)
-        bus_->publish(device_, "wire", static_cast<double>(tick) * 1000.0 / tick_hz_, j);
+    if (bus_ && bus_->active())
+        bus_->publish(device_, "wire", static_cast<double>(e.tick) * 1000.0 / tick_hz_, j);
 }
 
 void WireLog::annotate_last(std::string note)

@@ -69,6 +69,9 @@ public:
     const WireEntry* last() const;
 
 private:
+    /// The debug line and the "wire" event of entry `e` (someone reads them: off the usual path).
+    [[gnu::noinline, gnu::cold]] void show(const WireEntry& e) const;
+
     std::string device_;
     std::uint32_t tick_hz_;
     EventBus* bus_;
