@@ -287,23 +287,29 @@ bool is_movement(const Command& command)
 
 void encode(const Reply& reply, std::string& out)
 {
-    out += ':';
-    if (const auto* ack = std::get_if<Ack>(&reply)) {
-        out += 'E';
-        out += std::to_string(ack->channel);
-        out += ",0";
-    } else if (const auto* err = std::get_if<Error>(&reply)) {
-        out += 'E';
-        out += std::to_string(err->channel);
-        out += ',';
-        out += std::to_string(static_cast<int>(err->code));
-    } else if (const auto* answer = std::get_if<Answer>(&reply)) {
+    if (const auto* answer = std::get_if<Answer>(&reply)) {
+        out += ':';
         out += answer->text;
-    } else {
-        out.pop_back();   // Silent: nothing at all
+        out += '\n';
         return;
     }
-    out += '\n';
+    // E<channel>,<code>: composed in place, appended once.
+    int channel = 0;
+    int code = 0;
+    if (const auto* ack = std::get_if<Ack>(&reply)) {
+        channel = ack->channel;
+    } else if (const auto* err = std::get_if<Error>(&reply)) {
+        channel = err->channel;
+        code = static_cast<int>(err->code);
+    } else {
+        return;   // Silent: nothing at all
+    }
+    char text[32] = {':', 'E'};
+    char* end = std::to_chars(text + 2, text + 14, channel).ptr;   // 11 characters at most
+    *end++ = ',';
+    end = std::to_chars(end, text + 28, code).ptr;
+    *end++ = '\n';
+    out.append(text, end);
 }
 
 std::string encode(const Reply& reply)

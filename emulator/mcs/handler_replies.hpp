@@ -5,6 +5,7 @@
 #include "emulator/mcs/commands.hpp"
 #include "emulator/mcs/errors.hpp"
 
+#include <charconv>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -12,21 +13,23 @@
 
 namespace rigsim::mcs::replies {
 
-/// `<prefix><a>`, as an answer starts (`P0` ...).
+/// `<prefix><a>`, as an answer starts (`P0` ...; a prefix of at most 40 characters).
 inline std::string join(std::string_view prefix, std::int64_t a)
 {
-    std::string s(prefix);
-    s += std::to_string(a);
-    return s;
+    // Composed in place, one string made (an answer is most of a query's work).
+    char text[64];
+    const auto n = prefix.copy(text, 40);
+    return std::string(text, std::to_chars(text + n, text + sizeof text, a).ptr);
 }
 
 /// `<prefix><a>,<b>`.
 inline std::string join(std::string_view prefix, std::int64_t a, std::int64_t b)
 {
-    std::string s = join(prefix, a);
-    s += ',';
-    s += std::to_string(b);
-    return s;
+    char text[96];
+    const auto n = prefix.copy(text, 40);
+    char* end = std::to_chars(text + n, text + 64, a).ptr;   // 40 + 20 digits and a sign at most
+    *end++ = ',';
+    return std::string(text, std::to_chars(end, text + sizeof text, b).ptr);
 }
 
 /// A reply for a channel setter: its error, or the acknowledge from `ack_channel`.

@@ -1,5 +1,9 @@
 // MCS codec: command strings to typed commands, and the errors of appendix 4.2.
 #include "emulator/mcs/codec.hpp"
+#include "emulator/mcs/handler_replies.hpp"
+
+#include <limits>
+#include <string>
 
 #include <catch2/catch.hpp>
 
@@ -104,6 +108,22 @@ TEST_CASE("codec encodes answers without spaces", "[unit][mcs][codec]")
     CHECK(encode(Ack{kSystem}) == ":E-1,0\n");
     CHECK(encode(Error{2, ErrorCode::WrongSensorType}) == ":E2,143\n");
     CHECK(encode(Answer{"P0,2000000"}) == ":P0,2000000\n");
+    CHECK(encode(Silent{}).empty());
+    CHECK(encode(Error{std::numeric_limits<int>::min(), ErrorCode::Syntax}) == ":E-2147483648,1\n");
+    std::string out = ":S0,0\n";   // appended after what is there
+    encode(Ack{255}, out);
+    CHECK(out == ":S0,0\n:E255,0\n");
+}
+
+TEST_CASE("the handler's answer texts: a prefix and one or two numbers, the widest included", "[unit][mcs][codec]")
+{
+    CHECK(replies::join("P", 0, 2'000'000) == "P0,2000000");
+    CHECK(replies::join("N", 3) == "N3");
+    CHECK(replies::join("MSCA", -1, std::numeric_limits<std::int64_t>::min())
+          == "MSCA-1,-9223372036854775808");
+    CHECK(replies::join(std::string(40, 'X'), std::numeric_limits<std::int64_t>::min(),
+                        std::numeric_limits<std::int64_t>::max())
+          == std::string(40, 'X') + "-9223372036854775808,9223372036854775807");
 }
 
 TEST_CASE("find_command: each command's table entry, with the manual's names", "[unit][mcs][codec]")
