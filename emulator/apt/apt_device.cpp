@@ -83,9 +83,9 @@ private:
     /// by the inter-byte timeout. None if it dropped nothing.
     void record_dropped(bool unfinished = false)
     {
-        const auto d = framer_.take_dropped();
-        if (d.count == 0)
+        if (!framer_.has_dropped())   // the usual case, twice a read: nothing to take
             return;
+        const auto d = framer_.take_dropped();
         std::string note = unfinished ? std::to_string(d.count)
                                             + " byte(s) of an unfinished message dropped: the rest did not come within "
                                             + std::to_string(AptDevice::kInterByteTimeout_ms) + " ms"

@@ -82,6 +82,8 @@ public:
     };
     static constexpr std::size_t kKeptDropped = 256;
     Dropped take_dropped();
+    /// Bytes dropped since the last take_dropped() (take_dropped() would return some).
+    bool has_dropped() const { return dropped_.count != 0; }
 
     // Counters for logs, since construction.
     std::uint64_t frames() const { return frames_; }                 ///< frames returned

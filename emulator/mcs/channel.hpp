@@ -181,6 +181,8 @@ public:
     void clear_queue();
     /// Queued commands whose trigger arrived, for the controller to execute in order.
     std::vector<Command> take_triggered();
+    /// take_triggered() would return some.
+    bool has_triggered() const { return !triggered_.empty(); }
 
     /// Messages the channel sends by itself: asynchronous errors (142, 147, 144) and
     /// completion reports. The controller delivers them only in asynchronous mode.

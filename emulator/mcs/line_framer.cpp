@@ -2,6 +2,20 @@
 
 namespace rigsim::mcs {
 
+namespace {
+
+/// The first ':' or '\n' of `in` from `from`, or npos (find_first_of() looks each byte up in
+/// the set with a library call).
+std::size_t find_colon_or_newline(std::string_view in, std::size_t from)
+{
+    for (std::size_t i = from; i < in.size(); ++i)
+        if (in[i] == ':' || in[i] == '\n')
+            return i;
+    return std::string_view::npos;
+}
+
+} // namespace
+
 LineFramer::Result LineFramer::parse(std::string_view in)
 {
     if (line_returned_) {   // the last result's line lived in buffer_: it is used now
@@ -26,7 +40,7 @@ LineFramer::Result LineFramer::parse(std::string_view in)
             break;
         }
         case State::Command: {
-            const auto end = in.find_first_of(":\n", i);
+            const auto end = find_colon_or_newline(in, i);
             const auto stop = end == std::string_view::npos ? in.size() : end;
             const auto piece = in.substr(i, stop - i);
             if (buffer_.size() + piece.size() > max_line_) {
@@ -66,7 +80,7 @@ LineFramer::Result LineFramer::parse(std::string_view in)
             return r;
         }
         case State::Discarding: {
-            const auto end = in.find_first_of(":\n", i);
+            const auto end = find_colon_or_newline(in, i);
             if (end == std::string_view::npos) {
                 i = in.size();
                 break;

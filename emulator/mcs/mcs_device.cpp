@@ -140,7 +140,7 @@ void McsDevice::flush_outbox()
 {
     // Queued commands whose trigger arrived run now; their errors go out unprompted.
     for (std::size_t i = 0; i < controller_.channel_count(); ++i)
-        if (auto* ch = controller_.channel(static_cast<std::int32_t>(i)))
+        if (auto* ch = controller_.channel(static_cast<std::int32_t>(i)); ch && ch->has_triggered())
             for (const auto& command : ch->take_triggered())
                 if (auto r = handler_.execute(command); std::holds_alternative<Error>(r))
                     controller_.outbox().push_back(r);
