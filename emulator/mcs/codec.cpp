@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdint>
+#include <iterator>
 #include <limits>
 #include <type_traits>
 
@@ -171,6 +173,62 @@ const CommandEntry kCommands[] = {
      [](const Params& p, std::size_t) -> Command { return SetZeroForce{i32(p[0])}; }},
 };
 
+/// kCommands by mnemonic: an open-addressing table of the mnemonics packed into integers (length
+/// and characters), built once. A lookup is a multiplication and a compare or two; comparing the
+/// mnemonics in table order took one string compare per entry before the one sent.
+class CommandIndex {
+public:
+    CommandIndex()
+    {
+        slots_.fill(kEmpty);
+        for (std::size_t i = 0; i < std::size(kCommands); ++i) {
+            const auto key = pack(kCommands[i].info.mnemonic);
+            auto slot = slot_of(key);
+            while (slots_[slot] != kEmpty)   // an earlier entry keeps the earlier slot
+                slot = (slot + 1) & kMask;
+            slots_[slot] = static_cast<std::uint8_t>(i);
+            keys_[slot] = key;
+        }
+    }
+
+    /// The entry of `mnemonic`, or nullptr.
+    const CommandEntry* find(std::string_view mnemonic) const
+    {
+        if (mnemonic.empty() || mnemonic.size() > kMaxMnemonic)
+            return nullptr;
+        const auto key = pack(mnemonic);
+        for (auto slot = slot_of(key); slots_[slot] != kEmpty; slot = (slot + 1) & kMask)
+            if (keys_[slot] == key)
+                return &kCommands[slots_[slot]];
+        return nullptr;
+    }
+
+private:
+    static constexpr std::size_t kMaxMnemonic = 7;   // the length and 7 characters fill 64 bits
+    static constexpr std::size_t kSlots = 256;       // kCommands fills under a third of it
+    static constexpr std::size_t kMask = kSlots - 1;
+    static constexpr std::uint8_t kEmpty = 0xff;
+    static_assert(std::size(kCommands) < kEmpty && std::size(kCommands) * 3 < kSlots);
+
+    static std::uint64_t pack(std::string_view mnemonic)
+    {
+        std::uint64_t key = mnemonic.size();
+        for (const char c : mnemonic)
+            key = key << 8 | static_cast<unsigned char>(c);
+        return key;
+    }
+    static std::size_t slot_of(std::uint64_t key) { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 56); }
+
+    std::array<std::uint8_t, kSlots> slots_{};
+    std::array<std::uint64_t, kSlots> keys_{};
+};
+
+const CommandIndex& command_index()
+{
+    static const CommandIndex index;
+    return index;
+}
+
 bool is_upper(char c) { return c >= 'A' && c <= 'Z'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
@@ -237,19 +295,17 @@ Decoded decode(std::string_view line)
         }
     }
 
-    for (const auto& entry : kCommands) {
-        if (entry.info.mnemonic != d.name)
-            continue;
-        if (count < entry.min_params)
-            return fail(d, ErrorCode::TooFewParameters);
-        if (count > entry.max_params())
-            return fail(d, ErrorCode::TooManyParameters);
-        if ((overflow_mask & ~entry.wide_params) != 0 || (huge_mask & entry.wide_params) != 0)
-            return fail(d, ErrorCode::Overflow);
-        d.command = entry.build(params, count);
-        return d;
-    }
-    return fail(d, ErrorCode::InvalidCommand);
+    const auto* entry = command_index().find(d.name);
+    if (!entry)
+        return fail(d, ErrorCode::InvalidCommand);
+    if (count < entry->min_params)
+        return fail(d, ErrorCode::TooFewParameters);
+    if (count > entry->max_params())
+        return fail(d, ErrorCode::TooManyParameters);
+    if ((overflow_mask & ~entry->wide_params) != 0 || (huge_mask & entry->wide_params) != 0)
+        return fail(d, ErrorCode::Overflow);
+    d.command = entry->build(params, count);
+    return d;
 }
 
 namespace {
@@ -321,10 +377,8 @@ std::string encode(const Reply& reply)
 
 const CommandInfo* find_command(std::string_view mnemonic)
 {
-    for (const auto& entry : kCommands)
-        if (entry.info.mnemonic == mnemonic)
-            return &entry.info;
-    return nullptr;
+    const auto* entry = command_index().find(mnemonic);
+    return entry ? &entry->info : nullptr;
 }
 
 } // namespace rigsim::mcs

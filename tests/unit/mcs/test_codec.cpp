@@ -2,8 +2,13 @@
 #include "emulator/mcs/codec.hpp"
 #include "emulator/mcs/handler_replies.hpp"
 
+#include <fstream>
+#include <iterator>
 #include <limits>
+#include <regex>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -124,6 +129,32 @@ TEST_CASE("the handler's answer texts: a prefix and one or two numbers, the wide
     CHECK(replies::join(std::string(40, 'X'), std::numeric_limits<std::int64_t>::min(),
                         std::numeric_limits<std::int64_t>::max())
           == std::string(40, 'X') + "-9223372036854775808,9223372036854775807");
+}
+
+TEST_CASE("every command of the codec's table is found by its mnemonic, and nothing else is", "[unit][mcs][codec]")
+{
+    // The mnemonics as codec.cpp's table lists them.
+    std::ifstream source(RIGSIM_SOURCE_DIR "/emulator/mcs/codec.cpp");
+    REQUIRE(source);
+    const std::string text{std::istreambuf_iterator<char>(source), std::istreambuf_iterator<char>()};
+    const std::regex entry(R"re(\{\{"([A-Z]+)", ")re");
+    std::vector<std::string> mnemonics;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+        mnemonics.push_back((*it)[1]);
+    CHECK(mnemonics.size() == std::variant_size_v<Command>);
+    for (const auto& m : mnemonics) {
+        INFO(m);
+        const auto* info = find_command(m);
+        REQUIRE(info != nullptr);
+        CHECK(info->mnemonic == m);
+        const auto d = decode(m);   // a command, or too few parameters: never an unknown command
+        CHECK((d.command || d.error.code == ErrorCode::TooFewParameters));
+        CHECK_FALSE(find_command(m + "X"));
+        CHECK(error_of(m + "Q0") == static_cast<int>(ErrorCode::InvalidCommand));
+    }
+    for (const char* unknown : {"", "X", "GPP", "ABCDEFGH", "ABCDEFGHIJ", "gp", "G P"})
+        CHECK_FALSE(find_command(unknown));
+    CHECK(error_of("ABCDEFGHIJ0") == static_cast<int>(ErrorCode::InvalidCommand));
 }
 
 TEST_CASE("find_command: each command's table entry, with the manual's names", "[unit][mcs][codec]")
