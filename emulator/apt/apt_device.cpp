@@ -275,6 +275,9 @@ void AptDevice::save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_vi
 
 void AptDevice::remember(std::size_t bay, const msg::Message& m)
 {
+    // Most messages are no SET the bay saves (a request): known from the id alone.
+    if (!modules_[bay]->saves(msg::message_id(m)))
+        return;
     if (auto data = modules_[bay]->saved_data(m))
         last_set_.insert_or_assign({bay, msg::message_id(m)}, std::move(*data));
 }
@@ -379,11 +382,15 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
                          f.info->name, f.data.size(), f.info->data_length, f.data.size() - f.info->data_length));
     const std::size_t before = reply.size();
     route(f, peer, reply);
-    // The wire log: the frame as it came (re-encoded: the framer keeps no copy), then the answers.
-    record(true, peer,
-           f.has_data ? encode_with_data(f.id, f.dest, f.source, f.data)
-                      : encode_header_only(f.id, f.param1, f.param2, f.dest, f.source),
-           std::move(notes_));
+    // The wire log: the frame as it came (a frame not from the framer re-encoded), then the answers.
+    std::string encoded;
+    std::string_view in = f.bytes;
+    if (in.empty()) {
+        encoded = f.has_data ? encode_with_data(f.id, f.dest, f.source, f.data)
+                             : encode_header_only(f.id, f.param1, f.param2, f.dest, f.source);
+        in = encoded;
+    }
+    record(true, peer, in, std::move(notes_));
     notes_.clear();
     std::string_view out(reply);
     out.remove_prefix(before);

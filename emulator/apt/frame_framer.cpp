@@ -104,6 +104,7 @@ void FrameFramer::emit(Result& r, std::string_view bytes)
         f.param2 = h[3];
     }
     f.info = find_message(f.id);
+    f.bytes = bytes;
     r.status = Status::Frame;
     ++frames_;
     dropping_ = false;

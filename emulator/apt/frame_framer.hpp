@@ -47,6 +47,7 @@ struct Frame {
     bool has_data = false;
     std::string_view data;            ///< the data packet; valid until the next parse() call
     const MessageInfo* info = nullptr;   ///< the table entry of `id`
+    std::string_view bytes;           ///< the whole frame as it came; valid until the next parse() call
 };
 
 class FrameFramer {

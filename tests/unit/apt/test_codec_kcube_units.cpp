@@ -95,7 +95,7 @@ TEST_CASE("the K-Cube units' messages are later-issue entries of the table with 
         CHECK(m->later_issue);
         // The codec types it in the table's form: its struct's data packet is the table's length.
         const std::string data(row.length >= 0 ? static_cast<std::size_t>(row.length) : 0, '\0');
-        const auto decoded = decode(Frame{row.id, 1, 0, 0x50, 0x01, row.length >= 0, data, m});
+        const auto decoded = decode(Frame{row.id, 1, 0, 0x50, 0x01, row.length >= 0, data, m, {}});
         CHECK_FALSE(holds<Untyped>(decoded));
         CHECK(encode(decoded, 0x50, 0x01).size() == 6 + data.size());
     }

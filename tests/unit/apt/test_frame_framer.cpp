@@ -54,11 +54,16 @@ std::vector<std::string> frame(FrameFramer& f, const std::string& input, std::si
             case FrameFramer::Status::NeedMore:
                 REQUIRE(piece.empty());
                 break;
-            case FrameFramer::Status::Frame:
+            case FrameFramer::Status::Frame: {
                 REQUIRE(r.frame.info != nullptr);
                 CHECK(r.frame.info->id == r.frame.id);
+                // The frame's bytes as they came, whatever the split: what its fields encode.
+                const auto& fr = r.frame;
+                CHECK(hex(fr.bytes) == hex(fr.has_data ? encode_with_data(fr.id, fr.dest, fr.source, fr.data)
+                                                       : encode_header_only(fr.id, fr.param1, fr.param2, fr.dest, fr.source)));
                 frames.push_back(describe(r.frame));
                 break;
+            }
             }
         }
     }
