@@ -164,7 +164,7 @@ public:
     void set_emergency_stop_mode(std::int32_t mode);
     /// Broadcast stop (2.2.3): this channel detected an end stop and wants every channel
     /// stopped; the controller reads and clears the flag.
-    bool take_broadcast_request();
+    bool take_broadcast_request() { return std::exchange(broadcast_request_, false); }
 
     /// Event receivers (2.4): counter 0, capture buffer 0, command queue.
     void on_event(std::int32_t source);

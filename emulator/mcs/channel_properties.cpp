@@ -173,13 +173,6 @@ void Channel::set_emergency_stop_mode(std::int32_t mode)
     locked_ = false;   // SESM: "The locked state may be reset by any call of the SESM command"
 }
 
-bool Channel::take_broadcast_request()
-{
-    const bool r = broadcast_request_;
-    broadcast_request_ = false;
-    return r;
-}
-
 void Channel::on_event(std::int32_t source)
 {
     // 2.4.3 counters, 2.4.4 capture buffer 0 (position, revolution, counter 0), 2.4.5 queue.

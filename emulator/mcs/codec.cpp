@@ -300,7 +300,7 @@ Decoded decode(std::string_view line)
         return fail(d, ErrorCode::InvalidCommand);
     if (count < entry->min_params)
         return fail(d, ErrorCode::TooFewParameters);
-    if (count > entry->max_params())
+    if (count > entry->min_params && count > entry->max_params())   // max_params() counts the names
         return fail(d, ErrorCode::TooManyParameters);
     if ((overflow_mask & ~entry->wide_params) != 0 || (huge_mask & entry->wide_params) != 0)
         return fail(d, ErrorCode::Overflow);

@@ -73,18 +73,6 @@ void Controller::set_effector_report(std::int32_t index, bool report)
         effector_report_[static_cast<std::size_t>(index)] = report;
 }
 
-Channel* Controller::channel(std::int32_t index)
-{
-    if (!valid_index(index))
-        return nullptr;
-    return channels_[static_cast<std::size_t>(index)].get();
-}
-
-const Channel* Controller::channel(std::int32_t index) const
-{
-    return const_cast<Controller*>(this)->channel(index);
-}
-
 void Controller::set_sensor_mode(SensorMode mode)
 {
     sensor_mode_ = mode;

@@ -33,8 +33,8 @@ public:
 
     std::size_t channel_count() const { return channels_.size(); }
     /// The positioner with this index, or nullptr (out of range, or an end effector).
-    Channel* channel(std::int32_t index);
-    const Channel* channel(std::int32_t index) const;
+    Channel* channel(std::int32_t index) { return valid_index(index) ? channels_[static_cast<std::size_t>(index)].get() : nullptr; }
+    const Channel* channel(std::int32_t index) const { return const_cast<Controller*>(this)->channel(index); }
     /// The end effector with this index, or nullptr.
     EndEffector* effector(std::int32_t index);
     const EndEffector* effector(std::int32_t index) const;

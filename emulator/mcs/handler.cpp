@@ -40,7 +40,7 @@ Reply Handler::handle(const Command& command)
                     return Error{*index, *err};
                 return Silent{};
             }
-            if (is_movement(command) && ch->queue_size() > 0)
+            if (ch->queue_size() > 0 && is_movement(command))
                 return Error{*index, ErrorCode::WaitingForTrigger};
         }
     }

@@ -55,7 +55,8 @@ LineFramer::Result LineFramer::parse(std::string_view in)
                 break;
             }
             // Zero-copy when the whole command arrived in this input.
-            const std::string_view line = buffer_.empty() ? piece : std::string_view(buffer_.append(piece));
+            const bool in_one_input = buffer_.empty();
+            const std::string_view line = in_one_input ? piece : std::string_view(buffer_.append(piece));
             i = end + 1;
             if (in[end] == ':') {
                 // A new command starts inside this one: report the dropped part.
@@ -75,6 +76,8 @@ LineFramer::Result LineFramer::parse(std::string_view in)
                 break;   // ":\n" is ignored
             r.status = Status::Command;
             r.line = line;
+            if (in_one_input && i >= 2 + line.size() && in[i - 2 - line.size()] == ':')   // its ':' too
+                r.frame = in.substr(i - 2 - line.size(), line.size() + 2);
             r.consumed = i;
             line_returned_ = true;
             return r;

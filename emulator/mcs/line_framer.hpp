@@ -31,6 +31,9 @@ public:
         std::size_t consumed = 0;    ///< bytes of the input used by this call
         std::size_t ignored = 0;     ///< bytes outside any command (between '\n' and ':')
         std::string_view line;       ///< valid until the next parse() call
+        /// A Command as it crossed the wire, ':' to '\n', when all of it came in this input
+        /// (else empty: its start came in an earlier one); valid as `line` is.
+        std::string_view frame;
     };
 
     explicit LineFramer(std::size_t max_line = kDefaultMaxLine) : max_line_(max_line) {}

@@ -46,7 +46,7 @@ public:
             case LineFramer::Status::NeedMore:
                 break;
             case LineFramer::Status::Command:
-                device_.execute(r.line, peer_, out_, early);
+                device_.execute(r.line, peer_, out_, early, r.frame);
                 early = device_.controller().communication_mode() == CommunicationMode::Sync
                             ? McsDevice::Early::SameRead
                             : McsDevice::Early::No;
@@ -166,11 +166,16 @@ std::unique_ptr<Session> McsDevice::open_session(SendFn send, std::string peer)
     return std::make_unique<McsSession>(*this, std::move(send), std::move(peer), *log_, clock_);
 }
 
-void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out, Early early)
+void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out, Early early,
+                        std::string_view frame)
 {
-    line_.assign(1, ':');
-    line_.append(line);
-    line_.push_back('\n');
+    if (!frame.empty()) {
+        line_.assign(frame);   // one copy, not three pieces
+    } else {
+        line_.assign(1, ':');
+        line_.append(line);
+        line_.push_back('\n');
+    }
     const auto at = out.size();
     std::vector<std::string> notes;   // empty, no allocation, unless the client slipped
     if (early == Early::SameRead)

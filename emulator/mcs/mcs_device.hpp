@@ -48,8 +48,11 @@ public:
 
     /// A command the client sent before the previous answer could have reached it (a note).
     enum class Early { No, SameRead, Paced };
-    /// Handle one framed command string; appends the encoded answer (if any) to `out`.
-    void execute(std::string_view line, std::string_view peer, std::string& out, Early early = Early::No);
+    /// Handle one framed command string; appends the encoded answer (if any) to `out`. `frame`:
+    /// the command as it crossed the wire (':' to '\n', LineFramer::Result::frame) when the
+    /// framer has it, else empty (composed from `line`).
+    void execute(std::string_view line, std::string_view peer, std::string& out, Early early = Early::No,
+                 std::string_view frame = {});
     /// Record an answer the session made without the handler (oversize line: error 1).
     void log_answer(std::string_view peer, std::string_view bytes, std::string note);
     /// Record an unfinished command that a ':' cut off (no answer).

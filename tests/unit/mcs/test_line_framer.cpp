@@ -31,6 +31,9 @@ std::vector<std::string> frame(LineFramer& f, const std::string& input, std::siz
                 REQUIRE(piece.empty());
                 break;
             case LineFramer::Status::Command:
+                // The command as it crossed the wire, when all of it came in this piece.
+                if (!r.frame.empty())
+                    CHECK(r.frame == ":" + std::string(r.line) + "\n");
                 events.push_back("C:" + std::string(r.line));
                 break;
             case LineFramer::Status::Oversize:
@@ -77,6 +80,32 @@ TEST_CASE("framer gives the same commands for every split of the input", "[unit]
         INFO("cut " << cut);
         CHECK(events == expected);
     }
+}
+
+TEST_CASE("framer gives a command's bytes as they came when they came in one input, none otherwise",
+          "[unit][mcs][framer]")
+{
+    LineFramer f;
+    std::string_view in = "x:GP0\n::GS1\n:GN";
+    auto r = f.parse(in);
+    CHECK(r.status == LineFramer::Status::Command);
+    CHECK(r.frame == ":GP0\n");
+    in.remove_prefix(r.consumed);
+    r = f.parse(in);   // "::" : the second ':' starts the command
+    CHECK(r.status == LineFramer::Status::Command);
+    CHECK(r.line == "GS1");
+    CHECK(r.frame == ":GS1\n");
+    in.remove_prefix(r.consumed);
+    r = f.parse(in);
+    CHECK(r.status == LineFramer::Status::NeedMore);
+    r = f.parse("C\n");   // its start came in the input before
+    CHECK(r.status == LineFramer::Status::Command);
+    CHECK(r.line == "GNC");
+    CHECK(r.frame.empty());
+    r = f.parse(":");
+    r = f.parse("GP2\n");   // the ':' came alone
+    CHECK(r.line == "GP2");
+    CHECK(r.frame.empty());
 }
 
 TEST_CASE("framer ignores bytes between a newline and ':' and empty commands", "[unit][mcs][framer]")
