@@ -6,8 +6,26 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstring>
 
 namespace rigsim {
+
+namespace {
+
+/// `to` = `from`. An entry is mostly overwritten by a frame that fits the string it holds
+/// (the same command again): then one copy, without assign()'s general path.
+void overwrite(std::string& to, std::string_view from)
+{
+    if (from.size() > to.capacity()) {
+        to.assign(from);
+        return;
+    }
+    to.resize(from.size());
+    if (!from.empty())
+        std::memcpy(to.data(), from.data(), from.size());
+}
+
+} // namespace
 
 WireLog::WireLog(std::string device, std::uint32_t tick_hz, EventBus* bus, std::shared_ptr<spdlog::logger> log,
                  std::size_t capacity)
@@ -28,7 +46,7 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
     e.unprompted = unprompted;
     if (e.peer != peer)   // mostly the same connection as the entry it overwrites: no copy
         e.peer.assign(peer);
-    e.bytes.assign(bytes);
+    overwrite(e.bytes, bytes);
     if (!notes.empty() || !e.notes.empty())   // mostly none, and none overwritten
         e.notes = std::move(notes);
     if (++next_ == ring_.size())
