@@ -114,11 +114,11 @@ McsDevice::~McsDevice()
 
 void McsDevice::log_dropped(std::string_view peer, std::string_view partial)
 {
-    line_.assign(1, ':');
-    line_.append(partial);
+    line_text_.assign(1, ':');
+    line_text_.append(partial);
     std::vector<std::string> notes;
     notes.emplace_back("':' inside a command: the unfinished command was dropped unanswered (1.1)");
-    wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
+    wire_log_.add(clock_.now(), true, peer, line_text_, std::move(notes));
 }
 
 void McsDevice::detach(McsSession* s)
@@ -169,13 +169,13 @@ std::unique_ptr<Session> McsDevice::open_session(SendFn send, std::string peer)
 void McsDevice::execute(std::string_view line, std::string_view peer, std::string& out, Early early,
                         std::string_view frame)
 {
-    if (!frame.empty()) {
-        line_.assign(frame);   // one copy, not three pieces
-    } else {
-        line_.assign(1, ':');
-        line_.append(line);
-        line_.push_back('\n');
+    if (frame.empty()) {
+        line_text_.assign(1, ':');
+        line_text_.append(line);
+        line_text_.push_back('\n');
+        frame = line_text_;
     }
+    line_ = frame;
     const auto at = out.size();
     std::vector<std::string> notes;   // empty, no allocation, unless the client slipped
     if (early == Early::SameRead)
@@ -190,6 +190,7 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
         note_command(nullptr, decoded.error, notes);
         wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
         wire_log_.add(clock_.now(), false, peer, std::string_view(out).substr(at));
+        line_ = {};
         return;
     }
     controller_.note_command();   // K: any command that could be parsed
@@ -205,6 +206,7 @@ void McsDevice::execute(std::string_view line, std::string_view peer, std::strin
     encode(reply, out);
     note_command(&*decoded.command, reply, notes);
     wire_log_.add(clock_.now(), true, peer, line_, std::move(notes));
+    line_ = {};
     if (out.size() > at)
         wire_log_.add(clock_.now(), false, peer, std::string_view(out).substr(at));
     if (handler_.take_reset_request()) {

@@ -103,7 +103,10 @@ private:
     std::vector<McsSession*> sessions_;
     EventBus* events_;   ///< the control API's event stream, or nullptr
     WireLog wire_log_;
-    std::string line_;   ///< scratch: the inbound command string as it crossed the wire
+    /// The inbound command string as it crossed the wire, while execute() runs (note_command()
+    /// reads it): the framer's bytes, or line_text_.
+    std::string_view line_;
+    std::string line_text_;   ///< scratch: line_ composed when the framer had no bytes of its own
     std::vector<int> last_status_;   ///< per channel, for "status" events
     bool status_known_ = false;      ///< last_status_ is current (someone listened last time)
 };
