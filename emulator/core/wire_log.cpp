@@ -20,7 +20,8 @@ void overwrite(std::string& to, std::string_view from)
         to.assign(from);
         return;
     }
-    to.resize(from.size());
+    if (from.size() != to.size())   // resize() is a call even when the size stays
+        to.resize(from.size());
     if (!from.empty())
         std::memcpy(to.data(), from.data(), from.size());
 }

@@ -458,27 +458,6 @@ std::optional<ErrorCode> Channel::set_position(std::int64_t position)
     return std::nullopt;
 }
 
-Ticks Channel::next_change(Ticks now) const
-{
-    if (body_event_)
-        return now + 1;
-    switch (motion_) {
-    case Motion::MoveDelay:
-        return std::max(delay_until_, now + 1);
-    case Motion::Holding:
-        return hold_until_;
-    case Motion::Calibrating:
-        return std::max(calibrate_until_, now + 1);
-    case Motion::Idle:
-    case Motion::Targeting:
-    case Motion::Referencing:
-    case Motion::Stepping:
-    case Motion::Scanning:
-        return kNever;   // idle, or moving: the body wakes at the movement's events
-    }
-    return kNever;
-}
-
 void Channel::tick(Ticks now)
 {
     if (body_event_) {

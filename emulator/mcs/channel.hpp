@@ -16,6 +16,7 @@
 #include "models/stick_slip.hpp"
 #include "models/world.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -340,5 +341,27 @@ private:
     bool sensor_failed_ = false;
     const char* outcome_ = "";
 };
+
+// Inline: the clock asks after every command (Controller::next_change, for each positioner).
+inline Ticks Channel::next_change(Ticks now) const
+{
+    if (body_event_)
+        return now + 1;
+    switch (motion_) {
+    case Motion::MoveDelay:
+        return std::max(delay_until_, now + 1);
+    case Motion::Holding:
+        return hold_until_;
+    case Motion::Calibrating:
+        return std::max(calibrate_until_, now + 1);
+    case Motion::Idle:
+    case Motion::Targeting:
+    case Motion::Referencing:
+    case Motion::Stepping:
+    case Motion::Scanning:
+        return kNever;   // idle, or moving: the body wakes at the movement's events
+    }
+    return kNever;
+}
 
 } // namespace rigsim::mcs

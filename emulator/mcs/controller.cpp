@@ -53,6 +53,7 @@ Controller::Controller(const McsConfig& config, models::World& world, const std:
         }
     }
     effector_report_.assign(channels_.size(), false);
+    any_effector_ = std::any_of(effectors_.begin(), effectors_.end(), [](const auto& e) { return e != nullptr; });
 }
 
 EndEffector* Controller::effector(std::int32_t index)
@@ -170,14 +171,17 @@ void Controller::collect_events()
         broadcast = c->take_broadcast_request() || broadcast;
     if (broadcast)   // 2.2.3: an end stop on a channel with broadcast stop halts them all
         emergency_stop_pulse();
-    for (std::size_t i = 0; i < effectors_.size(); ++i)
-        if (effectors_[i] && effectors_[i]->take_completed() && effector_report_[i]
-            && mode_ == CommunicationMode::Async)
-            outbox_.push_back(Answer{"C" + std::to_string(i)});
+    if (any_effector_)
+        for (std::size_t i = 0; i < effectors_.size(); ++i)
+            if (effectors_[i] && effectors_[i]->take_completed() && effector_report_[i]
+                && mode_ == CommunicationMode::Async)
+                outbox_.push_back(Answer{"C" + std::to_string(i)});
     for (std::size_t i = 0; i < channels_.size(); ++i) {
         if (!channels_[i])
             continue;
         auto& events = channels_[i]->events();
+        if (events.empty())   // the usual case, after every batch of commands
+            continue;
         if (mode_ == CommunicationMode::Async)
             for (const auto& e : events)
                 outbox_.push_back(reply_of(static_cast<int>(i), e));
@@ -190,9 +194,10 @@ Ticks Controller::next_change(Ticks now) const
     Ticks next = keep_alive_deadline_ > now ? keep_alive_deadline_ : (keep_alive_deadline_ == kNever ? kNever : now + 1);
     for (const auto* c : positioners_)
         next = std::min(next, c->next_change(now));
-    for (const auto& e : effectors_)
-        if (e)
-            next = std::min(next, e->next_change(now));
+    if (any_effector_)
+        for (const auto& e : effectors_)
+            if (e)
+                next = std::min(next, e->next_change(now));
     return next;
 }
 

@@ -32,6 +32,8 @@ public:
     Controller(const McsConfig& config, models::World& world, const std::string& device);
 
     std::size_t channel_count() const { return channels_.size(); }
+    /// The positioners (channels that are no end effector), in index order.
+    const std::vector<Channel*>& positioners() const { return positioners_; }
     /// The positioner with this index, or nullptr (out of range, or an end effector).
     Channel* channel(std::int32_t index) { return valid_index(index) ? channels_[static_cast<std::size_t>(index)].get() : nullptr; }
     const Channel* channel(std::int32_t index) const { return const_cast<Controller*>(this)->channel(index); }
@@ -120,6 +122,7 @@ private:
     std::vector<std::unique_ptr<Channel>> channels_;   ///< one per index; nullptr at an end effector's
     std::vector<Channel*> positioners_;               ///< the positioners of channels_, in index order
     std::vector<std::unique_ptr<EndEffector>> effectors_;   ///< non-null for end effector indices
+    bool any_effector_ = false;                       ///< some entry of effectors_ is non-null
     std::vector<bool> effector_report_;
     CommunicationMode mode_ = CommunicationMode::Sync;
     SensorMode sensor_mode_ = SensorMode::Enabled;

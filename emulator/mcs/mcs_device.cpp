@@ -73,7 +73,7 @@ public:
             log_.warn("{}: ignored {} byte(s) outside ':'...'\\n'", peer_, ignored);
         if (!out_.empty()) {
             send_(out_);
-            if (const auto baud = device_.serial_baud(); paced_ && baud > 0) {   // 8N1: 10 bits a byte
+            if (const auto baud = paced_ ? device_.serial_baud() : 0; baud > 0) {   // 8N1: 10 bits a byte
                 const auto bits = static_cast<Ticks>(out_.size() * 10) * clock_.tick_hz();
                 line_free_ = std::max(line_free_, clock_.now()) + (bits + baud - 1) / baud;
             }
@@ -139,8 +139,8 @@ void McsDevice::tick(Ticks now)
 void McsDevice::flush_outbox()
 {
     // Queued commands whose trigger arrived run now; their errors go out unprompted.
-    for (std::size_t i = 0; i < controller_.channel_count(); ++i)
-        if (auto* ch = controller_.channel(static_cast<std::int32_t>(i)); ch && ch->has_triggered())
+    for (auto* ch : controller_.positioners())
+        if (ch->has_triggered())
             for (const auto& command : ch->take_triggered())
                 if (auto r = handler_.execute(command); std::holds_alternative<Error>(r))
                     controller_.outbox().push_back(r);
