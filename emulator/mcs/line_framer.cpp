@@ -16,6 +16,51 @@ std::size_t find_colon_or_newline(std::string_view in, std::size_t from)
 
 } // namespace
 
+bool LineFramer::take_command(std::string_view in, std::size_t& i, Result& r)
+{
+    const auto end = find_colon_or_newline(in, i);
+    const auto stop = end == std::string_view::npos ? in.size() : end;
+    const auto piece = in.substr(i, stop - i);
+    if (buffer_.size() + piece.size() > max_line_) {
+        buffer_.clear();
+        state_ = State::Discarding;
+        i += piece.size();
+        return false;
+    }
+    if (end == std::string_view::npos) {
+        buffer_.append(piece);
+        i = in.size();
+        return false;
+    }
+    // Zero-copy when the whole command arrived in this input.
+    const bool in_one_input = buffer_.empty();
+    const std::string_view line = in_one_input ? piece : std::string_view(buffer_.append(piece));
+    i = end + 1;
+    if (in[end] == ':') {
+        // A new command starts inside this one: report the dropped part.
+        state_ = State::Command;
+        if (line.empty())
+            return false;   // "::" is just a colon among ignored characters
+        if (line.data() != buffer_.data())
+            buffer_.assign(line);
+        r.status = Status::Interrupted;
+        r.line = buffer_;
+        r.consumed = i;
+        line_returned_ = true;   // the next parse() starts a fresh command
+        return true;
+    }
+    state_ = State::Idle;
+    if (line.empty())
+        return false;   // ":\n" is ignored
+    r.status = Status::Command;
+    r.line = line;
+    if (in_one_input && i >= 2 + line.size() && in[i - 2 - line.size()] == ':')   // its ':' too
+        r.frame = in.substr(i - 2 - line.size(), line.size() + 2);
+    r.consumed = i;
+    line_returned_ = true;
+    return true;
+}
+
 LineFramer::Result LineFramer::parse(std::string_view in)
 {
     if (line_returned_) {   // the last result's line lived in buffer_: it is used now
@@ -39,49 +84,10 @@ LineFramer::Result LineFramer::parse(std::string_view in)
             buffer_.clear();
             break;
         }
-        case State::Command: {
-            const auto end = find_colon_or_newline(in, i);
-            const auto stop = end == std::string_view::npos ? in.size() : end;
-            const auto piece = in.substr(i, stop - i);
-            if (buffer_.size() + piece.size() > max_line_) {
-                buffer_.clear();
-                state_ = State::Discarding;
-                i += piece.size();
-                break;
-            }
-            if (end == std::string_view::npos) {
-                buffer_.append(piece);
-                i = in.size();
-                break;
-            }
-            // Zero-copy when the whole command arrived in this input.
-            const bool in_one_input = buffer_.empty();
-            const std::string_view line = in_one_input ? piece : std::string_view(buffer_.append(piece));
-            i = end + 1;
-            if (in[end] == ':') {
-                // A new command starts inside this one: report the dropped part.
-                state_ = State::Command;
-                if (line.empty())
-                    break;   // "::" is just a colon among ignored characters
-                if (line.data() != buffer_.data())
-                    buffer_.assign(line);
-                r.status = Status::Interrupted;
-                r.line = buffer_;
-                r.consumed = i;
-                line_returned_ = true;   // the next parse() starts a fresh command
+        case State::Command:
+            if (take_command(in, i, r))
                 return r;
-            }
-            state_ = State::Idle;
-            if (line.empty())
-                break;   // ":\n" is ignored
-            r.status = Status::Command;
-            r.line = line;
-            if (in_one_input && i >= 2 + line.size() && in[i - 2 - line.size()] == ':')   // its ':' too
-                r.frame = in.substr(i - 2 - line.size(), line.size() + 2);
-            r.consumed = i;
-            line_returned_ = true;
-            return r;
-        }
+            break;
         case State::Discarding: {
             const auto end = find_colon_or_newline(in, i);
             if (end == std::string_view::npos) {

@@ -46,6 +46,10 @@ public:
 private:
     enum class State { Idle, Command, Discarding };
 
+    /// In State::Command: takes the command's bytes of `in` from `i` on (advancing `i`); true
+    /// when `r` is complete (a command, an interrupted one), false to go on parsing.
+    bool take_command(std::string_view in, std::size_t& i, Result& r);
+
     State state_ = State::Idle;
     std::size_t max_line_;
     std::string buffer_;
