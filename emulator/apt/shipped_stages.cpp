@@ -2,49 +2,16 @@
 
 #include "emulator/apt/stage_file.hpp"
 #include "emulator/core/config_reader.hpp"
+#include "emulator/core/json_text.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <set>
 #include <string>
 
 namespace rigsim::apt {
 namespace {
 
 using nlohmann::json;
-
-/// nlohmann keeps the last of two equal keys: a file's top-level object may not repeat one, as
-/// a rig may not (a stage object holds no other object, whose keys the schema refuses anyway).
-class DuplicateKeys {
-public:
-    explicit DuplicateKeys(const ConfigReader& r) : r_(r) {}
-
-    bool on_event(json::parse_event_t event, const json& parsed)
-    {
-        switch (event) {
-        case json::parse_event_t::object_start:
-        case json::parse_event_t::array_start:
-            ++depth_;
-            break;
-        case json::parse_event_t::object_end:
-        case json::parse_event_t::array_end:
-            --depth_;
-            break;
-        case json::parse_event_t::key:
-            if (depth_ == 1 && !keys_.insert(parsed.get<std::string>()).second)
-                r_.fail("", "duplicate key " + quote(parsed.get<std::string>()));
-            break;
-        case json::parse_event_t::value:
-            break;
-        }
-        return true;
-    }
-
-private:
-    const ConfigReader& r_;
-    int depth_ = 0;
-    std::set<std::string> keys_;
-};
 
 /// "MTS50-Z8" of "config/stages/MTS50-Z8.json".
 std::string stem_of(std::string_view path)
@@ -61,14 +28,13 @@ std::string stem_of(std::string_view path)
 StageModel read_stage_file(const StageFile& file)
 {
     const ConfigReader r(file.path);
-    DuplicateKeys duplicates(r);
     json root;
     try {
-        root = json::parse(file.text.begin(), file.text.end(),
-                           [&duplicates](int, json::parse_event_t event, json& parsed) {
-                               return duplicates.on_event(event, parsed);
-                           });
-    } catch (const json::parse_error& e) {
+        // A key twice in one object is refused, as in a rig (nlohmann would keep the last).
+        root = parse_json_text(file.text);
+    } catch (const JsonTextError& e) {
+        if (e.kind == JsonTextError::Kind::DuplicateKey || e.kind == JsonTextError::Kind::TooDeep)
+            r.fail(e.pointer, e.what());
         throw ConfigError(std::string(file.path) + ": " + e.what());
     }
     const auto stem = stem_of(file.path);

@@ -1,5 +1,7 @@
 #include "emulator/control/json_reply.hpp"
 
+#include "emulator/core/json_text.hpp"
+
 #include <cmath>
 
 namespace rigsim::control {
@@ -26,19 +28,22 @@ json parse_object(std::string_view text, bool empty_ok)
     if (empty_ok && text.find_first_not_of(" \t\r\n") == std::string_view::npos)
         return json::object();
     json body;
-    // The parser is iterative, but copying and printing a value recurse: a 64 KiB body of
-    // nested arrays would take them 32,000 levels deep.
-    const json::parser_callback_t shallow = [](int depth, json::parse_event_t, json&) {
-        if (depth > kMaxBodyDepth)
-            throw BadRequest{400, "body: nested deeper than " + std::to_string(kMaxBodyDepth) + " levels"};
-        return true;
-    };
+    // Copying and printing a value recurse: a 64 KiB body of nested arrays would take them
+    // 32,000 levels deep. A key twice in one object would keep only its last value.
     try {
-        body = json::parse(text.begin(), text.end(), shallow);
-    } catch (const json::parse_error& e) {
-        throw BadRequest{400, "body: expected a JSON object, got invalid JSON (at byte " + std::to_string(e.byte) + ")"};
-    } catch (const json::out_of_range&) {
-        throw BadRequest{400, "body: expected a JSON object, got a number too large for a double"};
+        body = parse_json_text(text, JsonTextLimits{kMaxBodyDepth, true});
+    } catch (const JsonTextError& e) {
+        switch (e.kind) {
+        case JsonTextError::Kind::Syntax:
+            throw BadRequest{400, "body: expected a JSON object, got invalid JSON (at byte " + std::to_string(e.byte) + ")"};
+        case JsonTextError::Kind::NumberOverflow:
+            throw BadRequest{400, "body: expected a JSON object, got a number too large for a double"};
+        case JsonTextError::Kind::DuplicateKey:
+            throw BadRequest{400, "body" + e.pointer + ": " + e.what()};
+        case JsonTextError::Kind::TooDeep:
+            throw BadRequest{400, "body: " + std::string(e.what())};
+        }
+        throw;
     }
     if (!body.is_object())
         throw BadRequest{400, "body: expected a JSON object, got " + std::string(body.type_name())};

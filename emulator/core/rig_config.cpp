@@ -2,6 +2,7 @@
 
 #include "emulator/core/config_reader.hpp"
 #include "emulator/core/family_registry.hpp"
+#include "emulator/core/json_text.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -12,7 +13,6 @@
 #include <cstring>
 #include <map>
 #include <memory>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +26,9 @@ using nlohmann::json;
 
 /// A rig file larger than this is refused (the largest example is a few kB).
 constexpr std::size_t kMaxConfigBytes = 4 << 20;
+/// Containers nested deeper than this are refused (a rig nests six deep; copying and printing a
+/// value recurse).
+constexpr std::size_t kMaxConfigDepth = 64;
 
 // The keys each object may hold; anything else is an error. A device also holds the section
 // of each family, under the family's name.
@@ -68,87 +71,6 @@ std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size
     }
     return {line, column};
 }
-
-/// nlohmann's explanation without its "[json.exception...] parse error at ...: " prefix.
-std::string explanation(const json::parse_error& e)
-{
-    const std::string_view what = e.what();
-    const auto colon = what.find(": ");
-    return std::string(colon == std::string_view::npos ? what : what.substr(colon + 2));
-}
-
-/// Follows the parser through the document to reject duplicate keys (nlohmann would keep
-/// the last value silently), naming the object that holds the duplicate.
-class DuplicateKeyCheck {
-public:
-    explicit DuplicateKeyCheck(std::string_view source) : source_(source) {}
-
-    /// A nlohmann parser callback event; always keeps the value.
-    bool on_event(json::parse_event_t event, const json& parsed)
-    {
-        switch (event) {
-        case json::parse_event_t::object_start:
-            stack_.push_back(Frame{true, {}, {}, 0});
-            break;
-        case json::parse_event_t::array_start:
-            stack_.push_back(Frame{false, {}, {}, 0});
-            break;
-        case json::parse_event_t::key: {
-            auto& top = stack_.back();
-            top.key = parsed.get<std::string>();
-            if (!top.keys.insert(top.key).second)
-                fail(source_, pointer(), "duplicate key " + quote(top.key));
-            break;
-        }
-        case json::parse_event_t::object_end:
-        case json::parse_event_t::array_end:
-            stack_.pop_back();
-            next_element();
-            break;
-        case json::parse_event_t::value:
-            next_element();
-            break;
-        }
-        return true;
-    }
-
-    struct Frame {
-        bool is_object;
-        std::set<std::string> keys;
-        std::string key;          ///< current key (objects)
-        std::size_t index;        ///< current index (arrays)
-    };
-
-    /// A value ended: inside an array, the next one has the next index.
-    void next_element()
-    {
-        if (!stack_.empty() && !stack_.back().is_object)
-            ++stack_.back().index;
-    }
-
-    /// The pointer of the value being parsed: inside the innermost open container, the
-    /// value of its current key or index (for errors the parser raises on a value).
-    std::string value_pointer() const
-    {
-        if (stack_.empty())
-            return {};
-        const auto& top = stack_.back();
-        return top.is_object ? pointer_to(pointer(), top.key) : pointer_to(pointer(), top.index);
-    }
-
-private:
-    /// The pointer of the innermost open container.
-    std::string pointer() const
-    {
-        std::string p;
-        for (std::size_t i = 0; i + 1 < stack_.size(); ++i)
-            p = stack_[i].is_object ? pointer_to(p, stack_[i].key) : pointer_to(p, stack_[i].index);
-        return p;
-    }
-
-    std::string_view source_;
-    std::vector<Frame> stack_;
-};
 
 /// Validates a parsed document into a RigConfig: the generic device fields here, each
 /// device's section by its family.
@@ -299,25 +221,34 @@ private:
 
 RigConfig parse_rig_config(std::string_view json_text, std::string_view source, const FamilyRegistry& families)
 {
-    DuplicateKeyCheck duplicates{source};
+    json root;
     try {
-        const auto root = json::parse(
-            json_text.begin(), json_text.end(),
-            [&duplicates](int, json::parse_event_t event, json& parsed) {
-                return duplicates.on_event(event, parsed);
-            });
-        return RigLoader{source, families}.load(root);
-    } catch (const json::parse_error& e) {
-        const auto [line, column] = line_column(json_text, e.byte);
-        throw ConfigError(std::string(source) + ": line " + std::to_string(line) + ", column " +
-                          std::to_string(column) + ": " + explanation(e));
-    } catch (const json::out_of_range& e) {
-        // A number the parser cannot hold (1e400): name where it is.
+        root = parse_json_text(json_text, JsonTextLimits{kMaxConfigDepth, true});
+    } catch (const JsonTextError& e) {
         const std::string_view what = e.what();
-        const auto at = what.find("number overflow");
-        fail(source, duplicates.value_pointer(),
-             at == std::string_view::npos ? std::string(what) : cut(std::string(what.substr(at)))
-                 + " (not a finite number)");
+        switch (e.kind) {
+        case JsonTextError::Kind::Syntax: {
+            const auto [line, column] = line_column(json_text, e.byte);
+            const auto colon = what.find(": ");
+            throw ConfigError(std::string(source) + ": line " + std::to_string(line) + ", column " +
+                              std::to_string(column) + ": " +
+                              std::string(colon == std::string_view::npos ? what : what.substr(colon + 2)));
+        }
+        case JsonTextError::Kind::NumberOverflow: {
+            // A number the parser cannot hold (1e400): name where it is.
+            const auto at = what.find("number overflow");
+            fail(source, e.pointer,
+                 at == std::string_view::npos ? std::string(what)
+                                              : cut(std::string(what.substr(at))) + " (not a finite number)");
+        }
+        case JsonTextError::Kind::DuplicateKey:
+        case JsonTextError::Kind::TooDeep:
+            fail(source, e.pointer, std::string(what));
+        }
+        throw;
+    }
+    try {
+        return RigLoader{source, families}.load(root);
     } catch (const json::exception& e) {
         throw ConfigError(std::string(source) + ": " + e.what());
     }

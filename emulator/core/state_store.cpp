@@ -3,7 +3,7 @@
 
 #include "emulator/core/atomic_file.hpp"
 #include "emulator/core/device.hpp"
-
+#include "emulator/core/json_text.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -19,6 +19,8 @@ namespace {
 
 /// A state file holds a few hundred bytes per device; anything this large is not one.
 constexpr std::size_t kMaxStateFileBytes = 16 * 1024 * 1024;
+/// Containers nested deeper than this are refused: rigsim writes three levels.
+constexpr std::size_t kMaxStateDepth = 64;
 
 std::runtime_error state_file_error(const std::string& path, const std::string& what)
 {
@@ -96,8 +98,10 @@ StateStore::StateStore(std::string path, std::shared_ptr<spdlog::logger> log, Wr
         throw state_file_error(path_, "cannot write in " + dir + ": " + std::strerror(errno));
     if (text) {
         try {
-            state_ = nlohmann::json::parse(*text);
-        } catch (const nlohmann::json::exception& e) {
+            // Linear time and bounded depth; a key twice keeps the last, as the writer never
+            // writes one twice.
+            state_ = parse_json_text(*text, JsonTextLimits{kMaxStateDepth, false});
+        } catch (const JsonTextError& e) {
             throw state_file_error(path_, std::string("not a rigsim state file: ") + e.what());
         }
         if (!state_.is_object())

@@ -274,6 +274,16 @@ TEST_CASE("bodies nested deeper than 32 levels are refused before anything copie
     CHECK(f.error_of("POST", "/api/clock", deep_clock, 400) == "body: nested deeper than 32 levels");
 }
 
+TEST_CASE("a key twice in one body is refused, naming the object that holds it", "[control]")
+{
+    Fixture f;
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"stall","kind":"slip"})", 400)
+          == "body: duplicate key \"kind\"");
+    CHECK(f.surface.added.empty());
+    CHECK(f.error_of("POST", "/api/faults", R"({"device":"dev","kind":"latency","params":{"latency_ms":1,"latency_ms":2}})", 400)
+          == "body/params: duplicate key \"latency_ms\"");
+}
+
 TEST_CASE("path parts are percent-decoded, '+' and '&' are themselves", "[control]")
 {
     Fixture f;
