@@ -101,6 +101,7 @@ void Channel::reset()
     if (acceleration_um_per_s2_ > 0 && speed_nm_per_s_ == 0)
         speed_nm_per_s_ = static_cast<std::int32_t>(std::min<double>(top_speed(), kMaxClosedLoopSpeed));
     events_.clear();
+    outcome_ = "";   // a reset (R, POST /api/reset, a power cycle) forgets the last motion's end
 }
 
 ChannelStatus Channel::status() const

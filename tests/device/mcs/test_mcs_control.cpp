@@ -306,6 +306,21 @@ TEST_CASE("MCS power cycle keeps or erases saved settings, restores positions", 
     CHECK(describe(h)["baudrate"] == 9600);
 }
 
+TEST_CASE("MCS reset and power cycle forget the last motion's outcome", "[device][mcs][control]")
+{
+    McsHarness h;
+    CHECK(h.send(":SCM1\n:MPA0,1000,0\n") == "");
+    h.advance_ms(100);
+    CHECK(describe(h)["channels"][0]["last_outcome"] == "completed");
+    h.device().power_cycle({true, true});   // POST /api/reset and the power_cycle fault
+    CHECK(describe(h)["channels"][0]["last_outcome"] == "");
+    CHECK(h.send(":MPA0,1000,0\n") == ":E0,0\n");   // the reset made the mode synchronous again
+    h.advance_ms(100);
+    CHECK(describe(h)["channels"][0]["last_outcome"] == "completed");
+    CHECK(h.send(":R\n") == ":E-1,0\n");
+    CHECK(describe(h)["channels"][0]["last_outcome"] == "");
+}
+
 TEST_CASE("MCS power cycle: a stall outlasts it", "[device][mcs][control][faults]")
 {
     McsHarness h;
