@@ -86,7 +86,7 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
                          ADDR an IP address ([::1] for IPv6), PORT 0 picks a free port;
                          wins over the config's "control" (default: off unless the
                          config has "control", then on 127.0.0.1; the default rig's
-                         is port 40200)
+                         is port 40200); a device's tcp_port is refused (exit 2)
   --control-token TOKEN  the control API takes only requests carrying the header
                          "Authorization: Bearer TOKEN" (401 otherwise); TOKEN printable
                          ASCII without spaces, at most 1024 characters
@@ -367,6 +367,19 @@ std::optional<ControlListen> control_listen(const rigsim::RigConfig& config, con
     return listen;
 }
 
+/// Why --control's port cannot be used: a device of the rig listens on it too (the run would
+/// fail to bind one of them).
+std::optional<std::string> control_port_clash(const rigsim::RigConfig& config, const Options& opts)
+{
+    if (!opts.control || opts.control->port == 0 || opts.rig.ephemeral_ports)
+        return std::nullopt;
+    for (std::size_t i = 0; i < config.devices.size(); ++i)
+        if (config.devices[i].tcp_port == opts.control->port)
+            return "--control: port " + std::to_string(opts.control->port) + " is device \"" + config.devices[i].name
+                   + "\"'s tcp_port (/devices/" + std::to_string(i) + "/tcp_port); choose another, or add --ephemeral-ports";
+    return std::nullopt;
+}
+
 /// The control API on `listen`, started; throws if it cannot listen.
 std::unique_ptr<rigsim::control::HttpServer> start_control(boost::asio::io_context& io, rigsim::Rig& rig,
                                                            const ControlListen& listen,
@@ -544,6 +557,10 @@ int main(int argc, char** argv)
         // config's fault, reported as one rather than as a crash.
         const auto& source = opts.check_config ? *opts.check_config : opts.config ? *opts.config : std::string("rig");
         std::cerr << source << ": invalid rig: " << e.what() << "\n";
+        return kExitUsage;
+    }
+    if (const auto clash = control_port_clash(config, opts)) {
+        std::cerr << "rigsimd: " << *clash << "\n";
         return kExitUsage;
     }
     if (opts.tick_hz)

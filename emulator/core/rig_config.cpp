@@ -17,7 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace rigsim {
 namespace {
@@ -104,6 +106,9 @@ public:
             check_keys(*c, "/control", kControlKeys);
             ControlConfig control;
             control.port = static_cast<std::uint16_t>(get_int(require(*c, "/control", "port"), "/control/port", 0, 65535));
+            if (control.port != 0)   // a device listening there would make the run fail to bind
+                claim(ports_, std::to_string(control.port), "/control/port", "/control",
+                      "port " + std::to_string(control.port));
             rig.control = control;
         }
         if (const auto* c = find(root, "clock"))
@@ -256,10 +261,17 @@ RigConfig parse_rig_config(std::string_view json_text, std::string_view source, 
 
 RigConfig load_rig_config(const std::string& path, const FamilyRegistry& families)
 {
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"),
-                                                               &std::fclose};
-    if (!file)
+    // O_NONBLOCK: opening a pipe with no writer would wait for one for ever; the file kind is
+    // checked before anything is read (reading a regular file ignores the flag).
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{::fdopen(fd, "rb"), &std::fclose};
+    if (!file) {
+        const int e = errno;
+        ::close(fd);
+        throw ConfigError(path + ": cannot read: " + std::strerror(e));
+    }
     struct stat st {};
     if (::fstat(::fileno(file.get()), &st) != 0)
         throw ConfigError(path + ": cannot read: " + std::strerror(errno));

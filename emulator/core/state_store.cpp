@@ -41,7 +41,8 @@ std::optional<std::string> read_state_file(const std::string& path, const std::s
         throw state_file_error(path, "is a directory, not a file");
     if (!S_ISREG(st.st_mode))
         throw state_file_error(path, "is not a regular file");
-    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    // O_NONBLOCK: a pipe put there since the check would otherwise wait for a writer for ever.
+    const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
         throw state_file_error(path, std::string("cannot read it: ") + std::strerror(errno));
     std::string text;

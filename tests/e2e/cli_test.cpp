@@ -115,6 +115,19 @@ TEST_CASE("cli: --check-config rejects a bad rig naming the JSON pointer", "[e2e
     }
 }
 
+TEST_CASE("cli: --control on a device's port exits 2 before anything listens", "[e2e][cli]")
+{
+    TempDir dir;
+    // The default rig's second device listens on 40101.
+    const auto r = run_rigsimd({"--control", "127.0.0.1:40101", "--pty-dir", dir.file("ptys")});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "rigsimd: --control: port 40101 is device \"tdc001\"'s tcp_port (/devices/1/tcp_port); choose "
+                   "another, or add --ephemeral-ports\n");
+    CHECK_FALSE(path_exists(dir.file("ptys")));   // nothing was opened
+}
+
 TEST_CASE("cli: an unknown flag exits 2 naming the flag", "[e2e][cli]")
 {
     const auto r = run_rigsimd({"--no-such-flag"});

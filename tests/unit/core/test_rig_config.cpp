@@ -572,6 +572,18 @@ TEST_CASE("rig config: a non-zero tcp_port is used once", "[unit][config]")
           "rig.json: /devices/2/tcp_port: port 40100 is already used by /devices/0");
 }
 
+TEST_CASE("rig config: the control port is no device's tcp_port", "[unit][config]")
+{
+    auto rig = minimal_rig();
+    rig["devices"][0]["tcp_port"] = 40100;
+    rig["control"] = {{"port", 0}};
+    CHECK(error_of(rig) == "(no error)");
+    rig["control"]["port"] = 40101;
+    CHECK(error_of(rig) == "(no error)");
+    rig["control"]["port"] = 40100;
+    CHECK(error_of(rig) == "rig.json: /control/port: port 40100 is already used by /devices/0");
+}
+
 TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
 {
     auto rig = minimal_rig();

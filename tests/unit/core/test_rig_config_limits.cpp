@@ -104,7 +104,9 @@ TEST_CASE("rig config: only regular files of at most 4 MiB are read", "[unit][co
     CHECK(error_of_file(big) == big + ": 4194305 bytes: a rig file may hold at most 4194304 bytes");
     const auto fifo = dir + "/fifo";
     REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
-    // Opening a FIFO for reading blocks until a writer comes: open it for writing here first.
+    // With no writer: opening it for reading would wait for one for ever; it is refused at once.
+    CHECK(error_of_file(fifo) == fifo + ": not a regular file (a pipe): a rig is read from a JSON file");
+    // With a writer holding it open, the same.
     const int keep = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
     REQUIRE(keep >= 0);
     CHECK(error_of_file(fifo) == fifo + ": not a regular file (a pipe): a rig is read from a JSON file");
