@@ -40,12 +40,17 @@ void RateLimitedSink::log(const spdlog::details::log_msg& msg)
     const auto now = now_();
     if (now >= next_roll_)
         roll_windows(now);
-    if (msg.level != spdlog::level::warn) {
+    const bool info = msg.level == spdlog::level::info;
+    if (msg.level != spdlog::level::warn && !info) {
         inner_->log(msg);
         return;
     }
     const std::string_view logger(msg.logger_name.data(), msg.logger_name.size());
     const auto peer = log_peer(std::string_view(msg.payload.data(), msg.payload.size()));
+    if (info && peer.empty()) {   // the daemon's own news, not a client's doing
+        inner_->log(msg);
+        return;
+    }
     std::string key;
     key.reserve(logger.size() + 1 + peer.size());
     key.append(logger).push_back('\0');
@@ -62,7 +67,7 @@ void RateLimitedSink::log(const spdlog::details::log_msg& msg)
         inner_->log(msg);
         return;
     }
-    ++s.suppressed;
+    ++(info ? s.suppressed_info : s.suppressed);
     ++suppressed_total_;
 }
 
@@ -74,7 +79,7 @@ void RateLimitedSink::roll_windows(TimePoint now)
             ++it;
             continue;
         }
-        if (s.suppressed > 0)
+        if (s.suppressed + s.suppressed_info > 0)
             write_summary(s, now);
         if (s.logged == 0) {   // a whole window without a warning: forget the source
             it = sources_.erase(it);
@@ -93,7 +98,13 @@ void RateLimitedSink::write_summary(Source& s, TimePoint now)
     char span[32];
     std::snprintf(span, sizeof span, "%.1f", seconds);
     std::string text = s.peer.empty() ? std::string() : s.peer + ": ";
-    text += std::to_string(s.suppressed) + " more warning(s) suppressed in the last " + span
+    if (s.suppressed > 0)
+        text += std::to_string(s.suppressed) + " more warning(s)";
+    if (s.suppressed > 0 && s.suppressed_info > 0)
+        text += " and ";
+    if (s.suppressed_info > 0)
+        text += std::to_string(s.suppressed_info) + " more info line(s)";
+    text += std::string(" suppressed in the last ") + span
             + " s (at most " + std::to_string(burst_) + " per " + std::to_string(window_.count())
             + " ms are logged)";
     const spdlog::details::log_msg summary(spdlog::string_view_t(s.logger.data(), s.logger.size()),
@@ -101,6 +112,7 @@ void RateLimitedSink::write_summary(Source& s, TimePoint now)
                                            spdlog::string_view_t(text.data(), text.size()));
     inner_->log(summary);
     s.suppressed = 0;
+    s.suppressed_info = 0;
 }
 
 void RateLimitedSink::flush()
@@ -117,7 +129,7 @@ void RateLimitedSink::flush_summaries()
     const std::lock_guard lock(mutex_);
     const auto now = now_();
     for (auto& [key, s] : sources_)
-        if (s.suppressed > 0)
+        if (s.suppressed + s.suppressed_info > 0)
             write_summary(s, now);
     inner_->flush();
 }

@@ -4,8 +4,10 @@
 // logger and the connection the message names (device loggers start every per-connection
 // line with the peer: "tcp 127.0.0.1:53122: ..."). Each source may log `burst` warnings per
 // window; the rest of the window's warnings are counted and replaced by one summary line
-// when the window ends. Other levels pass untouched: an info line is not a client's doing,
-// errors are rare and must all be seen, and debug/trace were asked for. Thread-safe: a
+// when the window ends. Info lines that name a connection (a client's MOD_IDENTIFY, a reset, a
+// save) share that budget: a client repeating one must not write 47 MB of log for 3 MB of
+// input. Other lines pass untouched: an info line naming no connection is not a client's
+// doing, errors are rare and must all be seen, and debug/trace were asked for. Thread-safe: a
 // periodic flush (spdlog::flush_every) writes the summaries of ended windows.
 
 #include <spdlog/sinks/sink.h>
@@ -43,7 +45,7 @@ public:
     /// Writes every pending summary now, whether its window has ended or not (at exit).
     void flush_summaries();
 
-    /// Warnings suppressed since construction (for tests and the closing log line).
+    /// Warnings and info lines suppressed since construction (for tests and the closing log line).
     std::uint64_t suppressed_total() const;
 
 private:
@@ -52,7 +54,8 @@ private:
         std::string peer;
         TimePoint window_start;
         std::uint32_t logged = 0;       ///< warnings passed in this window
-        std::uint64_t suppressed = 0;   ///< warnings held back in this window
+        std::uint64_t suppressed = 0;        ///< warnings held back in this window
+        std::uint64_t suppressed_info = 0;   ///< info lines held back in this window
     };
 
     /// Summaries of ended windows; sources idle for a whole window are forgotten.

@@ -28,6 +28,8 @@ using nlohmann::json;
 
 /// A rig file larger than this is refused (the largest example is a few kB).
 constexpr std::size_t kMaxConfigBytes = 4 << 20;
+/// Longest model or firmware name (the longest the families know is 12 characters).
+constexpr std::size_t kMaxLabelLength = 64;
 /// Containers nested deeper than this are refused (a rig nests six deep; copying and printing a
 /// value recurse).
 constexpr std::size_t kMaxConfigDepth = 64;
@@ -150,9 +152,9 @@ private:
         const auto& family = load_protocol(require(v, pointer, "protocol"), pointer_to(pointer, "protocol"));
         d.protocol = family.name;
         if (const auto* m = find(v, "model"))
-            d.model = get_string(*m, pointer_to(pointer, "model"));
+            d.model = load_label(*m, pointer_to(pointer, "model"));
         if (const auto* f = find(v, "firmware"))
-            d.firmware = get_string(*f, pointer_to(pointer, "firmware"));
+            d.firmware = load_label(*f, pointer_to(pointer, "firmware"));
         if (const auto* p = find(v, "tcp_port")) {
             const auto port_pointer = pointer_to(pointer, "tcp_port");
             d.tcp_port = static_cast<std::uint16_t>(get_int(*p, port_pointer, 0, 65535));
@@ -202,6 +204,18 @@ private:
             fail(pointer, "expected a name of 1.." + std::to_string(kMaxNameLength) +
                               " characters [A-Za-z0-9_.-], got " + describe(v));
         return v.get<std::string>();
+    }
+
+    /// A model or firmware name: printed in the endpoint list, the log and every answer of the
+    /// control API, so short and printable.
+    std::string load_label(const json& v, const std::string& pointer) const
+    {
+        const std::string_view expected = "a string of 1..64 printable ASCII characters";
+        const auto& s = get_string(v, pointer, expected);
+        const bool printable = std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c < 0x7F; });
+        if (s.size() > kMaxLabelLength || !printable)
+            fail(pointer, "expected " + std::string(expected) + ", got " + describe(v));
+        return s;
     }
 
     const Family& load_protocol(const json& v, const std::string& pointer) const

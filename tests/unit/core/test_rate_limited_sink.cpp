@@ -1,5 +1,6 @@
-// Log amplification (issue: 3 MB of bad input made 76 MB of log): warnings are limited per
-// logger and connection, the rest counted into one summary line per window.
+// Log amplification (issue: 3 MB of bad input made 76 MB of log): warnings, and info lines that
+// name a connection, are limited per logger and connection, the rest counted into one summary
+// line per window.
 #include "emulator/core/rate_limited_sink.hpp"
 
 #include <catch2/catch.hpp>
@@ -79,6 +80,32 @@ TEST_CASE("rate-limited log: connections, loggers and other levels are limited s
     // 3 warnings per source, every error and debug line.
     CHECK(f.out->lines.size() == 3 * 3 + 10 + 10);
     CHECK(f.sink.suppressed_total() == 3 * 7);
+}
+
+TEST_CASE("rate-limited log: info lines naming a connection share its budget, the daemon's own pass",
+          "[unit][logging]")
+{
+    Fixture f;
+    // 3 MB of MOD_IDENTIFY once made 47 MB of info lines.
+    for (int i = 0; i < 1000; ++i)
+        f.log("tdc001", spdlog::level::info, "tcp 127.0.0.1:5000: MOD_IDENTIFY: front panel flashes");
+    f.log("tdc001", spdlog::level::warn, "tcp 127.0.0.1:5000: bad");
+    for (int i = 0; i < 5; ++i)
+        f.log("rigsimd", spdlog::level::info, "rig running");   // no peer: every one
+    CHECK(f.out->lines.size() == 3 + 5);
+    CHECK(f.sink.suppressed_total() == 998);
+    f.now += 1000ms;
+    f.sink.flush();
+    CHECK(f.out->lines.back()
+          == "tdc001|3|tcp 127.0.0.1:5000: 1 more warning(s) and 997 more info line(s) suppressed in the last 1.0 s "
+             "(at most 3 per 1000 ms are logged)");
+    f.log("tdc001", spdlog::level::info, "tcp 127.0.0.1:5000: MOD_IDENTIFY: front panel flashes");
+    f.log("tdc001", spdlog::level::info, "tcp 127.0.0.1:5000: MOD_IDENTIFY: front panel flashes");
+    f.log("tdc001", spdlog::level::info, "tcp 127.0.0.1:5000: MOD_IDENTIFY: front panel flashes");
+    f.log("tdc001", spdlog::level::info, "tcp 127.0.0.1:5000: MOD_IDENTIFY: front panel flashes");
+    f.sink.flush_summaries();
+    CHECK(f.out->lines.back()
+          == "tdc001|3|tcp 127.0.0.1:5000: 1 more info line(s) suppressed in the last 0.0 s (at most 3 per 1000 ms are logged)");
 }
 
 TEST_CASE("rate-limited log: held-back counts are written at exit and by a periodic flush",

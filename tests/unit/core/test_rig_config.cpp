@@ -457,9 +457,9 @@ TEST_CASE("rig config: model must be a non-empty string", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["model"] = "";
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a non-empty string, got \"\"");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a string of 1..64 printable ASCII characters, got \"\"");
     rig["devices"][0]["model"] = json::array();
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a non-empty string, got []");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a string of 1..64 printable ASCII characters, got []");
 }
 
 TEST_CASE("rig config: pty must be an absolute path", "[unit][config]")
@@ -584,6 +584,23 @@ TEST_CASE("rig config: the control port is no device's tcp_port", "[unit][config
     CHECK(error_of(rig) == "rig.json: /control/port: port 40100 is already used by /devices/0");
 }
 
+TEST_CASE("rig config: model and firmware are short printable names", "[unit][config]")
+{
+    auto rig = minimal_rig();
+    rig["devices"][0]["model"] = std::string(64, 'M');
+    CHECK(error_of(rig) == "(no error)");
+    rig["devices"][0]["model"] = std::string(1'000'000, 'M');   // once printed whole on stdout and in every answer
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a string of 1..64 printable ASCII characters, got \""
+                               + std::string(79, 'M') + "... (1000002 characters)");
+    rig["devices"][0]["model"] = "MCS\n3D";
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected a string of 1..64 printable ASCII characters, got "
+                           "\"MCS\\n3D\"");
+    rig["devices"][0].erase("model");
+    rig["devices"][0]["firmware"] = std::string(65, '1');
+    CHECK(error_of(rig).find("rig.json: /devices/0/firmware: expected a string of 1..64 printable ASCII characters")
+          == 0);
+}
+
 TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
 {
     auto rig = minimal_rig();
@@ -690,9 +707,9 @@ TEST_CASE("rig config: a device's firmware names a generation of its family, the
                               "\"1.2.44\"",
                               0) == 0);
     rig["devices"][0]["firmware"] = "";
-    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a non-empty string, got \"\"");
+    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a string of 1..64 printable ASCII characters, got \"\"");
     rig["devices"][0]["firmware"] = 3;
-    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a non-empty string, got 3");
+    CHECK(error_of(rig) == "rig.json: /devices/0/firmware: expected a string of 1..64 printable ASCII characters, got 3");
 }
 
 TEST_CASE("rig config: drift_nm_per_s is a signed channel integer, 0 by default", "[unit][config]")
