@@ -76,7 +76,9 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
                          {"devices":[{"name","protocol","model","tcp","pty"}]}, and
                          "control": "http://HOST:PORT" when the control API is on
   --pty-dir DIR          put each device's pty symlink at DIR/<name> unless the config
-                         names a path (default /tmp/rigsim; created if missing)
+                         names a path (default /tmp/rigsim; created if missing); a
+                         link's directory must be this user's or root's, writable by
+                         no one else unless sticky (exit 2 otherwise)
   --replace-links        take over pty symlinks that a running rigsimd holds (it runs on
                          without them); without it such a link stops start-up (exit 2).
                          Links left by a daemon that died are replaced either way
@@ -345,6 +347,9 @@ std::optional<int> lock_pty_links(const rigsim::RigConfig& config, const Options
                            "without it", d.pty, *pid);
         }
     } catch (const rigsim::LinkInUse& e) {
+        std::cerr << "rigsimd: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const rigsim::UnsafeLinkDir& e) {
         std::cerr << "rigsimd: " << e.what() << "\n";
         return kExitUsage;
     } catch (const std::exception& e) {

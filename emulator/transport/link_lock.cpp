@@ -61,6 +61,28 @@ bool write_pid(int fd)
 
 } // namespace
 
+std::optional<std::string> unsafe_link_dir(const std::string& dir, uid_t owner)
+{
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0)
+        return std::nullopt;   // creating or using it fails with its own message
+    if (!S_ISDIR(st.st_mode))
+        return std::nullopt;
+    const auto who = "the pty directory " + dir;
+    const auto advice = "another user could replace its links with their own: give --pty-dir a directory of your "
+                        "own (or pty paths in one)";
+    if (st.st_uid != owner && st.st_uid != 0)
+        return who + " belongs to uid " + std::to_string(st.st_uid) + ", not to this user (uid "
+               + std::to_string(owner) + ") or root: " + advice;
+    // A sticky directory (/tmp) lets no one else remove or rename what this user puts there.
+    if ((st.st_mode & (S_IWGRP | S_IWOTH)) != 0 && (st.st_mode & S_ISVTX) == 0)
+        return who + " is writable by " + ((st.st_mode & S_IWOTH) != 0 ? "everyone" : "its group")
+               + " and not sticky: " + advice;
+    return std::nullopt;
+}
+
+UnsafeLinkDir::UnsafeLinkDir(const std::string& why) : std::runtime_error(why) {}
+
 LinkInUse::LinkInUse(const std::string& link, pid_t pid)
     : std::runtime_error(in_use_text(link, pid)), link_(link), pid_(pid)
 {
@@ -86,6 +108,9 @@ void make_parent_dirs(const std::string& path)
 LinkLock::LinkLock(const std::string& link_path, bool replace) : path_(link_lock_path(link_path))
 {
     make_parent_dirs(link_path);
+    const auto slash = link_path.rfind('/');
+    if (const auto why = unsafe_link_dir(slash == 0 ? "/" : link_path.substr(0, slash), ::geteuid()))
+        throw UnsafeLinkDir(*why);
     // A file unlinked or replaced between our open and our lock is not the lock any more:
     // try the one at the path now. Bounded, so that a file someone keeps replacing cannot
     // hold start-up forever.

@@ -23,6 +23,18 @@
 
 namespace rigsim {
 
+/// Why the directory `dir` holding pty links is unsafe for a daemon of uid `owner`, or nullopt:
+/// it must belong to `owner` or root and be writable by no one else unless sticky (as /tmp is),
+/// as OpenSSH's StrictModes and tmux ask of their directories. A directory that does not exist
+/// is not judged here.
+std::optional<std::string> unsafe_link_dir(const std::string& dir, uid_t owner);
+
+/// The directory of a link is unsafe (unsafe_link_dir()).
+class UnsafeLinkDir : public std::runtime_error {
+public:
+    explicit UnsafeLinkDir(const std::string& why);
+};
+
 /// A live process holds the link: its path and the holder's pid (0 if not known).
 class LinkInUse : public std::runtime_error {
 public:
@@ -38,7 +50,8 @@ private:
 class LinkLock {
 public:
     /// Locks the link at `link_path` for this process, creating the link's directory if
-    /// missing. Throws LinkInUse if a live process holds it and `replace` is false, and
+    /// missing. Throws UnsafeLinkDir if that directory is another user's or writable by others,
+    /// LinkInUse if a live process holds it and `replace` is false, and
     /// std::system_error if the lock file cannot be made.
     LinkLock(const std::string& link_path, bool replace);
     /// Removes the lock file if it is still the one this lock made, then releases it.

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <string>
 
+#include <sys/stat.h>
+
 #include "e2e_support.hpp"
 
 namespace cli_test {
@@ -126,6 +128,22 @@ TEST_CASE("cli: --control on a device's port exits 2 before anything listens", "
     CHECK(r.err == "rigsimd: --control: port 40101 is device \"tdc001\"'s tcp_port (/devices/1/tcp_port); choose "
                    "another, or add --ephemeral-ports\n");
     CHECK_FALSE(path_exists(dir.file("ptys")));   // nothing was opened
+}
+
+TEST_CASE("cli: a pty directory others may write in exits 2 before any link is made", "[e2e][cli]")
+{
+    TempDir dir;
+    const auto ptys = dir.file("ptys");
+    REQUIRE(::mkdir(ptys.c_str(), 0700) == 0);
+    REQUIRE(::chmod(ptys.c_str(), 0777) == 0);
+    const auto r = run_rigsimd({"--pty-dir", ptys, "--ephemeral-ports"});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "rigsimd: the pty directory " + ptys + " is writable by everyone and not sticky: another user could "
+                   "replace its links with their own: give --pty-dir a directory of your own (or pty paths in one)\n");
+    CHECK_FALSE(path_exists(ptys + "/mcs0"));
+    CHECK_FALSE(path_exists(ptys + "/.mcs0.lock"));
 }
 
 TEST_CASE("cli: an unknown flag exits 2 naming the flag", "[e2e][cli]")
