@@ -115,7 +115,10 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
                          MOT_SET_EEPROMPARAMS) in FILE across restarts; without it, saves
                          last until the daemon exits. A FILE that cannot be read stops
                          start-up; a symlink is written through; a FILE with damaged
-                         entries is kept as FILE.damaged at the next save
+                         entries is kept as FILE.damaged at the next save. Saves are
+                         written behind: kill -9 may lose the last milliseconds' saves
+  --state-sync           with --state-file: a save is on disk (fsync) before the device
+                         goes on, so no save a client made is lost, even to kill -9
   --log-level LEVEL      trace, debug, info, warn, error, critical or off (default info);
   --log-level NAME=LEVEL   the level of one logger: a device name, or rigsimd
                          (may be repeated)
@@ -278,7 +281,10 @@ void parse_option(const std::string& arg, Value& value, NoValue& no_value, Optio
         no_value();
         o.rig.paused = true;
     }
-    else if (arg == "--state-file") {
+    else if (arg == "--state-sync") {
+        no_value();
+        o.rig.state_sync = true;
+    } else if (arg == "--state-file") {
         o.rig.state_file = value();
         if (o.rig.state_file.empty())
             throw UsageError{"--state-file: expected a file name, got \"\""};
@@ -329,6 +335,8 @@ std::optional<Options> parse_args(int argc, char** argv)
     }
     if (o.config && o.check_config)
         throw UsageError{"--config and --check-config exclude each other"};
+    if (o.rig.state_sync && o.rig.state_file.empty())
+        throw UsageError{"--state-sync: needs --state-file (without a file, saves last until the daemon exits)"};
     return o;
 }
 

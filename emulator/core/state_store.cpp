@@ -165,6 +165,8 @@ void StateStore::set(const std::string& device, const std::string& key, nlohmann
         ++saves_;
     }
     changed_.notify_all();
+    if (sync_)
+        flush();
 }
 
 void StateStore::erase(const std::string& device)
@@ -178,6 +180,8 @@ void StateStore::erase(const std::string& device)
         ++saves_;
     }
     changed_.notify_all();
+    if (sync_)
+        flush();
 }
 
 void StateStore::reject(const std::string& device, const std::string& key, const std::string& why)

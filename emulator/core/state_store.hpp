@@ -54,6 +54,10 @@ public:
     void reject(const std::string& device, const std::string& key, const std::string& why);
     /// Wait until every save made so far has been written (or its write failed and was logged).
     void flush();
+    /// Durable saves (--state-sync): set() and erase() return only once the file is written
+    /// (fsync'd), so a save a client has made survives even kill -9 or a power loss, at the cost
+    /// of the loop waiting for the disk at each save. Off: saves are written behind.
+    void set_sync(bool sync) { sync_ = sync; }
 
     /// The file written (symlinks resolved); empty in memory.
     const std::string& file() const { return file_; }
@@ -68,6 +72,7 @@ private:
     std::string file_;              ///< resolved target; empty: in memory
     WriteFn write_;
     nlohmann::json state_ = nlohmann::json::object();
+    bool sync_ = false;
 
     std::mutex mutex_;              // guards everything below
     std::condition_variable changed_;

@@ -118,6 +118,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
                  : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
       watcher_(io)
 {
+    store_->set_sync(options.state_sync);
     tcp_budget_.max_total = options.max_connections;
     tcp_budget_.max_per_device = options.max_connections_per_device;
     for (const auto& dc : config.devices) {

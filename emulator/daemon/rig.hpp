@@ -37,6 +37,7 @@ struct RigOptions {
     bool paused = false;                    ///< the clock starts paused (--paused, "clock": {"paused"})
     LogLevels log_levels;
     std::string state_file;                 ///< --state-file; empty: non-volatile saves last the run
+    bool state_sync = false;                ///< --state-sync: a save returns once written
     std::size_t max_connections = 256;      ///< TCP connections open at once, all devices together
     std::size_t max_connections_per_device = 32;   ///< TCP connections open at once on one device
 };

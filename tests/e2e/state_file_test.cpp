@@ -168,3 +168,42 @@ TEST_CASE("state file: a damaged entry is skipped and logged, and the damaged fi
 }
 
 } // namespace state_file_test
+
+namespace state_file_test {
+
+TEST_CASE("state file: with --state-sync, kill -9 after the unit answered loses no save", "[e2e][state]")
+{
+    TempDir state_dir;
+    const auto file = state_dir.file("state.json");
+    Daemon::Options options;
+    options.extra_args = {"--state-file", file, "--state-sync"};
+    Daemon daemon(options);
+    TcpClient c(daemon.endpoint("kdc101"));
+    // 50 saves of VELPARAMS, the maximum velocity 1..50, then a REQ: its answer comes after every
+    // save before it was acted on. Written behind, the file lags them (bench/state_durability.py).
+    std::string burst;
+    for (int i = 1; i <= 50; ++i) {
+        auto vel = kVelParams;
+        vel[10] = static_cast<char>(i);
+        vel[11] = 0;
+        burst += with_data(0x0413, vel) + with_data(0x04B9, kSaveVelParams);
+    }
+    c.send(burst + header(0x0414, 1, 0));
+    const auto vel = wait_for(c.fd(), 0x0415);
+    REQUIRE(vel);
+    CHECK(get32(*vel, 10) == 50);
+    REQUIRE(daemon.stop(SIGKILL).has_value());
+    const auto text = read_file(file);
+    REQUIRE(text);
+    CHECK_THAT(*text, Catch::Contains("\"bay0/0x0413\": \"0100000000001000000032000000\""));
+}
+
+TEST_CASE("state file: --state-sync without --state-file exits 2", "[e2e][state]")
+{
+    const auto r = run_rigsimd({"--state-sync"});
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "rigsimd: --state-sync: needs --state-file (without a file, saves last until the daemon exits)\n");
+}
+
+} // namespace state_file_test
