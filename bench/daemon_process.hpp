@@ -44,6 +44,8 @@ public:
     const std::vector<DeviceEndpoints>& devices() const { return devices_; }
     /// The device called `name` speaking `protocol`; throws if the rig has none.
     const DeviceEndpoints& device(const std::string& name, const std::string& protocol) const;
+    /// The endpoints file as the daemon wrote it (its "control" URL, if the API is on).
+    const std::string& endpoints_json() const { return process_.endpoints_json(); }
 
     /// Sends SIGTERM and waits up to `timeout` for the exit; throws if it does not
     /// exit in time (then kills it) or exits with a failure status.
