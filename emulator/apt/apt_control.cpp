@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <utility>
 
 namespace rigsim::apt {
 
@@ -322,25 +323,27 @@ Refused AptDevice::trace(std::size_t index, std::int64_t from_tick, std::size_t 
 void AptDevice::connect_events(std::size_t bay)
 {
     modules_[bay]->set_event_sink([this, bay](std::string_view type, const nlohmann::json& data) {
-        if (!events_ || !events_->active())
+        if (!events_ || !events_->wants(config_.name, type))
             return;
         nlohmann::json with = data;
         with["channel"] = bay;
-        events_->publish(config_.name, type, clock_.seconds(clock_.now()) * 1000.0, with);
+        events_->publish(config_.name, type, clock_.seconds(clock_.now()) * 1000.0, std::move(with));
     });
 }
 
 void AptDevice::publish_events(std::size_t bay, const std::vector<MotorEvent>& events)
 {
     const bool moving = channels_[bay]->moving();
-    if (!events_ || !events_->active()) {
+    const auto& name = config_.name;
+    const bool statuses = events_ && events_->wants(name, "status");
+    if (!statuses && !(events_ && (events_->wants(name, "move_started") || events_->wants(name, "move_ended")))) {
         was_moving_[bay] = moving;
         return;
     }
     const double ms = clock_.seconds(clock_.now()) * 1000.0;
     auto publish = [&](const char* type, nlohmann::json data) {
         data["channel"] = bay;
-        events_->publish(config_.name, type, ms, data);
+        events_->publish(config_.name, type, ms, std::move(data));
     };
     bool in_move = was_moving_[bay];
     for (const auto e : events) {
@@ -366,7 +369,8 @@ void AptDevice::publish_events(std::size_t bay, const std::vector<MotorEvent>& e
     const std::uint32_t bits = channels_[bay]->status_bits();
     if (bits != published_status_[bay]) {
         published_status_[bay] = bits;
-        publish("status", {{"status", status_json(bits)}});
+        if (statuses)
+            publish("status", {{"status", status_json(bits)}});
     }
 }
 

@@ -58,7 +58,7 @@ void WireLog::add(std::int64_t tick, bool inbound, std::string_view peer, std::s
         ++noted_;
     // Debug level only: a client's mistakes are already warned about where the protocol's
     // log does (rate-limited); a flood of bad commands must not flood the log twice.
-    if ((bus_ && bus_->active()) || (log_ && log_->should_log(spdlog::level::debug)))
+    if ((bus_ && bus_->wants(device_, "wire")) || (log_ && log_->should_log(spdlog::level::debug)))
         show(e);
 }
 
@@ -67,7 +67,7 @@ void WireLog::show(const WireEntry& e) const
     const auto j = entry_json(e);
     if (log_ && log_->should_log(spdlog::level::debug))
         log_->debug("wire: {}", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-    if (bus_ && bus_->active())
+    if (bus_ && bus_->wants(device_, "wire"))
         bus_->publish(device_, "wire", static_cast<double>(e.tick) * 1000.0 / tick_hz_, j);
 }
 

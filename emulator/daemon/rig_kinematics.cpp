@@ -161,7 +161,7 @@ models::CollisionWatch* watch_collisions(models::World& world, RigKinematics& ri
     const models::Kinematics* kinematics = rig.kinematics.get();
     auto kept = std::make_shared<const KinematicsConfig>(config);   // the rig's config is gone after start-up
     watch.set_listener([kinematics, kept, &events, &world](const models::Contact& c) {
-        if (events.active())
+        if (events.wants("", "collision"))
             events.publish("", "collision", world.clock().seconds(world.now()) * 1000.0,
                            collision_json(*kinematics, *kept, c));
     });

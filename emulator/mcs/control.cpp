@@ -308,7 +308,10 @@ void McsDevice::note_command(const Command* command, const Reply& reply, std::ve
 
 void McsDevice::publish_changes()
 {
-    if (!events_ || !events_->active()) {
+    const auto& name = config_.name;
+    const bool moves = events_ && (events_->wants(name, "move_started") || events_->wants(name, "move_ended"));
+    const bool statuses = events_ && events_->wants(name, "status");
+    if (!moves && !statuses) {
         status_known_ = false;
         return;
     }
@@ -327,11 +330,12 @@ void McsDevice::publish_changes()
         if (code == was)
             continue;
         last_status_[i] = code;
-        if (idle(was) && !idle(code))
+        if (moves && idle(was) && !idle(code))
             events_->publish(config_.name, "move_started", time_ms, {{"channel", i}});
-        events_->publish(config_.name, "status", time_ms,
-                         {{"channel", i}, {"status", {{"code", code}, {"name", status_name(code)}}}});
-        if (!idle(was) && idle(code)) {
+        if (statuses)
+            events_->publish(config_.name, "status", time_ms,
+                             {{"channel", i}, {"status", {{"code", code}, {"name", status_name(code)}}}});
+        if (moves && !idle(was) && idle(code)) {
             const auto* ch = controller_.channel(static_cast<std::int32_t>(i));
             events_->publish(config_.name, "move_ended", time_ms,
                              {{"channel", i}, {"outcome", ch ? ch->last_outcome() : "completed"}});
