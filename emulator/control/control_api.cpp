@@ -115,7 +115,9 @@ ControlApi::ControlApi(Clock& clock, Ticker& ticker, std::function<bool()> busy,
       world_(world), faults_(clock_, devices_, world), frames_(std::move(frames))
 {
     if (events_ && !frames_.empty()) {
-        events_->set_follow_up([this](const Event& e) { follow_up(e); });
+        // It reads the events after which a frame's pose settles, to make "frames" events.
+        events_->set_follow_up([this](const Event& e) { follow_up(e); },
+                               {"move_ended", "lut_ended", "channel_set", "reset"}, {"frames"});
         // The first stream's "frames" events are the changes from the poses when it started.
         events_->set_on_active([this] { frames_.rebase(); });
     }
@@ -191,7 +193,7 @@ ControlSurface& ControlApi::surface(ControlledDevice& d)
 
 void ControlApi::publish(std::string_view device, std::string_view type, const json& data)
 {
-    if (events_ && events_->active())
+    if (events_ && events_->wants(device, type))
         events_->publish(device, type, clock_.seconds(clock_.now()) * 1000.0, data);
 }
 
@@ -414,28 +416,32 @@ HttpReply ControlApi::get_events(std::string_view target)
         }
         return out;
     };
+    EventFilter filter;
     for (const auto& [key, value] : q) {
         if (key == "device")
-            only_devices = list(value);
+            filter.devices = list(value);
         else if (key == "type")
-            only_types = list(value);
+            filter.types = list(value);
         else
             throw BadRequest{400, "unknown query parameter \"" + key + "\" (expected device, type)"};
     }
-    for (const auto& name : only_devices)
+    for (const auto& name : filter.devices)
         device(name);   // 404 for a name that is not a device
     HttpReply reply;
-    reply.stream = [bus = events_, only_devices, only_types](StreamWriter write) -> std::function<void()> {
-        write(": rigsim event stream\n\n");
-        const auto handle = bus->subscribe([=](const Event& e) {
-            const auto in = [](const std::vector<std::string>& set, const std::string& v) {
-                return set.empty() || std::find(set.begin(), set.end(), v) != set.end();
-            };
-            // Rig-wide events (clock, reset, fault removal) reach every stream.
-            if ((!e.device.empty() && !in(only_devices, e.device)) || !in(only_types, e.type))
-                return;
-            write("event: " + e.type + "\nid: " + std::to_string(e.seq) + "\ndata: " + e.json + "\n\n");
-        });
+    reply.stream = [bus = events_, frames = sse_frames_, filter](StreamWriter write) -> std::function<void()> {
+        write(std::make_shared<const std::string>(": rigsim event stream\n\n"));
+        // The bus passes the events the filter takes (rig-wide ones, such as clock and reset,
+        // reach every stream that takes their type); each is framed once for every stream.
+        const auto handle = bus->subscribe(
+            [frames, write = std::move(write)](const Event& e) {
+                if (frames->seq != e.seq || !frames->text) {
+                    frames->seq = e.seq;
+                    frames->text = std::make_shared<const std::string>(
+                        "event: " + e.type + "\nid: " + std::to_string(e.seq) + "\ndata: " + e.json + "\n\n");
+                }
+                write(frames->text);
+            },
+            filter);
         return [bus, handle] { bus->unsubscribe(handle); };
     };
     return reply;

@@ -11,7 +11,9 @@
 #include "emulator/daemon/ticker.hpp"
 #include "models/clock.hpp"
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -78,6 +80,12 @@ private:
     models::World* world_;   ///< the rig's bodies (nullptr in tests without one)
     FaultBook faults_;   ///< after devices_, which it refers to
     FrameBook frames_;
+    /// The last event framed for the streams (Server-Sent Events text), shared by all of them.
+    struct SseFrame {
+        std::uint64_t seq = 0;
+        StreamChunk text;
+    };
+    std::shared_ptr<SseFrame> sse_frames_ = std::make_shared<SseFrame>();
 };
 
 } // namespace rigsim::control

@@ -16,7 +16,9 @@
 #include <deque>
 #include <optional>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace rigsim::control {
 
@@ -29,8 +31,26 @@ class Session;
 struct HttpServer::State {
     State(boost::asio::io_context& io, Router r, std::shared_ptr<spdlog::logger> l, HttpServerLimits lim,
           HttpAccess a)
-        : acceptor(io), backoff_timer(io), router(std::move(r)), log(std::move(l)), limits(lim), access(std::move(a))
+        : acceptor(io), backoff_timer(io), flush_timer(io), router(std::move(r)), log(std::move(l)), limits(lim),
+          access(std::move(a))
     {
+    }
+
+    /// A warning that a flood could repeat (slow clients closed, connections replaced): one line
+    /// a second at most, with the count of those left out since the last.
+    void warn_limited(const std::string& line)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_warning < std::chrono::seconds(1)) {
+            ++warnings_left_out;
+            return;
+        }
+        if (warnings_left_out > 0)
+            log->warn("{} ({} more such in the last second)", line, warnings_left_out);
+        else
+            log->warn("{}", line);
+        last_warning = now;
+        warnings_left_out = 0;
     }
 
     tcp::acceptor acceptor;
@@ -39,12 +59,20 @@ struct HttpServer::State {
     boost::asio::steady_timer backoff_timer;
     std::chrono::milliseconds backoff{0};
     std::size_t accept_failures = 0;
+    /// Writes the streams' queued events, one write per stream per stream_flush_interval.
+    boost::asio::steady_timer flush_timer;
+    bool flush_armed = false;
+    std::vector<std::weak_ptr<Session>> to_flush;
     Router router;
     std::shared_ptr<spdlog::logger> log;
     HttpServerLimits limits;
     HttpAccess access;
     std::set<Session*> sessions;   ///< open connections, closed by stop()
     std::size_t streams = 0;       ///< of which event streams (they never idle out)
+    std::size_t stream_backlog = 0;   ///< bytes queued for the streams' clients
+    std::function<void()> on_closed;
+    std::chrono::steady_clock::time_point last_warning{};
+    std::size_t warnings_left_out = 0;
     bool stopped = false;
 };
 
@@ -96,70 +124,240 @@ RequestHead head_of(const http::request_parser<http::string_body>& parser)
     return head;
 }
 
-bool is_parse_error(const boost::system::error_code& ec)
-{
-    return ec.category() == http::make_error_code(http::error::bad_target).category()
-           && ec != http::error::end_of_stream && ec != http::error::partial_message;
-}
-
 } // namespace
 
+/// Bytes read from a connection at a time (a request's buffer holds at most the header limit and this).
+constexpr std::size_t kReadChunk = 8 * 1024;
+/// What a chunk queued for a stream costs beyond its bytes (its place in the queue).
+constexpr std::size_t kStreamChunkOverhead = 32;
+/// Chunks gathered into one write of a stream.
+constexpr std::size_t kMaxGather = 64;
+
+void schedule_flush(const std::shared_ptr<HttpServer::State>& state, const std::shared_ptr<Session>& s);
+
 /// One connection: read a request, answer it, read the next (keep-alive); any error closes it.
+///
+/// A request is read in two parts, each with a deadline (HttpServerLimits::header_timeout,
+/// body_timeout: mod_reqtimeout's rule, ReadDeadline), so that a client that sends a byte now
+/// and then cannot hold the connection; between requests it may idle for idle_timeout.
 class Session : public std::enable_shared_from_this<Session> {
 public:
+    /// What the connection waits for now.
+    enum class Phase {
+        Idle,     ///< a kept-alive connection, waiting for the next request's first byte
+        Header,   ///< a request's header
+        Body,     ///< its body
+        Busy,     ///< routing, an answer to come (a clock step) or being written
+        Stream,   ///< an event stream
+    };
+
     Session(tcp::socket socket, std::shared_ptr<HttpServer::State> state)
-        : stream_(std::move(socket)), state_(std::move(state))
+        : stream_(std::move(socket)), deadline_timer_(stream_.get_executor()), state_(std::move(state)),
+          buffer_(state_->limits.max_header_bytes + kReadChunk)
     {
+        boost::system::error_code ec;
+        const auto remote = stream_.socket().remote_endpoint(ec);
+        peer_ = ec ? "?" : remote.address().to_string() + ":" + std::to_string(remote.port());
         state_->sessions.insert(this);
     }
     ~Session()
     {
         end_stream();
+        state_->stream_backlog -= backlog_;
         state_->sessions.erase(this);
+        if (state_->on_closed && !state_->stopped)
+            state_->on_closed();
     }
 
-    void start() { read(); }
+    /// The first request's header is due from the connection's start.
+    void start()
+    {
+        new_request();
+        begin(Phase::Header);
+        read_more();
+    }
 
-    /// Close the socket: the pending operation completes with an error and the session ends.
+    /// Close the socket: the pending operations complete with an error and the session ends.
     void close()
     {
         end_stream();
         boost::system::error_code ignored;
+        deadline_timer_.cancel();
         stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
         stream_.close();
     }
 
+    /// Open, and waiting for a client's bytes: it may make room for a new connection.
+    bool evictable() const { return !closed_ && (phase_ == Phase::Idle || phase_ == Phase::Header || phase_ == Phase::Body); }
+    bool open() const { return !closed_; }
+    std::chrono::steady_clock::time_point waiting_since() const { return phase_since_; }
+    const std::string& peer() const { return peer_; }
+
+    /// Write what is queued for the stream (the server's flush timer).
+    void flush()
+    {
+        flush_pending_ = false;
+        if (!closed_ && !writing_ && !out_.empty())
+            write_chunks();
+    }
+
 private:
-    /// Read a request's headers; its body is read only once they pass the access rules.
-    void read()
+    // ---- Reading a request: the header (checked against the access rules), then the body.
+
+    void new_request()
     {
         parser_.emplace();
         parser_->body_limit(state_->limits.max_body_bytes);
         parser_->header_limit(static_cast<std::uint32_t>(state_->limits.max_header_bytes));
-        stream_.expires_after(state_->limits.idle_timeout);
-        http::async_read_header(stream_, buffer_, *parser_,
-                                [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                                    self->on_header(ec);
-                                });
     }
 
-    /// A read failed: a malformed request is answered (its framing is lost, so the connection
-    /// closes after); end of stream, a timeout, a reset or a stop end the session quietly.
-    void on_read_error(const boost::system::error_code& ec)
+    /// The next request of a kept-alive connection.
+    void read()
     {
-        if (is_parse_error(ec) && !state_->stopped) {
-            state_->log->warn("control: bad request: {}", ec.message());
-            write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message()), {}, {}, {}}, 11,
-                  false);
-        }
-    }
-
-    void on_header(const boost::system::error_code& ec)
-    {
-        if (ec) {
-            on_read_error(ec);
+        new_request();
+        if (buffer_.size() == 0 && buffer_.capacity() > 2 * kReadChunk)
+            buffer_.shrink_to_fit();   // a large request's room is not kept between requests
+        if (buffer_.size() > 0) {   // it came with the last one
+            begin(Phase::Header);
+            parse();
             return;
         }
+        begin(Phase::Idle);
+        read_more();
+    }
+
+    void begin(Phase p)
+    {
+        phase_ = p;
+        phase_since_ = std::chrono::steady_clock::now();
+        const auto& limits = state_->limits;
+        switch (p) {
+        case Phase::Idle:
+            deadline_.start(ReadTimeout{std::chrono::duration_cast<std::chrono::milliseconds>(limits.idle_timeout),
+                                        std::chrono::duration_cast<std::chrono::milliseconds>(limits.idle_timeout), 0},
+                            phase_since_);
+            break;
+        case Phase::Header:
+            deadline_.start(limits.header_timeout, phase_since_);
+            break;
+        case Phase::Body:
+            deadline_.start(limits.body_timeout, phase_since_);
+            break;
+        case Phase::Busy:
+        case Phase::Stream:
+            deadline_timer_.cancel();
+            return;
+        }
+        arm_deadline();
+    }
+
+    void arm_deadline()
+    {
+        deadline_timer_.expires_at(deadline_.deadline());
+        deadline_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+            self->on_deadline(ec);
+        });
+    }
+
+    void on_deadline(const boost::system::error_code& ec)
+    {
+        if (ec || closed_ || !evictable())
+            return;
+        const auto now = std::chrono::steady_clock::now();
+        if (!deadline_.expired(now)) {   // bytes came meanwhile and moved it on
+            arm_deadline();
+            return;
+        }
+        const char* what = phase_ == Phase::Idle ? "no new request" : phase_ == Phase::Header ? "request header" : "request body";
+        const double seconds = std::chrono::duration<double>(now - phase_since_).count();
+        if (phase_ == Phase::Idle)
+            state_->log->debug("control: {}: {} for {:.0f} s: closing", peer_, what, seconds);
+        else
+            state_->warn_limited(fmt::format("control: {}: {} too slow ({} bytes in {:.1f} s; limits: {} ms, then "
+                                             "{} bytes/s, at most {} ms): closing",
+                                             peer_, what, deadline_.bytes(), seconds, timeout_of(phase_).initial.count(),
+                                             timeout_of(phase_).min_rate_bytes_per_s, timeout_of(phase_).max.count()));
+        close();
+    }
+
+    const ReadTimeout& timeout_of(Phase p) const
+    {
+        return p == Phase::Body ? state_->limits.body_timeout : state_->limits.header_timeout;
+    }
+
+    void read_more()
+    {
+        const auto room = buffer_.max_size() - buffer_.size();
+        stream_.socket().async_read_some(buffer_.prepare(std::min(room, kReadChunk)),
+                                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t n) {
+                                             self->on_bytes(ec, n);
+                                         });
+    }
+
+    /// End of stream, a reset, a stop: the session ends quietly (a request cut short too).
+    void on_bytes(const boost::system::error_code& ec, std::size_t n)
+    {
+        if (closed_)
+            return;
+        if (ec) {
+            close();
+            return;
+        }
+        buffer_.commit(n);
+        if (phase_ == Phase::Idle)
+            begin(Phase::Header);
+        deadline_.received(n);
+        parse();
+    }
+
+    /// Parse what is buffered; read more, or go on with a whole header or a whole request.
+    void parse()
+    {
+        for (;;) {
+            if (phase_ == Phase::Header && parser_->is_header_done()) {
+                on_header();
+                return;
+            }
+            if (phase_ == Phase::Body && parser_->is_done()) {
+                on_request();
+                return;
+            }
+            if (buffer_.size() == 0) {
+                read_more();
+                return;
+            }
+            boost::system::error_code ec;
+            const auto used = parser_->put(buffer_.data(), ec);
+            buffer_.consume(used);
+            if (ec == http::error::need_more && used == 0 && buffer_.size() == buffer_.max_size())
+                ec = http::error::header_limit;   // a header that cannot end within the buffer
+            if (ec == http::error::need_more) {
+                if (used == 0) {
+                    read_more();
+                    return;
+                }
+                continue;
+            }
+            if (ec) {
+                on_read_error(ec);
+                return;
+            }
+        }
+    }
+
+    /// A malformed request is answered (its framing is lost, so the connection closes after).
+    void on_read_error(const boost::system::error_code& ec)
+    {
+        if (state_->stopped) {
+            close();
+            return;
+        }
+        state_->log->warn("control: bad request: {}", ec.message());
+        write(HttpReply{status_of_parse_error(ec), error_body("bad request: " + ec.message()), {}, {}, {}}, 11, false);
+    }
+
+    void on_header()
+    {
         const auto head = head_of(*parser_);
         if (const auto refused = check_access(state_->access, head)) {
             state_->log->warn("control: refused {} {}: {}", std::string(head.method),
@@ -175,11 +373,11 @@ private:
         if (expect && beast::iequals(beast::string_view(expect->data(), expect->size()), "100-continue") && !parser_->is_done()) {
             // curl waits a second for this before it sends a body over 1 KiB.
             continue_ = "HTTP/1.1 100 Continue\r\n\r\n";
-            boost::asio::async_write(stream_, boost::asio::buffer(continue_),
+            boost::asio::async_write(stream_.socket(), boost::asio::buffer(continue_),
                                      [self = shared_from_this()](const boost::system::error_code& wec, std::size_t) {
                                          if (wec)
                                              self->close();
-                                         else
+                                         else if (!self->closed_)
                                              self->read_body();
                                      });
             return;
@@ -189,18 +387,14 @@ private:
 
     void read_body()
     {
-        http::async_read(stream_, buffer_, *parser_,
-                         [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                             self->on_read(ec);
-                         });
+        begin(Phase::Body);
+        parser_->eager(true);
+        parse();
     }
 
-    void on_read(const boost::system::error_code& ec)
+    void on_request()
     {
-        if (ec) {
-            on_read_error(ec);
-            return;
-        }
+        begin(Phase::Busy);
         const auto& req = parser_->get();
         HttpReply reply;
         try {
@@ -247,19 +441,23 @@ private:
     }
 
     // ---- A stream (GET /api/events): headers, then events as they come, until the client goes.
-    // The answer has no length: it ends when the connection closes (RFC 9112 6.3).
+    // The answer has no length: it ends when the connection closes (RFC 9112 6.3). Events are
+    // queued as shared chunks (one copy for every stream) and written together by the server's
+    // flush timer: a write per stream per interval, not per event.
 
     void start_stream(StreamStart start)
     {
         ++state_->streams;
         streaming_ = true;
+        begin(Phase::Stream);
         stream_.expires_never();
-        queue("HTTP/1.1 200 OK\r\nServer: rigsimd\r\nContent-Type: text/event-stream\r\n"
-              "Cache-Control: no-cache\r\nConnection: close\r\n\r\n");
+        queue(std::make_shared<const std::string>(
+            "HTTP/1.1 200 OK\r\nServer: rigsimd\r\nContent-Type: text/event-stream\r\n"
+            "Cache-Control: no-cache\r\nConnection: close\r\n\r\n"));
         std::weak_ptr<Session> weak = shared_from_this();
-        stop_stream_ = start([weak](std::string_view bytes) {
+        stop_stream_ = start([weak](StreamChunk bytes) {
             if (auto self = weak.lock())
-                self->queue(bytes);
+                self->queue(std::move(bytes));
         });
         // The client sends nothing more; a read ends when it closes the connection.
         drain_client();
@@ -277,34 +475,60 @@ private:
                                          });
     }
 
-    void queue(std::string_view bytes)
+    void queue(StreamChunk chunk)
     {
-        if (closed_)
+        if (closed_ || !chunk)
             return;
-        backlog_ += bytes.size();
-        if (backlog_ > state_->limits.max_stream_backlog_bytes) {
-            state_->log->warn("control: an event stream's client is {} bytes behind, closing it", backlog_);
+        const auto cost = chunk->size() + kStreamChunkOverhead;
+        if (backlog_ + cost > state_->limits.max_stream_backlog_bytes) {
+            state_->warn_limited(fmt::format("control: {}: an event stream's client is {} bytes behind: closing it",
+                                             peer_, backlog_ + cost));
             close();
             return;
         }
-        out_.emplace_back(bytes);
-        if (out_.size() == 1)
-            write_next();
+        backlog_ += cost;
+        state_->stream_backlog += cost;
+        out_.push_back(std::move(chunk));
+        if (!writing_ && !flush_pending_) {
+            flush_pending_ = true;
+            schedule_flush(state_, shared_from_this());
+        }
     }
 
-    void write_next()
+    /// Writes the queued chunks (at most kMaxGather) in one gathered write.
+    void write_chunks()
     {
-        boost::asio::async_write(stream_.socket(), boost::asio::buffer(out_.front()),
+        writing_ = true;
+        gather_.clear();
+        for (const auto& c : out_) {
+            gather_.emplace_back(c->data(), c->size());
+            if (gather_.size() == kMaxGather)
+                break;
+        }
+        boost::asio::async_write(stream_.socket(), gather_,
                                  [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                                     if (ec || self->closed_) {
-                                         self->close();
-                                         return;
-                                     }
-                                     self->backlog_ -= self->out_.front().size();
-                                     self->out_.pop_front();
-                                     if (!self->out_.empty())
-                                         self->write_next();
+                                     self->on_chunks_written(ec);
                                  });
+    }
+
+    void on_chunks_written(const boost::system::error_code& ec)
+    {
+        writing_ = false;
+        if (ec || closed_) {
+            close();
+            return;
+        }
+        for (std::size_t i = 0; i < gather_.size(); ++i) {
+            const auto cost = out_.front()->size() + kStreamChunkOverhead;
+            backlog_ -= cost;
+            state_->stream_backlog -= cost;
+            out_.pop_front();
+        }
+        gather_.clear();
+        if (!out_.empty())
+            write_chunks();   // what came during the write: already a batch
+        else
+            out_.shrink_to_fit();   // a burst's queue is not kept
     }
 
     void end_stream()
@@ -318,10 +542,16 @@ private:
             stop_stream_ = nullptr;
             stop();
         }
+        if (!writing_) {   // a pending write still reads the queue's chunks
+            state_->stream_backlog -= backlog_;
+            backlog_ = 0;
+            std::deque<StreamChunk>().swap(out_);
+        }
     }
 
     void write(HttpReply reply, unsigned version, bool keep_alive)
     {
+        begin(Phase::Busy);
         response_ = {};
         response_.version(version);
         response_.result(reply.status);
@@ -336,7 +566,8 @@ private:
         stream_.expires_after(state_->limits.idle_timeout);
         http::async_write(stream_, response_,
                           [self = shared_from_this(), keep_alive](const boost::system::error_code& ec, std::size_t) {
-                              if (ec || !keep_alive || self->state_->stopped) {
+                              self->response_ = {};   // its body is not kept between requests
+                              if (ec || !keep_alive || self->state_->stopped || self->closed_) {
                                   self->close();
                                   return;
                               }
@@ -345,23 +576,77 @@ private:
     }
 
     beast::tcp_stream stream_;
+    boost::asio::steady_timer deadline_timer_;
     std::shared_ptr<HttpServer::State> state_;
+    std::string peer_;
     beast::flat_buffer buffer_;
     std::optional<http::request_parser<http::string_body>> parser_;
     http::response<http::string_body> response_;
+    Phase phase_ = Phase::Header;
+    std::chrono::steady_clock::time_point phase_since_{};
+    ReadDeadline deadline_;
     // A stream's state.
     std::function<void()> stop_stream_;
-    std::deque<std::string> out_;
+    std::deque<StreamChunk> out_;
+    std::vector<boost::asio::const_buffer> gather_;   ///< the chunks being written
     std::size_t backlog_ = 0;
+    bool writing_ = false;
+    bool flush_pending_ = false;
     bool closed_ = false;
     bool streaming_ = false;
     std::array<char, 512> sink_{};
     std::string continue_;   ///< "100 Continue" while it is written
 };
 
+void schedule_flush(const std::shared_ptr<HttpServer::State>& state, const std::shared_ptr<Session>& s)
+{
+    state->to_flush.push_back(s);
+    if (state->flush_armed)
+        return;
+    state->flush_armed = true;
+    state->flush_timer.expires_after(state->limits.stream_flush_interval);
+    state->flush_timer.async_wait([state](const boost::system::error_code& ec) {
+        state->flush_armed = false;
+        if (ec)
+            return;
+        auto sessions = std::move(state->to_flush);
+        state->to_flush.clear();
+        for (const auto& weak : sessions)
+            if (auto session = weak.lock())
+                session->flush();
+    });
+}
+
 namespace {
 
 void accept(const std::shared_ptr<HttpServer::State>& state);
+
+/// Room for one more connection: true when fewer than max_connections are open, or when one of
+/// them was waiting for a client's bytes and has been closed for it (the one that has waited
+/// longest: a slow or idle client gives way to a new one); false when every one is busy
+/// (streams, answers to come).
+bool make_room(HttpServer::State& state)
+{
+    std::size_t open = 0;
+    Session* oldest = nullptr;
+    for (auto* s : state.sessions) {
+        if (!s->open())
+            continue;
+        ++open;
+        if (s->evictable() && (!oldest || s->waiting_since() < oldest->waiting_since()))
+            oldest = s;
+    }
+    if (open < state.limits.max_connections)
+        return true;
+    if (!oldest)
+        return false;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - oldest->waiting_since()).count();
+    state.warn_limited(fmt::format("control: {} connections open: closing {}, which waited {:.1f} s for a request, "
+                                   "for a new one",
+                                   open, oldest->peer(), waited));
+    oldest->close();
+    return true;
+}
 
 /// Retry accepting after a delay that doubles per failure in a row (the device endpoints' back-off).
 void accept_later(const std::shared_ptr<HttpServer::State>& state, const boost::system::error_code& ec)
@@ -394,12 +679,13 @@ void accept(const std::shared_ptr<HttpServer::State>& state)
         if (ec) {
             // A client that gave up before we took it: nothing wrong here, take the next one.
             state->log->info("control: accept failed: {}", ec.message());
-        } else if (state->sessions.size() >= state->limits.max_connections) {
-            state->log->warn("control: {} connections open, closing a new one", state->sessions.size());
+        } else if (make_room(*state)) {
+            std::make_shared<Session>(std::move(socket), state)->start();
+        } else {
+            state->warn_limited(fmt::format("control: {} connections open, every one busy: closing a new one",
+                                            state->sessions.size()));
             boost::system::error_code ignored;
             socket.close(ignored);
-        } else {
-            std::make_shared<Session>(std::move(socket), state)->start();
         }
         accept(state);
     });
@@ -437,6 +723,7 @@ void HttpServer::stop()
     boost::system::error_code ignored;
     state_->acceptor.close(ignored);
     state_->backoff_timer.cancel();
+    state_->flush_timer.cancel();
     // close() may end a session at once; copy the set first.
     const auto sessions = state_->sessions;
     for (auto* s : sessions)
@@ -451,6 +738,41 @@ tcp::endpoint HttpServer::local_endpoint() const
 std::size_t HttpServer::connections() const
 {
     return state_->sessions.size();
+}
+
+std::size_t HttpServer::streams() const
+{
+    return state_->streams;
+}
+
+std::size_t HttpServer::stream_backlog_bytes() const
+{
+    return state_->stream_backlog;
+}
+
+void HttpServer::on_connection_closed(std::function<void()> f)
+{
+    state_->on_closed = std::move(f);
+}
+
+void ReadDeadline::start(const ReadTimeout& t, TimePoint now)
+{
+    deadline_ = now + t.initial;
+    cap_ = now + std::max(t.initial, t.max);
+    per_byte_ = t.min_rate_bytes_per_s == 0
+                    ? std::chrono::nanoseconds(0)
+                    : std::chrono::nanoseconds(1'000'000'000 / static_cast<std::int64_t>(t.min_rate_bytes_per_s));
+    bytes_ = 0;
+}
+
+void ReadDeadline::received(std::size_t bytes)
+{
+    bytes_ += bytes;
+    // As mod_reqtimeout: each byte moves the deadline itself on (not "now"), so a client slower
+    // than the rate falls behind, however it spreads its bytes.
+    const auto room = cap_ - deadline_;
+    const auto step = per_byte_ * static_cast<std::int64_t>(std::min<std::size_t>(bytes, 1u << 30));
+    deadline_ += std::min<std::chrono::steady_clock::duration>(room, step);
 }
 
 } // namespace rigsim::control

@@ -188,7 +188,7 @@ TEST_CASE("The frames event: after a motion's end, a PATCH and a reset, with the
     auto reply = f.api->handle("GET", "/api/events?type=frames", "");
     REQUIRE(reply.stream);
     std::string got;
-    auto stop = reply.stream([&](std::string_view b) { got.append(b); });
+    auto stop = reply.stream([&](control::StreamChunk b) { got.append(*b); });
 
     // A PATCH that places the stage: x and the tip moved, the table did not.
     f.call("PATCH", "/api/devices/dev/channels/0", R"({"position_si": 0.002})");
@@ -233,8 +233,8 @@ TEST_CASE("The frames event follows its cause on every stream, and none is built
     auto first = f.api->handle("GET", "/api/events", "");
     auto second = f.api->handle("GET", "/api/events?device=dev", "");
     std::string a, b;
-    auto stop_a = first.stream([&](std::string_view s) { a.append(s); });
-    auto stop_b = second.stream([&](std::string_view s) { b.append(s); });
+    auto stop_a = first.stream([&](control::StreamChunk s) { a.append(*s); });
+    auto stop_b = second.stream([&](control::StreamChunk s) { b.append(*s); });
     f.stage.position_m = 0.004;
     f.bus.publish("dev", "move_ended", 2, json{{"channel", 0}});
     for (const auto* text : {&a, &b}) {
@@ -256,7 +256,7 @@ TEST_CASE("The frames event: a new stream compares with the poses when it starte
     f.make_api(true);
     auto first = f.api->handle("GET", "/api/events?type=frames", "");
     std::string a;
-    auto stop_a = first.stream([&](std::string_view s) { a.append(s); });
+    auto stop_a = first.stream([&](control::StreamChunk s) { a.append(*s); });
     f.stage.position_m = 0.002;
     f.bus.publish("dev", "move_ended", 1, json{{"channel", 0}});
     REQUIRE(Fixture::frames_events(a).size() == 1);   // published: x at 2 mm
@@ -269,7 +269,7 @@ TEST_CASE("The frames event: a new stream compares with the poses when it starte
     // A new stream; the stage moves to 2 mm again: a change from where it was when the stream began.
     auto second = f.api->handle("GET", "/api/events?type=frames", "");
     std::string b;
-    auto stop_b = second.stream([&](std::string_view s) { b.append(s); });
+    auto stop_b = second.stream([&](control::StreamChunk s) { b.append(*s); });
     f.stage.position_m = 0.002;
     f.bus.publish("dev", "move_ended", 3, json{{"channel", 0}});
     const auto events = Fixture::frames_events(b);

@@ -360,7 +360,7 @@ TEST_CASE("GET /api/events: a stream of the bus's events, filtered by device and
     auto reply = f.api.handle("GET", "/api/events?device=dev&type=wire,fault_added", "");
     REQUIRE(reply.stream);
     std::string got;
-    auto stop = reply.stream([&](std::string_view b) { got.append(b); });
+    auto stop = reply.stream([&](control::StreamChunk b) { got.append(*b); });
     CHECK(got == ": rigsim event stream\n\n");
     CHECK(f.bus.active());
     f.surface.wire_log().add(5, true, "pty", "x");
@@ -372,7 +372,7 @@ TEST_CASE("GET /api/events: a stream of the bus's events, filtered by device and
     CHECK(got.find("event: fault_added\n") != std::string::npos);
     got.clear();
     auto all = f.api.handle("GET", "/api/events?type=fault_removed", "");
-    auto stop_all = all.stream([&](std::string_view b) { got.append(b); });
+    auto stop_all = all.stream([&](control::StreamChunk b) { got.append(*b); });
     f.call("DELETE", "/api/faults/1");
     CHECK(got.find("event: fault_removed\n") != std::string::npos);
     CHECK(got.find("\"device\":\"dev\"") != std::string::npos);   // which device it ended on
