@@ -415,6 +415,8 @@ std::unique_ptr<rigsim::control::HttpServer> start_control(boost::asio::io_conte
         throw std::runtime_error("control API: cannot listen on tcp "
                                  + rigsim::tcp_address_text(listen.address, listen.port) + ": " + e.what());
     }
+    // A control connection's buffers (a stream's queue) are given back to the system after it goes.
+    server->on_connection_closed([&rig] { rig.memory_trim().request(); });
     server->start();
     return server;
 }

@@ -22,20 +22,23 @@ namespace {
 /// the current wall time, and may start motion that the ticker must then pace.
 class PacedDevice : public Device {
 public:
-    PacedDevice(Device& inner, Ticker& ticker) : inner_(inner), ticker_(ticker) {}
+    PacedDevice(Device& inner, Ticker& ticker, MemoryTrim& trim) : inner_(inner), ticker_(ticker), trim_(trim) {}
 
     std::uint32_t serial_baud() const override { return inner_.serial_baud(); }
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override
     {
-        return std::make_unique<PacedSession>(inner_.open_session(std::move(send), std::move(peer)), ticker_);
+        return std::make_unique<PacedSession>(inner_.open_session(std::move(send), std::move(peer)), ticker_, trim_);
     }
 
 private:
     class PacedSession : public Session {
     public:
-        PacedSession(std::unique_ptr<Session> inner, Ticker& ticker)
-            : inner_(std::move(inner)), ticker_(ticker) {}
+        PacedSession(std::unique_ptr<Session> inner, Ticker& ticker, MemoryTrim& trim)
+            : inner_(std::move(inner)), ticker_(ticker), trim_(trim) {}
+        /// The client went: what its connection held (answers it did not read) is freed with
+        /// the connection, and given back to the system soon after.
+        ~PacedSession() override { trim_.request(); }
         void receive(std::string_view bytes) override
         {
             ticker_.sync();
@@ -46,10 +49,12 @@ private:
     private:
         std::unique_ptr<Session> inner_;
         Ticker& ticker_;
+        MemoryTrim& trim_;
     };
 
     Device& inner_;
     Ticker& ticker_;
+    MemoryTrim& trim_;
 };
 
 std::unique_ptr<Device> make_device(const DeviceConfig& config, models::World& world,
@@ -113,6 +118,7 @@ struct Rig::Entry {
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
     : clock_(config.tick_hz), world_(clock_), ticker_(io, clock_, options.time_scale, options.paused ? Ticker::Start::Paused : Ticker::Start::Running),
+      memory_trim_(io),
       store_(options.state_file.empty()
                  ? std::make_unique<StateStore>()
                  : std::make_unique<StateStore>(options.state_file, make_logger("rigsimd", options.log_levels))),
@@ -125,7 +131,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         auto e = std::make_unique<Entry>();
         e->device = make_device(dc, world_, make_logger(dc.name, options.log_levels), *store_, events_);
         e->link = std::make_unique<Link>(*e->device, clock_);
-        e->paced = std::make_unique<PacedDevice>(*e->link, ticker_);
+        e->paced = std::make_unique<PacedDevice>(*e->link, ticker_, memory_trim_);
         entries_.push_back(std::move(e));
     }
     // Bodies that read other bodies (a strain gauge on a piezo) find them once all exist, so

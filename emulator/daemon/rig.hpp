@@ -7,6 +7,7 @@
 #include "emulator/core/device.hpp"
 #include "emulator/core/event_bus.hpp"
 #include "emulator/daemon/link.hpp"
+#include "emulator/daemon/memory_trim.hpp"
 #include "emulator/daemon/rig_kinematics.hpp"
 #include "emulator/core/logging.hpp"
 #include "emulator/core/rig_config.hpp"
@@ -78,6 +79,8 @@ public:
     Ticker& ticker() { return ticker_; }
     /// The control API's event stream (GET /api/events).
     EventBus& events() { return events_; }
+    /// Gives freed memory back to the system after clients go (device and control connections).
+    MemoryTrim& memory_trim() { return memory_trim_; }
     /// Every device, in config order, as the control API steers it.
     std::vector<ControlledDevice> controlled();
     /// Something moves: the world changes by itself at some later tick, or a device is busy
@@ -104,6 +107,8 @@ private:
     Ticker ticker_;
     /// Before the devices, which publish to it.
     EventBus events_;
+    /// Before the endpoints, whose sessions ask it to trim when they end.
+    MemoryTrim memory_trim_;
     std::unique_ptr<StateStore> store_;
     /// Shared by every endpoint, so declared before (destroyed after) the entries.
     InotifyWatcher watcher_;
