@@ -7,7 +7,8 @@
  *               asking GET /api/clock every 100 ms: served or not, and when the slow ones go;
  *   soak      - 100 device clients (TCP and pty) x N commands, one in flight each, with random
  *               disconnects; alternating quiet blocks (the clients alone) and loaded ones (16
- *               streams reading, the hostile API client, an honest one); then a churn block with
+ *               streams reading, a quarter of them every event, the others filtered; the hostile
+ *               API client, an honest one); then a churn block with
  *               clients and streams that never read; every answer checked (lost, misrouted:
  *               must be 0), the round trips of quiet and loaded blocks, and the daemon's RSS at
  *               start, its peak and after the churn.
@@ -163,10 +164,23 @@ double percentile(std::vector<double> v, double p)
     return v[std::min(r, v.size() - 1)];
 }
 
-/// 16 event stream paths: `filtered` ones keep `status` events only.
+/// `n` event stream paths: `filtered` ones keep `status` events only.
 std::vector<std::string> stream_paths(int n, bool filtered)
 {
     return std::vector<std::string>(static_cast<std::size_t>(n), filtered ? "/api/events?type=status" : "/api/events");
+}
+
+/// The soak's `n` streams, as a lab's tools follow a rig: a quarter take every event (every
+/// command's wire entries: they fall behind the soak's clients), a quarter the moves and status,
+/// a quarter one device's events, a quarter one device's wire log.
+std::vector<std::string> soak_stream_paths(int n)
+{
+    const char* kinds[] = {"/api/events", "/api/events?type=status,move_started,move_ended",
+                           "/api/events?device=mcs0", "/api/events?device=tdc001&type=wire"};
+    std::vector<std::string> paths;
+    for (int i = 0; i < n; ++i)
+        paths.emplace_back(kinds[i % 4]);
+    return paths;
 }
 
 // ---- Section 1: what event streams cost a device round trip
@@ -288,13 +302,14 @@ bool soak_section(const Options& o)
     RoundTrips quiet, loaded;
     HostileReport hostile_report;
     std::uint64_t stream_bytes = 0;
+    std::size_t streams_closed = 0;
     const int per_block = std::max(1, o.commands / o.blocks);
     for (int b = 0; b < o.blocks; ++b) {
         if (b % 2 == 0) {
             clients.run_block(per_block, quiet, sample);
             continue;
         }
-        EventStreams streams(api, stream_paths(o.streams, false), true);
+        EventStreams streams(api, soak_stream_paths(o.streams), true);
         HostileApiClient hostile(api, HostileApiClient::Settings{});
         clients.run_block(per_block, loaded, sample);
         auto r = hostile.stop();
@@ -308,6 +323,7 @@ bool soak_section(const Options& o)
         hostile_report.big_refused += r.big_refused;
         hostile_report.slow_bodies_closed += r.slow_bodies_closed;
         stream_bytes += streams.bytes();
+        streams_closed += streams.closed_by_daemon();
     }
     // The churn: streams and device clients that never read, beside the clients, until the
     // daemon has dropped them; then everyone goes.
@@ -345,10 +361,10 @@ bool soak_section(const Options& o)
     std::printf("  round trip, us   quiet: n    p50       p99   loaded: n    p50       p99  p50 ratio p99 ratio\n");
     print_round_trips("tcp", quiet.tcp, loaded.tcp);
     print_round_trips("pty", quiet.pty, loaded.pty);
-    std::printf("  loaded blocks: %d streams read %.1f MB; honest API requests served %llu of %llu (p50 %.2f ms, "
+    std::printf("  loaded blocks: %d streams read %.1f MB (%zu closed by the daemon, behind); honest API requests served %llu of %llu (p50 %.2f ms, "
                 "p99 %.2f ms); slowloris connections %llu, closed by the daemon %zu (median after %.1f s); "
                 "1 MiB bodies %llu, refused 413 %llu; slow bodies closed %llu\n",
-                o.streams, static_cast<double>(stream_bytes) / 1e6,
+                o.streams, static_cast<double>(stream_bytes) / 1e6, streams_closed,
                 static_cast<unsigned long long>(hostile_report.honest_ok),
                 static_cast<unsigned long long>(hostile_report.honest_ok + hostile_report.honest_failed),
                 percentile(hostile_report.honest_ms, 0.5), percentile(hostile_report.honest_ms, 0.99),
