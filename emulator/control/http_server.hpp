@@ -1,8 +1,9 @@
 #pragma once
 // A small HTTP/1.1 server for the control API (Boost.Beast, on the daemon's one io_context):
-// keep-alive, one request at a time per connection, bounded bodies and connections. A request's
-// headers are read first and checked against the access rules (http_access.hpp) before its body
-// is read. It knows no route: each request goes to a Router. Beast stays in http_server.cpp.
+// keep-alive, one request at a time per connection, bounded bodies, times and connections
+// (docs/control-api.md "Limits"). A request's headers are read first and checked against the
+// access rules (http_access.hpp) before its body is read. It knows no route: each request goes to
+// a Router. Beast stays in http_session.cpp (a connection); http_server.cpp is the listener.
 
 #include "emulator/control/http_access.hpp"
 
