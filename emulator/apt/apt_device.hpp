@@ -69,6 +69,8 @@ public:
     /// With the rig's `faithful_timing`, the pty's line runs at kBaudRate (the link paces it on
     /// the clock, as for an MCS); without it, 0: unpaced.
     std::uint32_t serial_baud() const override { return config_.faithful_timing ? kBaudRate : 0; }
+    /// The unit's serial port runs at kBaudRate, paced or not.
+    std::uint32_t line_baud() const override { return kBaudRate; }
     /// After World::link_all(): a piezo driver finds the gauge mounted on its actuator, then the
     /// device replays what the state file holds, as the unit loads its EEPROM at power-up.
     void power_up() override;

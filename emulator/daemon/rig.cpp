@@ -30,6 +30,11 @@ public:
     {
         return std::make_unique<PacedSession>(inner_.open_session(std::move(send), std::move(peer)), ticker_, trim_);
     }
+    std::unique_ptr<Session> open_connection(SendFn send, Connection conn, std::string peer) override
+    {
+        return std::make_unique<PacedSession>(inner_.open_connection(std::move(send), std::move(conn), std::move(peer)),
+                                              ticker_);
+    }
 
 private:
     class PacedSession : public Session {

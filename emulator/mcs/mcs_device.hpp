@@ -42,6 +42,8 @@ public:
     {
         return config_.faithful_timing ? static_cast<std::uint32_t>(controller_.baudrate()) : 0;
     }
+    /// The controller's baud rate (CB), paced or not.
+    std::uint32_t line_baud() const override { return static_cast<std::uint32_t>(controller_.baudrate()); }
 
     Controller& controller() { return controller_; }
     ControlSurface* control() override { return this; }

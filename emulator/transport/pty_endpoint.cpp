@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <pty.h>
 #include <sys/inotify.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <system_error>
 #include <termios.h>
@@ -50,12 +51,35 @@ void replace_symlink(const std::string& target, const std::string& link)
     }
 }
 
+/// The rate of a termios speed constant; 0 for B0 and unknown ones.
+std::uint32_t baud_of(speed_t speed)
+{
+    static constexpr std::pair<speed_t, std::uint32_t> kRates[] = {
+        {B50, 50},         {B75, 75},           {B110, 110},         {B134, 134},         {B150, 150},
+        {B200, 200},       {B300, 300},         {B600, 600},         {B1200, 1200},       {B1800, 1800},
+        {B2400, 2400},     {B4800, 4800},       {B9600, 9600},       {B19200, 19200},     {B38400, 38400},
+        {B57600, 57600},   {B115200, 115200},   {B230400, 230400},   {B460800, 460800},   {B500000, 500000},
+        {B576000, 576000}, {B921600, 921600},   {B1000000, 1000000}, {B1152000, 1152000}, {B1500000, 1500000},
+        {B2000000, 2000000}, {B2500000, 2500000}, {B3000000, 3000000}, {B3500000, 3500000}, {B4000000, 4000000},
+    };
+    for (const auto& [s, rate] : kRates)
+        if (s == speed)
+            return rate;
+    return 0;
+}
+
 } // namespace
 
 PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
                          std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher)
-    : device_(device), master_(io), watcher_(watcher), pacing_timer_(io), symlink_path_(std::move(symlink_path)),
-      log_(std::move(log))
+    : device_(device), master_(io), watcher_(watcher), pacing_timer_(io), hangup_timer_(io),
+      symlink_path_(std::move(symlink_path)), log_(std::move(log))
+{
+    make_pty();
+    open_session();
+}
+
+void PtyEndpoint::make_pty()
 {
     int master = -1;
     char name[PATH_MAX] = {};
@@ -85,11 +109,13 @@ PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symli
         replace_symlink(slave_name_, symlink_path_);
     } catch (...) {
         watcher_.remove(watch_);
+        watch_ = -1;
+        boost::system::error_code ec;
+        master_.close(ec);
         ::close(slave_fd_);
         slave_fd_ = -1;
         throw;
     }
-    open_session();
 }
 
 PtyEndpoint::~PtyEndpoint()
@@ -104,12 +130,115 @@ void PtyEndpoint::open_session()
 {
     session_.reset();   // detach the old one from the device first
     std::weak_ptr<bool> alive = alive_;
-    session_ = device_.open_session(
+    Connection conn;
+    // A session of an earlier pty (before a hang-up) asks nothing of this one.
+    conn.hangup = [this, alive, generation = generation_](Hangup how) {
+        if (!alive.lock())
+            return;
+        asio::post(master_.get_executor(), [this, alive, generation, how] {
+            if (alive.lock() && !stopped_ && generation == generation_)
+                hang_up(how);
+        });
+    };
+    conn.queued_bytes = [this, alive] { return alive.lock() ? queued_bytes_ : 0; };
+    conn.max_queued_bytes = kMaxQueuedBytes;
+    conn.frame_overhead = kQueuedFrameOverhead;
+    conn.client_baud = [this, alive] { return alive.lock() ? client_baud() : 0; };
+    session_ = device_.open_connection(
         [this, alive](std::string_view bytes) {
             if (alive.lock())
                 send(bytes);
         },
-        "pty " + symlink_path_);
+        std::move(conn), "pty " + symlink_path_);
+}
+
+std::uint32_t PtyEndpoint::client_baud() const
+{
+    struct termios tio {};
+    if (slave_fd_ < 0 || ::tcgetattr(slave_fd_, &tio) != 0)
+        return 0;
+    return baud_of(::cfgetospeed(&tio));
+}
+
+void PtyEndpoint::hang_up(Hangup how)
+{
+    if (stopped_ || hanging_up_)
+        return;
+    // The session goes now: the device hears nothing more of this line.
+    session_.reset();
+    hanging_up_ = true;
+    if (how == Hangup::Close && openers_ > 0) {
+        hangup_deadline_ = std::chrono::steady_clock::now() + kHangupDrain;
+        empty_looks_ = 0;
+        wait_until_read();
+        return;
+    }
+    replace_pty();
+}
+
+void PtyEndpoint::wait_until_read()
+{
+    // A pty tells nobody when its reader has caught up: look every few milliseconds until
+    // the queue is written and the slave's input is empty, or the client has closed the port.
+    // Bytes written to the master reach the slave's input a moment later (the kernel's flip
+    // buffer is pushed by a worker), so empty counts only when two looks in a row find it so.
+    int unread = 0;
+    if (queue_.empty() && ::ioctl(slave_fd_, FIONREAD, &unread) == 0 && unread == 0) {
+        if (++empty_looks_ >= 2) {
+            replace_pty();
+            return;
+        }
+    } else {
+        empty_looks_ = 0;
+    }
+    if (openers_ == 0 || std::chrono::steady_clock::now() >= hangup_deadline_) {
+        replace_pty();
+        return;
+    }
+    hangup_timer_.expires_after(std::chrono::milliseconds(2));
+    std::weak_ptr<bool> alive = alive_;
+    hangup_timer_.async_wait([this, alive](const boost::system::error_code& ec) {
+        if (!alive.lock() || stopped_ || ec)
+            return;
+        watcher_.drain();   // a close of the port ends the wait
+        wait_until_read();
+    });
+}
+
+void PtyEndpoint::replace_pty()
+{
+    // Closing the master hangs the slave up for every process that has it open (reads give
+    // end of file, writes EIO, poll POLLHUP); the symlink then points at a fresh pty, as a USB
+    // serial adapter that is unplugged and plugged in again comes back under its name.
+    log_->info("pty {}: hung up by a wire fault ({} replaced)", symlink_path_, slave_name_);
+    ++generation_;
+    watcher_.remove(watch_);
+    watch_ = -1;
+    boost::system::error_code ec;
+    master_.cancel(ec);
+    master_.close(ec);
+    pacing_timer_.cancel();
+    ::close(slave_fd_);
+    slave_fd_ = -1;
+    openers_ = 0;
+    leftovers_.clear();
+    queue_.clear();
+    front_written_ = 0;
+    queued_bytes_ = 0;
+    dropping_ = false;
+    abandon_front_ = false;
+    hanging_up_ = false;
+    try {
+        make_pty();
+    } catch (const std::system_error& e) {
+        // Out of ptys or descriptors: the port stays gone; other devices are untouched.
+        log_->error("pty {}: cannot open a new pty after the hang-up: {}", symlink_path_, e.what());
+        stopped_ = true;
+        ::unlink(symlink_path_.c_str());   // it names the pty that is gone
+        return;
+    }
+    open_session();
+    read();
 }
 
 void PtyEndpoint::start()
@@ -198,6 +327,7 @@ void PtyEndpoint::stop()
     master_.close(ec);
     watcher_.remove(watch_);
     pacing_timer_.cancel();
+    hangup_timer_.cancel();
     // The io_context may outlive the device: nothing may reach it after this.
     session_.reset();
     leftovers_.clear();
@@ -216,11 +346,11 @@ void PtyEndpoint::finish_process()
     while (!leftovers_.empty()) {
         const auto left = std::move(leftovers_.front());
         leftovers_.pop_front();
-        if (!left.bytes.empty())
+        if (!left.bytes.empty() && session_)
             session_->receive(left.bytes);
         // Whatever the process left unfinished in the framer is not the start of the next
         // opener's frame: the next one starts from an empty framer.
-        if (left.replace_session)
+        if (left.replace_session && !hanging_up_)
             open_session();
     }
 }
@@ -232,8 +362,8 @@ void PtyEndpoint::read()
     // opener's never meet in one read.
     std::weak_ptr<bool> alive = alive_;
     master_.async_wait(asio::posix::stream_descriptor::wait_read,
-        [this, alive](const boost::system::error_code& ec) {
-            if (!alive.lock() || stopped_)
+        [this, alive, generation = generation_](const boost::system::error_code& ec) {
+            if (!alive.lock() || stopped_ || generation != generation_)
                 return;
             if (ec == asio::error::operation_aborted) {
                 read();   // cancelled with an abandoned write (close_port)
@@ -258,7 +388,7 @@ bool PtyEndpoint::take_input()
         log_->error("pty {}: read failed: {}", symlink_path_, std::strerror(errno));
         return false;
     }
-    if (n > 0)
+    if (n > 0 && session_)   // no session while a hang-up waits for the client to read
         session_->receive(std::string_view(buffer_.data(), static_cast<std::size_t>(n)));
     finish_process();    // a close seen while the device answered
     return true;
@@ -266,7 +396,7 @@ bool PtyEndpoint::take_input()
 
 void PtyEndpoint::send(std::string_view bytes)
 {
-    if (stopped_)
+    if (stopped_ || hanging_up_)
         return;
     if (openers_ == 0)
         watcher_.drain();
@@ -318,8 +448,8 @@ void PtyEndpoint::write()
     line_free_ = std::max(line_free_, now) + transmit;
     pacing_timer_.expires_at(line_free_);
     std::weak_ptr<bool> alive = alive_;
-    pacing_timer_.async_wait([this, alive](const boost::system::error_code& ec) {
-        if (!alive.lock() || stopped_)
+    pacing_timer_.async_wait([this, alive, generation = generation_](const boost::system::error_code& ec) {
+        if (!alive.lock() || stopped_ || generation != generation_)
             return;
         if (abandon_front_) {
             drop_abandoned_front();
@@ -359,8 +489,8 @@ void PtyEndpoint::paced_write()
     std::weak_ptr<bool> alive = alive_;
     const auto& front = queue_.front();
     asio::async_write(master_, asio::buffer(front.data() + front_written_, front.size() - front_written_),
-        [this, alive](const boost::system::error_code& ec, std::size_t) {
-            if (!alive.lock() || stopped_)
+        [this, alive, generation = generation_](const boost::system::error_code& ec, std::size_t) {
+            if (!alive.lock() || stopped_ || generation != generation_)
                 return;
             if (ec) {
                 if (ec == asio::error::operation_aborted) {

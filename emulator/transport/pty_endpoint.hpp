@@ -35,6 +35,13 @@
 // cfmakeraw, `cat`) would send every answer back to the device as input, and the device
 // would answer its own answers: before each write the daemon clears ECHO and ECHONL on the
 // slave (it owns the line, as a UART does), leaving every other setting to the client.
+//
+// A wire fault may end the line (Connection::hangup): a serial line has no end of stream, but a
+// USB serial adapter that goes away does, and so does the pty: the master is closed, so every
+// process that has the slave open sees a hang-up (read gives end of file, write EIO, poll
+// POLLHUP), and a new pty with a new session takes the symlink, as the adapter comes back
+// under its name. Hangup::Close waits (at most kHangupDrain) until the client has read what was
+// written; Hangup::Reset does not.
 
 #include "emulator/core/device.hpp"
 #include "emulator/transport/inotify_watcher.hpp"
@@ -45,6 +52,8 @@
 #include <spdlog/logger.h>
 
 #include <array>
+#include <chrono>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <string>
@@ -59,6 +68,9 @@ public:
     /// What a queued frame costs beyond its bytes, counted against kMaxQueuedBytes so that
     /// it bounds memory rather than payload.
     static constexpr std::size_t kQueuedFrameOverhead = 64;
+    /// A hang-up the wire asks for after what was sent (Hangup::Close) waits at most this long
+    /// for the client to read it.
+    static constexpr std::chrono::seconds kHangupDrain{2};
 
     /// Creates the pty, its watch on `watcher` and the symlink at once (throws
     /// std::system_error if it cannot). `watcher` must outlive the endpoint.
@@ -91,6 +103,17 @@ private:
     void open_session();
     /// A UART does not echo: clears ECHO and ECHONL if the client set them.
     void keep_echo_off();
+    /// openpty, raw mode, the watch and the symlink (throws std::system_error).
+    void make_pty();
+    /// The rate the client set on the line (termios), 0 when not a standard one.
+    std::uint32_t client_baud() const;
+    /// The wire asked for a hang-up (Connection::hangup): at once, or once the client has read
+    /// what was written (Hangup::Close).
+    void hang_up(Hangup how);
+    void wait_until_read();
+    /// Closes the pty (every process that has the slave open sees a hang-up) and puts a new one,
+    /// with a new session, behind the symlink.
+    void replace_pty();
 
     /// Faithful timing: a frame leaves once the line has had time to transmit it at the
     /// device's baud rate (10 bits per byte: 8N1).
@@ -103,6 +126,11 @@ private:
     InotifyWatcher& watcher_;
     int watch_ = -1;
     boost::asio::steady_timer pacing_timer_;
+    boost::asio::steady_timer hangup_timer_;
+    std::chrono::steady_clock::time_point hangup_deadline_{};
+    bool hanging_up_ = false;        ///< a hang-up waits for the client to read
+    int empty_looks_ = 0;            ///< looks in a row that found the client had read everything
+    std::uint64_t generation_ = 0;   ///< pty replaced by hang-ups so far: older handlers stand down
     std::chrono::steady_clock::time_point line_free_{};
     /// What the last client wrote, read when it closed the port.
     struct Leftover {

@@ -1,6 +1,7 @@
 #include "emulator/transport/tcp_endpoint.hpp"
 #include "emulator/core/log_format.hpp"
 
+#include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
 #include <algorithm>
@@ -37,12 +38,26 @@ public:
     void start(Device& device)
     {
         std::weak_ptr<TcpConnection> weak = shared_from_this();
-        session_ = device.open_session(
+        Connection conn;
+        conn.hangup = [weak, executor = socket_.get_executor()](Hangup how) {
+            // Never inside the call into or from the device that asked.
+            asio::post(executor, [weak, how] {
+                if (auto self = weak.lock())
+                    self->hang_up(how);
+            });
+        };
+        conn.queued_bytes = [weak] {
+            auto self = weak.lock();
+            return self ? self->queued_bytes_ : 0;
+        };
+        conn.max_queued_bytes = TcpEndpoint::kMaxQueuedBytes;
+        conn.frame_overhead = TcpEndpoint::kQueuedFrameOverhead;
+        session_ = device.open_connection(
             [weak](std::string_view bytes) {
                 if (auto self = weak.lock())
                     self->send(bytes);
             },
-            peer_);
+            std::move(conn), peer_);
         read();
     }
 
@@ -64,6 +79,40 @@ private:
         boost::system::error_code ec;
         socket_.shutdown(tcp::socket::shutdown_both, ec);
         socket_.close(ec);
+    }
+
+    /// The wire asked (Connection::hangup): reset at once, or a half-close after the queue.
+    void hang_up(Hangup how)
+    {
+        if (closed_ || half_closed_)
+            return;
+        // The session goes now: the device hears nothing more of this connection.
+        session_.reset();
+        switch (how) {
+        case Hangup::Reset: {
+            log_.info("{}: reset by a wire fault", peer_);
+            // SO_LINGER 0 and no shutdown: close() sends RST and discards what is unsent.
+            boost::system::error_code ec;
+            socket_.set_option(asio::socket_base::linger(true, 0), ec);
+            closed_ = true;
+            socket_.close(ec);
+            finish();
+            return;
+        }
+        case Hangup::Close:
+            log_.info("{}: closed by a wire fault", peer_);
+            half_closed_ = true;
+            if (queue_.empty())
+                shut_down_send();
+            return;   // the FIN follows the queue (on_write); reads go on until the client closes
+        }
+    }
+
+    /// FIN after everything written; the connection reads (and drops) until the client's FIN.
+    void shut_down_send()
+    {
+        boost::system::error_code ec;
+        socket_.shutdown(tcp::socket::shutdown_send, ec);
     }
 
     void read()
@@ -90,6 +139,10 @@ private:
             end();
             return;
         }
+        if (!session_) {   // half-closed by a wire fault: the client's bytes go nowhere
+            read();
+            return;
+        }
         ++device_calls_;
         session_->receive(std::string_view(buffer_.data(), n));
         --device_calls_;
@@ -103,7 +156,7 @@ private:
     /// Called by the device (from the session's receive, or on its own for unprompted output).
     void send(std::string_view bytes)
     {
-        if (closed_)
+        if (closed_ || half_closed_)
             return;
         const std::size_t cost = bytes.size() + TcpEndpoint::kQueuedFrameOverhead;
         if (queued_bytes_ + cost > TcpEndpoint::kMaxQueuedBytes) {
@@ -167,6 +220,8 @@ private:
         front_written_ = 0;
         if (!queue_.empty())
             write();
+        else if (half_closed_)
+            shut_down_send();
     }
 
     /// The connection ends on its own (client gone, error, client reads nothing).
@@ -198,6 +253,7 @@ private:
     std::size_t queued_bytes_ = 0;
     int device_calls_ = 0;   ///< nesting depth of calls into or from the device
     bool closed_ = false;    ///< the socket is closed
+    bool half_closed_ = false;   ///< a wire fault closed it: FIN once the queue is written
     bool finished_ = false;  ///< the session is released and the endpoint told
 };
 

@@ -47,6 +47,9 @@ struct SessionRecord {
     std::string received;
     /// The session's SendFn: a test sends through it as a device sends unprompted output.
     SendFn send;
+    /// What the transport told of the connection (Device::open_connection): a test hangs up
+    /// through it as the link's wire faults do.
+    Connection connection;
     bool open = true;   ///< false once the transport has released the session
 };
 
@@ -63,6 +66,12 @@ public:
         record->send = std::move(send);
         sessions.push_back(record);
         return std::make_unique<RecordingSession>(*this, std::move(record));
+    }
+    std::unique_ptr<Session> open_connection(SendFn send, Connection conn, std::string peer) override
+    {
+        auto session = open_session(std::move(send), std::move(peer));
+        sessions.back()->connection = std::move(conn);
+        return session;
     }
 
     /// Sessions not released yet.

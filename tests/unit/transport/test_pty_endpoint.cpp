@@ -250,4 +250,80 @@ TEST_CASE("transport pty: a client that closes the port and opens it again is an
     CHECK(f.pty_never_failed());
 }
 
+/// What a read of the slave gives now: bytes appended to `into` (-1), end of file (0), an error
+/// (errno), -1 while nothing has come.
+int read_result(ClientFd& client, std::string& into)
+{
+    char buf[4096];
+    const auto n = ::read(client.get(), buf, sizeof buf);
+    if (n > 0) {
+        into.append(buf, static_cast<std::size_t>(n));
+        return -1;
+    }
+    if (n == 0)
+        return 0;
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? -1 : errno;
+}
+
+TEST_CASE("transport pty: a hang-up the wire asks for ends the client's line (end of file, EIO on "
+          "write) and puts a new pty with a new session behind the symlink",
+          "[unit][transport][pty]")
+{
+    Fixture f;
+    auto client = open_pty(f.endpoint.symlink_path());
+    CHECK(f.echo(client, "one\n") == "one\n");
+    REQUIRE(f.device.sessions.size() == 1);
+    const auto first = f.device.sessions[0];
+    REQUIRE(first->connection.hangup);
+    CHECK(first->connection.max_queued_bytes == PtyEndpoint::kMaxQueuedBytes);
+    CHECK(first->connection.client_baud() == 115200);
+    termios tio{};
+    REQUIRE(::tcgetattr(client.get(), &tio) == 0);
+    ::cfsetospeed(&tio, B9600);
+    ::cfsetispeed(&tio, B9600);
+    REQUIRE(::tcsetattr(client.get(), TCSANOW, &tio) == 0);
+    CHECK(first->connection.client_baud() == 9600);   // the client's termios, as the link reads it
+    const auto old_device = f.endpoint.device_path();
+
+    SECTION("reset: at once")
+    {
+        first->send("unread\n");   // lost with the line
+        first->connection.hangup(Hangup::Reset);
+        CHECK(first->open);   // once the loop runs
+        std::string got;
+        int result = -1;
+        CHECK(run_until(f.io, [&] { return (result = read_result(client, got)) >= 0; }));
+        CHECK(result == 0);
+        CHECK(got.empty());
+    }
+    SECTION("close: once the client has read what was written")
+    {
+        first->send("last words\n");
+        first->connection.hangup(Hangup::Close);
+        std::string got;
+        int result = -1;
+        CHECK(run_until(f.io, [&] { return (result = read_result(client, got)) >= 0; }));
+        CHECK(result == 0);
+        CHECK(got == "last words\n");
+    }
+    CHECK_FALSE(first->open);
+    CHECK(::write(client.get(), "x", 1) == -1);
+    CHECK(errno == EIO);
+    CHECK(f.log.count("hung up by a wire fault") == 1);
+    CHECK(f.endpoint.device_path() != old_device);
+    REQUIRE(f.device.sessions.size() == 2);
+    CHECK(f.device.sessions[1]->open);
+    CHECK(f.device.sessions[1]->received.empty());
+
+    auto again = open_pty(f.endpoint.symlink_path());
+    CHECK(f.echo(again, "two\n") == "two\n");
+    CHECK(f.device.sessions[1]->received == "two\n");
+    // A hang-up asked for by the old session does nothing to the new line.
+    first->connection.hangup(Hangup::Reset);
+    CHECK(f.echo(again, "three\n") == "three\n");
+    auto other = open_pty(f.other_endpoint.symlink_path());
+    CHECK(f.echo(other, "other\n") == "other\n");
+    CHECK(f.pty_never_failed());
+}
+
 } // namespace test_pty_endpoint

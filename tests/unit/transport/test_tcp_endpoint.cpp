@@ -241,4 +241,83 @@ TEST_CASE("transport tcp: a client that goes away is noticed, its session releas
     CHECK(f.log.count("refused") == 0);
 }
 
+/// What the client's next read gives: bytes appended to `into` (0), end of stream (0, returned as
+/// 0), or the error (errno); -1 while nothing has come.
+int read_result(ClientFd& client, std::string& into)
+{
+    char buf[1 << 16];
+    const auto n = ::read(client.get(), buf, sizeof buf);
+    if (n > 0) {
+        into.append(buf, static_cast<std::size_t>(n));
+        return -1;
+    }
+    if (n == 0)
+        return 0;
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? -1 : errno;
+}
+
+TEST_CASE("transport tcp: a reset the wire asks for reaches the client as ECONNRESET, its session "
+          "released, its place given back",
+          "[unit][transport][tcp]")
+{
+    Fixture f(TcpConnectionBudget{256, 1, 0});
+    auto client = connect_tcp(f.endpoint.port());
+    auto other = connect_tcp(f.other_endpoint.port());
+    const auto session = f.session_of(f.device, client);
+    CHECK(f.echo(client, "one\n") == "one\n");
+    REQUIRE(session->connection.hangup);
+    CHECK(session->connection.max_queued_bytes == TcpEndpoint::kMaxQueuedBytes);
+    CHECK(session->connection.frame_overhead == TcpEndpoint::kQueuedFrameOverhead);
+    CHECK(session->connection.queued_bytes() == 0);
+    CHECK_FALSE(session->connection.client_baud);   // no serial line
+
+    session->connection.hangup(Hangup::Reset);
+    CHECK(session->open);   // never inside the call that asked: once the loop runs
+    std::string got;
+    int result = -1;
+    CHECK(run_until(f.io, [&] { return (result = read_result(client, got)) >= 0; }));
+    CHECK(result == ECONNRESET);
+    CHECK(got.empty());
+    CHECK_FALSE(session->open);
+    CHECK(f.log.count("reset by a wire fault") == 1);
+    CHECK(f.budget.open_total == 1);   // the other device's client
+    CHECK(f.echo(other, "still\n") == "still\n");
+    auto next = connect_tcp(f.endpoint.port());
+    CHECK(f.echo(next, "two\n") == "two\n");
+}
+
+TEST_CASE("transport tcp: a close the wire asks for delivers what was queued, then end of stream, "
+          "the client's later bytes go nowhere until it closes",
+          "[unit][transport][tcp]")
+{
+    Fixture f;
+    // More than the kernel takes at once for a small window: most of it is queued when the
+    // close is asked for.
+    constexpr std::size_t kAnswerBytes = 16 * 64 * 1024;
+    f.device.answer = [&](SessionRecord& s, std::string_view) {
+        for (std::size_t at = 0; at < kAnswerBytes; at += 64 * 1024)
+            s.send(stream_bytes(at, 64 * 1024));
+        s.connection.hangup(Hangup::Close);
+    };
+    auto client = connect_tcp(f.endpoint.port(), kSmallReceiveBuffer);
+    const auto session = f.session_of(f.device, client);
+    client.write("go\n");
+    std::string got;
+    int result = -1;
+    CHECK(run_until(f.io, [&] { return (result = read_result(client, got)) >= 0; }));
+    CHECK(result == 0);   // end of stream, not a reset
+    CHECK(difference(got, stream_bytes(0, kAnswerBytes)).empty());
+    CHECK_FALSE(session->open);
+    CHECK(f.log.count("closed by a wire fault") == 1);
+    // Half-closed: the client may still send; nothing reaches a session, and the connection
+    // ends when the client closes its side.
+    client.write("after\n");
+    run_until(f.io, [] { return false; }, std::chrono::milliseconds(20));
+    CHECK(session->received == "go\n");
+    CHECK(f.device.sessions.size() == 1);
+    CHECK(f.budget.open_total == 1);
+    client.close();
+    CHECK(run_until(f.io, [&] { return f.budget.open_total == 0; }));
+}
+
 } // namespace test_tcp_endpoint
