@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace rigsim::control {
 
@@ -34,6 +36,27 @@ void only_keys(const json& params, const std::string& kind, std::initializer_lis
                                       + (list.empty() ? " (it takes none)" : " (it takes " + list + ")")};
         }
     }
+}
+
+/// The "direction" parameter: {inbound, outbound}; `allow_both` false for a one-way kind.
+std::pair<bool, bool> direction_of(const json& params, const char* fallback, bool allow_both = true)
+{
+    const json d = params.contains("direction") ? params.at("direction") : json(fallback);
+    if (d == "in")
+        return {true, false};
+    if (d == "out")
+        return {false, true};
+    if (allow_both && d == "both")
+        return {true, true};
+    throw BadRequest{400, std::string("\"direction\": expected ") + (allow_both ? "\"in\", \"out\" or \"both\"" : "\"in\" or \"out\"")
+                              + ", got " + dump(d)};
+}
+
+/// A required parameter's presence.
+void required(const json& params, const char* key, const std::string& kind)
+{
+    if (!params.contains(key))
+        throw BadRequest{400, "\"" + std::string(key) + "\": required for a " + kind + " fault"};
 }
 
 std::uint32_t seed_of(const json& params)
@@ -112,7 +135,10 @@ const std::vector<std::string>& FaultBook::device_kinds()
 
 const std::vector<std::string>& FaultBook::link_kinds()
 {
-    static const std::vector<std::string> kinds{"unplugged", "drop_bytes", "corrupt_bytes", "latency"};
+    static const std::vector<std::string> kinds{"unplugged",  "drop_bytes", "corrupt_bytes", "latency",
+                                                "slicer",     "bandwidth",  "reset",         "slow_close",
+                                                "hang_close", "cut_after",  "garbage_close", "overrun",
+                                                "baud_mismatch"};
     return kinds;
 }
 
@@ -183,7 +209,7 @@ json FaultBook::add(const json& body)
     } else if (link_kind) {
         if (!dev.link)
             throw BadRequest{400, "\"kind\": device \"" + dev.endpoints.name + "\" takes no wire faults"};
-        add_link(id, kind, params, *dev.link);
+        add_link(id, kind, params, *dev.link, index);
     } else {
         only_keys(params, kind, {"keep_saved"});
         const bool keep = !params.contains("keep_saved") || require_bool(params, "keep_saved");
@@ -204,15 +230,21 @@ json FaultBook::add(const json& body)
     return record;
 }
 
-void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link)
+void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link,
+                         std::size_t device)
 {
     // One cable, one delay: a second such fault would hide the first, and ending either would
-    // end both.
+    // end both. Likewise one of each kind below.
     if (kind == "unplugged" && link.unplugged_id() != 0)
         throw BadRequest{409, "the device is unplugged already (fault " + std::to_string(link.unplugged_id()) + ")"};
     if (kind == "latency" && link.latency_id() != 0)
         throw BadRequest{409, "the device has a latency fault already (fault " + std::to_string(link.latency_id())
                                   + "): delete it first"};
+    if (kind != "drop_bytes" && kind != "corrupt_bytes")
+        for (const auto& [other, r] : active_)
+            if (r.device == device && r.where == Where::Link && r.json.at("kind") == kind)
+                throw BadRequest{409, "the device has a " + kind + " fault already (fault " + std::to_string(other)
+                                          + "): delete it first"};
     if (kind == "unplugged") {
         only_keys(params, kind, {});
         link.set_unplugged(id, true);
@@ -220,8 +252,7 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
     }
     if (kind == "latency") {
         only_keys(params, kind, {"latency_ms", "jitter_ms", "seed"});
-        if (!params.contains("latency_ms"))
-            throw BadRequest{400, "\"latency_ms\": required for a latency fault"};
+        required(params, "latency_ms", kind);
         LatencyFault f;
         f.id = id;
         f.latency = clock_.ticks_from_ms(require_int(params, "latency_ms", 0, 600'000));
@@ -230,17 +261,91 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         link.add(f);
         return;
     }
+    if (kind == "slicer") {
+        only_keys(params, kind, {"slice_bytes", "gap_ms"});
+        SliceFault f;
+        f.id = id;
+        f.slice_bytes = params.contains("slice_bytes")
+                            ? static_cast<std::size_t>(require_int(params, "slice_bytes", 1, 65'536))
+                            : 1;
+        f.gap = params.contains("gap_ms") ? clock_.ticks_from_ms(require_int(params, "gap_ms", 0, 60'000)) : 0;
+        link.add(f);
+        return;
+    }
+    if (kind == "bandwidth") {
+        only_keys(params, kind, {"bytes_per_s", "direction"});
+        required(params, "bytes_per_s", kind);
+        BandwidthFault f;
+        f.id = id;
+        f.bytes_per_s = static_cast<double>(require_int(params, "bytes_per_s", 1, 100'000'000));
+        std::tie(f.inbound, f.outbound) = direction_of(params, "both");
+        link.add(f);
+        return;
+    }
+    if (kind == "overrun") {
+        only_keys(params, kind, {"buffer_bytes", "drain_bytes_per_s"});
+        OverrunFault f;
+        f.id = id;
+        if (params.contains("buffer_bytes"))
+            f.buffer_bytes = static_cast<std::size_t>(require_int(params, "buffer_bytes", 1, 65'536));
+        if (params.contains("drain_bytes_per_s"))
+            f.drain_bytes_per_s = static_cast<double>(require_int(params, "drain_bytes_per_s", 1, 10'000'000));
+        link.add(f);
+        return;
+    }
+    if (kind == "baud_mismatch") {
+        only_keys(params, kind, {"direction"});
+        BaudMismatchFault f;
+        f.id = id;
+        std::tie(f.inbound, f.outbound) = direction_of(params, "both");
+        link.add(f);
+        return;
+    }
+    CloseFault close;
+    close.id = id;
+    if (kind == "reset" || kind == "garbage_close") {
+        close.kind = kind == "reset" ? CloseKind::Reset : CloseKind::GarbageClose;
+        if (kind == "reset") {
+            only_keys(params, kind, {"after_ms"});
+        } else {
+            only_keys(params, kind, {"after_ms", "bytes", "seed"});
+            close.bytes = params.contains("bytes") ? static_cast<std::uint64_t>(require_int(params, "bytes", 1, 65'536)) : 64;
+            close.seed = seed_of(params);
+        }
+        close.delay = params.contains("after_ms") ? clock_.ticks_from_ms(require_int(params, "after_ms", 0, 600'000)) : 0;
+        link.add(close);
+        return;
+    }
+    if (kind == "slow_close") {
+        only_keys(params, kind, {"delay_ms"});
+        required(params, "delay_ms", kind);
+        close.kind = CloseKind::SlowClose;
+        close.delay = clock_.ticks_from_ms(require_int(params, "delay_ms", 0, 600'000));
+        link.add(close);
+        return;
+    }
+    if (kind == "hang_close") {
+        only_keys(params, kind, {"close_after_ms"});
+        required(params, "close_after_ms", kind);
+        close.kind = CloseKind::HangClose;
+        close.delay = clock_.ticks_from_ms(require_int(params, "close_after_ms", 0, 600'000));
+        link.add(close);
+        return;
+    }
+    if (kind == "cut_after") {
+        only_keys(params, kind, {"bytes", "direction"});
+        required(params, "bytes", kind);
+        close.kind = CloseKind::CutAfter;
+        close.bytes = static_cast<std::uint64_t>(require_int(params, "bytes", 0, 1'000'000'000));
+        close.inbound = direction_of(params, "out", false).first;
+        link.add(close);
+        return;
+    }
     only_keys(params, kind, {"direction", "probability", "seed"});
     ByteFault f;
     f.id = id;
     f.corrupt = kind == "corrupt_bytes";
-    if (params.contains("direction")) {
-        const auto& d = params.at("direction");
-        if (d != "in" && d != "out" && d != "both")
-            throw BadRequest{400, "\"direction\": expected \"in\", \"out\" or \"both\", got " + dump(d)};
-        f.inbound = d != "out";
-        f.outbound = d != "in";
-    }
+    std::tie(f.inbound, f.outbound) = direction_of(params, "both");
     f.probability = params.contains("probability") ? require_number(params, "probability", 0, 1) : 1.0;
     f.seed = seed_of(params);
     link.add(f);

@@ -59,7 +59,8 @@ private:
     };
     std::size_t device_index(const nlohmann::json& body) const;
     /// Starts a link fault from its params; throws BadRequest.
-    void add_link(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link);
+    void add_link(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link,
+                  std::size_t device);
 
     const Clock& clock_;
     std::vector<ControlledDevice>& devices_;

@@ -33,7 +33,7 @@ public:
     std::unique_ptr<Session> open_connection(SendFn send, Connection conn, std::string peer) override
     {
         return std::make_unique<PacedSession>(inner_.open_connection(std::move(send), std::move(conn), std::move(peer)),
-                                              ticker_);
+                                              ticker_, trim_);
     }
 
 private:
@@ -135,7 +135,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
     for (const auto& dc : config.devices) {
         auto e = std::make_unique<Entry>();
         e->device = make_device(dc, world_, make_logger(dc.name, options.log_levels), *store_, events_);
-        e->link = std::make_unique<Link>(*e->device, clock_);
+        e->link = std::make_unique<Link>(*e->device, clock_, make_logger(dc.name, options.log_levels));
         e->paced = std::make_unique<PacedDevice>(*e->link, ticker_, memory_trim_);
         entries_.push_back(std::move(e));
     }
