@@ -367,12 +367,14 @@ def build_parser() -> argparse.ArgumentParser:
     a = actions.add_parser("add", parents=[common], help="POST /api/faults: inject a fault",
                            description="POST /api/faults: inject a fault KIND (stall, slip, "
                            "sensor_failure, reference_lost, limit_switch, unplugged, drop_bytes, "
-                           "corrupt_bytes, latency, power_cycle) on DEVICE")
+                           "corrupt_bytes, latency, slicer, bandwidth, reset, slow_close, hang_close, "
+                           "cut_after, garbage_close, overrun, baud_mismatch, power_cycle) on DEVICE")
     a.add_argument("device", metavar="DEVICE")
     a.add_argument("kind", metavar="KIND")
     a.add_argument("--channel", type=int, default=None, help="the channel (default 0)")
     a.add_argument("params", metavar="key=value", nargs="*",
-                   help="the kind's parameters (probability=0.5 direction=in seed=1 latency_ms=20 ...)")
+                   help="the kind's parameters (probability=0.5 direction=in seed=1 latency_ms=20 "
+                        "bytes_per_s=960 after_ms=0 ...)")
     actions.add_parser("list", parents=[common], help="GET /api/faults", description="GET /api/faults")
     a = actions.add_parser("rm", parents=[common], help="DELETE /api/faults/ID", description="DELETE /api/faults/ID")
     a.add_argument("id", metavar="ID", type=int)

@@ -247,6 +247,65 @@ TEST_CASE("link faults act on the device's link, and one-off faults act and are 
     CHECK(f.call("GET", "/api/faults").second["faults"].empty());
 }
 
+TEST_CASE("the wire kinds' parameters are checked, each refusal naming its field, one of each kind at a time",
+          "[control]")
+{
+    Fixture f;
+    const std::pair<const char*, const char*> refused[] = {
+        {R"({"device":"dev","kind":"slicer","slice_bytes":0})", "\"slice_bytes\": expected an integer 1..65536, got 0"},
+        {R"({"device":"dev","kind":"slicer","gap_ms":-1})", "\"gap_ms\": expected an integer 0..60000, got -1"},
+        {R"({"device":"dev","kind":"slicer","size":3})",
+         "\"size\": not a parameter of a slicer fault (it takes slice_bytes, gap_ms)"},
+        {R"({"device":"dev","kind":"bandwidth"})", "\"bytes_per_s\": required for a bandwidth fault"},
+        {R"({"device":"dev","kind":"bandwidth","bytes_per_s":1.5})",
+         "\"bytes_per_s\": expected an integer 1..100000000, got 1.5"},
+        {R"({"device":"dev","kind":"bandwidth","bytes_per_s":10,"direction":"up"})",
+         "\"direction\": expected \"in\", \"out\" or \"both\", got \"up\""},
+        {R"({"device":"dev","kind":"reset","after_ms":600001})", "\"after_ms\": expected an integer 0..600000, got 600001"},
+        {R"({"device":"dev","kind":"slow_close"})", "\"delay_ms\": required for a slow_close fault"},
+        {R"({"device":"dev","kind":"hang_close","close_after_ms":"1"})",
+         "\"close_after_ms\": expected an integer 0..600000, got \"1\""},
+        {R"({"device":"dev","kind":"cut_after"})", "\"bytes\": required for a cut_after fault"},
+        {R"({"device":"dev","kind":"cut_after","bytes":3,"direction":"both"})",
+         "\"direction\": expected \"in\" or \"out\", got \"both\""},
+        {R"({"device":"dev","kind":"garbage_close","bytes":0})", "\"bytes\": expected an integer 1..65536, got 0"},
+        {R"({"device":"dev","kind":"overrun","buffer_bytes":0})", "\"buffer_bytes\": expected an integer 1..65536, got 0"},
+        {R"({"device":"dev","kind":"overrun","drain_bytes_per_s":0})",
+         "\"drain_bytes_per_s\": expected an integer 1..10000000, got 0"},
+        {R"({"device":"dev","kind":"baud_mismatch","baud":9600})",
+         "\"baud\": not a parameter of a baud_mismatch fault (it takes direction)"},
+        {R"({"device":"dev","kind":"reset","channel":0})", "\"channel\": a reset fault acts on the whole device"},
+    };
+    for (const auto& [body, error] : refused) {
+        INFO(body);
+        CHECK(f.error_of("POST", "/api/faults", body, 400) == error);
+    }
+    CHECK(f.call("GET", "/api/faults").second["faults"].empty());
+    const char* accepted[] = {
+        R"({"device":"dev","kind":"slicer","slice_bytes":2,"gap_ms":5})",
+        R"({"device":"dev","kind":"bandwidth","bytes_per_s":960,"direction":"out"})",
+        R"({"device":"dev","kind":"reset","after_ms":100})",
+        R"({"device":"dev","kind":"slow_close","delay_ms":100})",
+        R"({"device":"dev","kind":"hang_close","close_after_ms":100})",
+        R"({"device":"dev","kind":"cut_after","bytes":10,"direction":"in"})",
+        R"({"device":"dev","kind":"garbage_close","bytes":8,"seed":2,"after_ms":5})",
+        R"({"device":"dev","kind":"overrun","buffer_bytes":16,"drain_bytes_per_s":960})",
+        R"({"device":"dev","kind":"baud_mismatch","direction":"in"})",
+    };
+    for (const auto* body : accepted) {
+        INFO(body);
+        const auto [status, record] = f.call("POST", "/api/faults", body);
+        CHECK(status == 201);
+        CHECK(record["channel"] == nullptr);
+        CHECK(f.error_of("POST", "/api/faults", body, 409)
+              == "the device has a " + record["kind"].get<std::string>() + " fault already (fault "
+                     + std::to_string(record["id"].get<int>()) + "): delete it first");
+    }
+    CHECK(f.call("GET", "/api/faults").second["faults"].size() == 9);
+    CHECK(f.call("DELETE", "/api/faults").second["removed"].size() == 9);
+    REQUIRE(f.call("POST", "/api/faults", accepted[2]).first == 201);   // ended: again allowed
+}
+
 TEST_CASE("one cable, one delay: a second unplugged or latency fault is 409, and a device takes 64 faults", "[control]")
 {
     Fixture f;
