@@ -86,6 +86,17 @@ TEST_CASE("shipped stages: a bad file is refused naming the file and the pointer
           == "(no error)");
 }
 
+// Found by the stage_file fuzz target (tests/fuzz/regressions/stage_file/number-overflow): a
+// number the JSON parser cannot hold threw its out_of_range past the loader, which ended the
+// process instead of naming the file.
+TEST_CASE("shipped stages: a number beyond a double is refused naming the file", "[unit][apt][stages]")
+{
+    CHECK(error_of("config/stages/DRV001.json", R"({"name": 1e400})")
+          == "config/stages/DRV001.json: [json.exception.out_of_range.406] number overflow parsing '1e400'");
+    CHECK(error_of("config/stages/BAD.json", R"({"name": "BAD", "counts_per_mm": -1e999})")
+          == "config/stages/BAD.json: [json.exception.out_of_range.406] number overflow parsing '-1e999'");
+}
+
 namespace {
 
 /// The figures of each stage as audited against their sources (each file's `about`;
