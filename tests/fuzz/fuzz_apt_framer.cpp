@@ -5,7 +5,7 @@
 // bytes however the bytes are cut (whole, byte by byte, in the chosen pieces); every frame is a
 // plausible header of the message table with the data its header announces; decoding a frame and
 // encoding the message is stable (encode(decode(encode(decode(f)))) == encode(decode(f))); the
-// wire log reads every frame, and any bytes, as each kind of unit would.
+// wire log reads every frame, and any bytes, as one kind of unit or another would.
 #include "emulator/apt/codec.hpp"
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/wire_decode.hpp"
@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,11 +60,9 @@ void check_frame(const Frame& f, bool deep)
     const auto again = decode_alone(once);
     check(message_id(again) == f.id);
     check(encode(again, f.dest, f.source) == once);
-    for (const auto& unit : kContexts) {
-        nlohmann::json out;
-        decode_for_log(f.bytes, out, unit);
-        check(out.contains("name"));
-    }
+    nlohmann::json out;   // as one kind of unit would log it (all six would cost six times as much)
+    decode_for_log(f.bytes, out, kContexts[f.bytes.size() % std::size(kContexts)]);
+    check(out.contains("name"));
     (void)field_names(f.id);
 }
 
@@ -126,9 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto whole = frame_all(bytes, 0);
     check(frame_all(bytes, 1) == whole);
     check(frame_all(bytes, data[0] < 2 ? 2 : data[0]) == whole);
-    for (const auto& unit : kContexts) {   // bytes that may be no frame at all
-        nlohmann::json out;
-        decode_for_log(bytes, out, unit);
-    }
+    nlohmann::json out;   // bytes that may be no frame at all
+    decode_for_log(bytes, out, kContexts[data[0] % std::size(kContexts)]);
     return 0;
 }
