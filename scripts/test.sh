@@ -6,7 +6,13 @@
 #     device, e2e and Python tests against the sanitized daemon (a memory error or undefined
 #     behaviour in it fails the test; the e2e client and Catch2's runner are built plain, see
 #     tests/CMakeLists.txt). Clang compiles this pass in half GCC's time (docs/architecture.md,
-#     "Build options") and is a second compiler's warnings on every file.
+#     "Build options") and is a second compiler's warnings on every file. The same objects are
+#     instrumented for libFuzzer (RIGSIM_FUZZ), so that the fuzz programs of tests/fuzz link
+#     against them: the libraries are built once for both.
+#  3. Fuzzing: every target of tests/fuzz for 30 s (scripts/fuzz.sh, as many at a time as there
+#     are cores), from seeds generated from the golden transcripts and test inputs; any crash,
+#     leak, undefined behaviour, slow input or memory exhaustion fails the run
+#     (docs/reliability.md).
 # CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,10 +36,13 @@ ctest --test-dir build/release -j"$((jobs * 2))" --output-on-failure --no-tests=
 mark "sanitizer build (clang, ASan + UBSan, -Werror)"
 bash scripts/configure.sh build/asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_CXX_FLAGS_DEBUG=-gline-tables-only -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
-  -DRIGSIM_SANITIZE=ON -DRIGSIM_WERROR=ON -DRIGSIM_BENCH=OFF
-cmake --build build/asan -j"$jobs" --target unit_tests device_tests rigsimd e2e_tests rigsim_modemlines
-mark "sanitizer tests: unit, device, e2e"
+  -DRIGSIM_SANITIZE=ON -DRIGSIM_WERROR=ON -DRIGSIM_BENCH=OFF -DRIGSIM_FUZZ=ON
+cmake --build build/asan -j"$jobs" --target unit_tests device_tests rigsimd e2e_tests rigsim_modemlines rigsim_fuzz
+mark "sanitizer tests: unit, device, e2e, fuzz regressions"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build/asan -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'unit|device|e2e'
+  ctest --test-dir build/asan -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'unit|device|e2e|fuzz'
+
+mark "fuzzing: every target 30 s"
+bash scripts/fuzz.sh --no-build --time 30 --jobs "$jobs"
 
 mark "all tests passed"
