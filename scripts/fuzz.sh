@@ -10,8 +10,8 @@
 # executions, executions per second, coverage (libFuzzer's cov: and ft:) and corpus size.
 # Exits 1 when any target found a crash, a leak, undefined behaviour, a slow input or memory
 # exhaustion; the input is kept in DIR/fuzz/findings/<target>/ (crash-*, leak-*, timeout-*,
-# oom-*), to be replayed with DIR/tests/fuzz/fuzz_<target> FILE. The corpus each run grows is kept in
-# DIR/fuzz/corpus/<target>/ for the next run; the logs in DIR/fuzz/logs/.
+# oom-*), to be replayed with DIR/tests/fuzz/fuzz_<target> FILE. The corpus each run grows is
+# kept in DIR/fuzz/corpus/<target>/ for the next run; the logs in DIR/fuzz/logs/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     --timeout) timeout_s=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --no-build) do_build=0; shift ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
