@@ -190,9 +190,13 @@ class ControlClient:
 
     An address that answers, but not with HTTP (a device's TCP port), raises NotControlApi."""
 
-    def __init__(self, url: str | None = None, timeout_s: float = 10.0, token: str | None = None) -> None:
+    def __init__(self, url: str | None = None, timeout_s: float = 10.0, token: str | None = None,
+                 run_timeout_s: float = 120.0) -> None:
         self.url = control_url(url)
         self.timeout_s = timeout_s
+        # A request that runs the clock (step, run_until_idle) answers once the clock time has
+        # run: its wall time grows with the simulation's work (seconds under a sanitizer).
+        self.run_timeout_s = max(run_timeout_s, timeout_s)
         self.token = token if token is not None else os.environ.get("RIGSIM_CONTROL_TOKEN") or None
 
     def _headers(self, extra: Mapping[str, str] | None = None) -> dict[str, str]:
@@ -201,23 +205,25 @@ class ControlClient:
             headers["Authorization"] = "Bearer " + self.token
         return headers
 
-    def request(self, method: str, path: str, body: object = None) -> Any:
-        """One request; returns the decoded JSON answer or raises ControlError."""
+    def request(self, method: str, path: str, body: object = None, timeout_s: float | None = None) -> Any:
+        """One request; returns the decoded JSON answer or raises ControlError. `timeout_s`
+        (default: the client's) bounds the wait for the answer."""
+        timeout = self.timeout_s if timeout_s is None else timeout_s
         data = None if body is None else json.dumps(body).encode()
         headers = self._headers({"Content-Type": "application/json"} if data is not None else None)
         req = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
         try:
-            with _DIRECT.open(req, timeout=self.timeout_s) as answer:
+            with _DIRECT.open(req, timeout=timeout) as answer:
                 return json.loads(answer.read() or b"null")
         except urllib.error.HTTPError as e:
             text = e.read().decode(errors="replace")
             raise ControlError(e.code, _error_message(text)) from None
         except (http.client.HTTPException, TimeoutError, socket.timeout) as e:
-            raise _not_control_api(self.url, e, self.timeout_s) from None
+            raise _not_control_api(self.url, e, timeout) from None
 
-    def _object(self, method: str, path: str, body: object = None) -> JsonObject:
+    def _object(self, method: str, path: str, body: object = None, timeout_s: float | None = None) -> JsonObject:
         """request() for the routes, each of which answers a JSON object."""
-        answer: JsonObject = self.request(method, path, body)
+        answer: JsonObject = self.request(method, path, body, timeout_s)
         return answer
 
     # ---- rig and clock ----
@@ -240,7 +246,7 @@ class ControlClient:
 
     def step(self, ms: int) -> JsonObject:
         """Advance the clock `ms` milliseconds now (paused or running)."""
-        return self._object("POST", "/api/clock", {"step_ms": ms})
+        return self._object("POST", "/api/clock", {"step_ms": ms}, self.run_timeout_s)
 
     def scale(self, factor: float) -> JsonObject:
         """Run the clock `factor` times faster than wall time from now on."""
@@ -269,7 +275,8 @@ class ControlClient:
         return answer
 
     def _run_until_idle(self, max_ms: int) -> JsonObject:
-        return self._object("POST", "/api/clock", {"run_until_idle": True, "max_ms": int(max_ms)})
+        return self._object("POST", "/api/clock", {"run_until_idle": True, "max_ms": int(max_ms)},
+                            self.run_timeout_s)
 
     def _run_in_chunks(self, max_ms: int, chunk_ms: int, wait_for: tuple[str, str] | None,
                        timeout_s: float) -> JsonObject:
