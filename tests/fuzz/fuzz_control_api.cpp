@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -152,7 +153,8 @@ struct Harness {
             reply = std::move(*answered);
         }
         if (reply.stream)
-            streams.push_back(reply.stream([this](std::string_view bytes) { streamed += bytes.size(); }));
+            streams.push_back(
+                reply.stream([this](std::shared_ptr<const std::string> chunk) { streamed += chunk ? chunk->size() : 0; }));
         else
             check(reply.status >= 200 && reply.status < 600 && !reply.body.empty());
         if (!ticker.paused())
