@@ -301,6 +301,22 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         link.add(f);
         return;
     }
+    if (add_close(id, kind, params, link))
+        return;
+    only_keys(params, kind, {"direction", "probability", "seed"});
+    ByteFault f;
+    f.id = id;
+    f.corrupt = kind == "corrupt_bytes";
+    std::tie(f.inbound, f.outbound) = direction_of(params, "both");
+    f.probability = params.contains("probability") ? require_number(params, "probability", 0, 1) : 1.0;
+    f.seed = seed_of(params);
+    link.add(f);
+}
+
+/// The faults that end a connection (reset, garbage_close, slow_close, hang_close, cut_after);
+/// false for another kind.
+bool FaultBook::add_close(std::uint64_t id, const std::string& kind, const json& params, Link& link)
+{
     CloseFault close;
     close.id = id;
     if (kind == "reset" || kind == "garbage_close") {
@@ -314,7 +330,7 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         }
         close.delay = params.contains("after_ms") ? clock_.ticks_from_ms(require_int(params, "after_ms", 0, 600'000)) : 0;
         link.add(close);
-        return;
+        return true;
     }
     if (kind == "slow_close") {
         only_keys(params, kind, {"delay_ms"});
@@ -322,7 +338,7 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         close.kind = CloseKind::SlowClose;
         close.delay = clock_.ticks_from_ms(require_int(params, "delay_ms", 0, 600'000));
         link.add(close);
-        return;
+        return true;
     }
     if (kind == "hang_close") {
         only_keys(params, kind, {"close_after_ms"});
@@ -330,7 +346,7 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         close.kind = CloseKind::HangClose;
         close.delay = clock_.ticks_from_ms(require_int(params, "close_after_ms", 0, 600'000));
         link.add(close);
-        return;
+        return true;
     }
     if (kind == "cut_after") {
         only_keys(params, kind, {"bytes", "direction"});
@@ -339,16 +355,9 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
         close.bytes = static_cast<std::uint64_t>(require_int(params, "bytes", 0, 1'000'000'000));
         close.inbound = direction_of(params, "out", false).first;
         link.add(close);
-        return;
+        return true;
     }
-    only_keys(params, kind, {"direction", "probability", "seed"});
-    ByteFault f;
-    f.id = id;
-    f.corrupt = kind == "corrupt_bytes";
-    std::tie(f.inbound, f.outbound) = direction_of(params, "both");
-    f.probability = params.contains("probability") ? require_number(params, "probability", 0, 1) : 1.0;
-    f.seed = seed_of(params);
-    link.add(f);
+    return false;
 }
 
 bool FaultBook::remove(std::uint64_t id)

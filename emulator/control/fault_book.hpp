@@ -61,6 +61,8 @@ private:
     /// Starts a link fault from its params; throws BadRequest.
     void add_link(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link,
                   std::size_t device);
+    /// add_link() of the kinds that end a connection; false for another kind.
+    bool add_close(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link);
 
     const Clock& clock_;
     std::vector<ControlledDevice>& devices_;
