@@ -230,11 +230,10 @@ json FaultBook::add(const json& body)
     return record;
 }
 
-void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link,
-                         std::size_t device)
+/// One cable, one delay: a second such fault would hide the first, and ending either would end
+/// both. Likewise one of each kind but dropped and corrupted bytes.
+void FaultBook::refuse_second(const std::string& kind, const Link& link, std::size_t device) const
 {
-    // One cable, one delay: a second such fault would hide the first, and ending either would
-    // end both. Likewise one of each kind below.
     if (kind == "unplugged" && link.unplugged_id() != 0)
         throw BadRequest{409, "the device is unplugged already (fault " + std::to_string(link.unplugged_id()) + ")"};
     if (kind == "latency" && link.latency_id() != 0)
@@ -245,6 +244,12 @@ void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& 
             if (r.device == device && r.where == Where::Link && r.json.at("kind") == kind)
                 throw BadRequest{409, "the device has a " + kind + " fault already (fault " + std::to_string(other)
                                           + "): delete it first"};
+}
+
+void FaultBook::add_link(std::uint64_t id, const std::string& kind, const json& params, Link& link,
+                         std::size_t device)
+{
+    refuse_second(kind, link, device);
     if (kind == "unplugged") {
         only_keys(params, kind, {});
         link.set_unplugged(id, true);

@@ -61,6 +61,8 @@ private:
     /// Starts a link fault from its params; throws BadRequest.
     void add_link(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link,
                   std::size_t device);
+    /// 409 for a second fault of `kind` on the device's link (drop and corrupt bytes excepted).
+    void refuse_second(const std::string& kind, const Link& link, std::size_t device) const;
     /// add_link() of the kinds that end a connection; false for another kind.
     bool add_close(std::uint64_t id, const std::string& kind, const nlohmann::json& params, Link& link);
 
