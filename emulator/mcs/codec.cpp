@@ -332,13 +332,18 @@ std::optional<std::int32_t> channel_of(const Command& command)
 
 bool is_movement(const Command& command)
 {
-    return std::holds_alternative<MovePositionAbsolute>(command)
-        || std::holds_alternative<MovePositionRelative>(command)
-        || std::holds_alternative<MoveAngleAbsolute>(command)
-        || std::holds_alternative<MoveAngleRelative>(command)
-        || std::holds_alternative<MoveStep>(command) || std::holds_alternative<MoveScanAbsolute>(command)
-        || std::holds_alternative<MoveScanRelative>(command)
-        || std::holds_alternative<FindReferenceMark>(command);
+    // One visit (a jump on the alternative), not eight holds_alternative: each of those finds its
+    // type's index by a loop over the ~70 alternatives when inlined, which the fuzz build's
+    // comparison tracing made 85 % of fuzz_mcs_framer's time.
+    return std::visit(
+        [](const auto& c) {
+            using T = std::decay_t<decltype(c)>;
+            return std::is_same_v<T, MovePositionAbsolute> || std::is_same_v<T, MovePositionRelative>
+                || std::is_same_v<T, MoveAngleAbsolute> || std::is_same_v<T, MoveAngleRelative>
+                || std::is_same_v<T, MoveStep> || std::is_same_v<T, MoveScanAbsolute>
+                || std::is_same_v<T, MoveScanRelative> || std::is_same_v<T, FindReferenceMark>;
+        },
+        command);
 }
 
 void encode(const Reply& reply, std::string& out)
