@@ -130,10 +130,14 @@ Options parse_options(int argc, char** argv)
     return o;
 }
 
-/// The daemon's resident set and its peak, in KiB (/proc/PID/status VmRSS, VmHWM).
+/// The daemon's resident set and its peak, in KiB (/proc/PID/status VmRSS, VmHWM), and the
+/// resident set's parts: anonymous (heap, stacks, mappings of its own) and file-backed (the
+/// program's and libraries' pages it has run or read, RssFile).
 struct Rss {
     long now_kb = 0;
     long peak_kb = 0;
+    long anon_kb = 0;
+    long file_kb = 0;
 };
 
 Rss rss_of(pid_t pid)
@@ -146,6 +150,10 @@ Rss rss_of(pid_t pid)
             r.now_kb = std::atol(line.c_str() + 6);
         else if (line.rfind("VmHWM:", 0) == 0)
             r.peak_kb = std::atol(line.c_str() + 6);
+        else if (line.rfind("RssAnon:", 0) == 0)
+            r.anon_kb = std::atol(line.c_str() + 8);
+        else if (line.rfind("RssFile:", 0) == 0)
+            r.file_kb = std::atol(line.c_str() + 8);
     }
     return r;
 }
@@ -297,7 +305,8 @@ bool soak_section(const Options& o)
     clients.run_block(std::max(1, std::min(o.commands, 1000)), warm, sample);
     clients.close_all();
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));   // what the daemon frees, freed
-    const long start_kb = rss_of(pid).now_kb;
+    const auto start = rss_of(pid);
+    const long start_kb = start.now_kb;
 
     RoundTrips quiet, loaded;
     HostileReport hostile_report;
@@ -347,7 +356,8 @@ bool soak_section(const Options& o)
     launch::wait_until([&] { return (after_kb = rss_of(pid).now_kb) <= start_kb * 11 / 10; },
                        std::chrono::milliseconds(10000));
     const double after_s = std::chrono::duration<double>(SteadyClock::now() - went).count();
-    peak_kb = std::max(peak_kb, rss_of(pid).peak_kb);
+    const auto after = rss_of(pid);
+    peak_kb = std::max(peak_kb, after.peak_kb);
 
     const auto& t = clients.totals();
     std::printf("\nsoak: %d device clients (%zu on ptys, the rest TCP) x %d commands in %d blocks alternating quiet "
@@ -379,6 +389,11 @@ bool soak_section(const Options& o)
                 "client went)\n",
                 mb(start_kb), mb(peak_kb), mb(after_kb), static_cast<double>(after_kb) / static_cast<double>(start_kb),
                 after_s);
+    std::printf("       anonymous (heap and the daemon's own mappings) %.1f MB -> %.1f MB (%.2f x); file-backed (code "
+                "and data of the program and libraries) %.1f MB -> %.1f MB\n",
+                mb(start.anon_kb), mb(after.anon_kb),
+                static_cast<double>(after.anon_kb) / static_cast<double>(std::max(1L, start.anon_kb)), mb(start.file_kb),
+                mb(after.file_kb));
     daemon.terminate(kStopTimeout);
     return t.lost == 0 && t.misrouted == 0;
 }

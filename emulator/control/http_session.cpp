@@ -1,4 +1,5 @@
 #include "emulator/control/http_session.hpp"
+#include "emulator/core/frame_queue.hpp"
 #include "emulator/core/log_format.hpp"
 
 #include <boost/asio/write.hpp>
@@ -75,7 +76,8 @@ namespace {
 
 /// Bytes read from a connection at a time (a request's buffer holds at most the header limit and this).
 constexpr std::size_t kReadChunk = 8 * 1024;
-/// What a chunk queued for a stream costs beyond its bytes (its place in the queue).
+/// What a chunk queued for a stream is counted beyond its bytes (its place in the queue: 4 bytes in
+/// the FrameQueue; the bound is kept as it was when the queue held pointers to shared chunks).
 constexpr std::size_t kStreamChunkOverhead = 32;
 /// Chunks gathered into one write of a stream.
 constexpr std::size_t kMaxGather = 64;
@@ -386,9 +388,11 @@ private:
     }
 
     // ---- A stream (GET /api/events): headers, then events as they come, until the client goes.
-    // The answer has no length: it ends when the connection closes (RFC 9112 6.3). Events are
-    // queued as shared chunks (one copy for every stream) and written together by the server's
-    // flush timer: a write per stream per interval, not per event.
+    // The answer has no length: it ends when the connection closes (RFC 9112 6.3). Each event is
+    // framed once for every stream (a shared chunk) and copied into each stream's queue, whose
+    // pages are its own (FrameQueue: a client that falls megabytes behind leaves no holes in the
+    // heap when it goes), and written together by the server's flush timer: a write per stream
+    // per interval, not per event.
 
     void start_stream(StreamStart start)
     {
@@ -431,9 +435,9 @@ private:
             close();
             return;
         }
+        out_.push_back(*chunk);
         backlog_ += cost;
         state_->stream_backlog += cost;
-        out_.push_back(std::move(chunk));
         if (!writing_ && !flush_pending_) {
             flush_pending_ = true;
             schedule_flush(state_, shared_from_this());
@@ -445,11 +449,7 @@ private:
     {
         writing_ = true;
         gather_.clear();
-        for (const auto& c : out_) {
-            gather_.emplace_back(c->data(), c->size());
-            if (gather_.size() == kMaxGather)
-                break;
-        }
+        out_.for_each_front(kMaxGather, [this](std::string_view c) { gather_.emplace_back(c.data(), c.size()); });
         boost::asio::async_write(stream_.socket(), gather_,
                                  [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                                      self->on_chunks_written(ec);
@@ -464,7 +464,7 @@ private:
             return;
         }
         for (std::size_t i = 0; i < gather_.size(); ++i) {
-            const auto cost = out_.front()->size() + kStreamChunkOverhead;
+            const auto cost = out_.front().size() + kStreamChunkOverhead;
             backlog_ -= cost;
             state_->stream_backlog -= cost;
             out_.pop_front();
@@ -472,8 +472,6 @@ private:
         gather_.clear();
         if (!out_.empty())
             write_chunks();   // what came during the write: already a batch
-        else
-            out_.shrink_to_fit();   // a burst's queue is not kept
     }
 
     void end_stream()
@@ -490,7 +488,7 @@ private:
         if (!writing_) {   // a pending write still reads the queue's chunks
             state_->stream_backlog -= backlog_;
             backlog_ = 0;
-            std::deque<StreamChunk>().swap(out_);
+            out_.clear();
         }
     }
 
@@ -532,7 +530,7 @@ private:
     ReadDeadline deadline_;
     // A stream's state.
     std::function<void()> stop_stream_;
-    std::deque<StreamChunk> out_;
+    FrameQueue out_;   ///< the stream's backlog
     std::vector<boost::asio::const_buffer> gather_;   ///< the chunks being written
     std::size_t backlog_ = 0;
     bool writing_ = false;

@@ -279,10 +279,8 @@ void PtyEndpoint::close_port()
     // later opener's: its IN_OPEN would have been queued before its first byte, so it would
     // be in the batch that ends here.
     ::tcflush(slave_fd_, TCIFLUSH);
-    while (queue_.size() > 1) {
-        queued_bytes_ -= queue_.back().size() + kQueuedFrameOverhead;
-        queue_.pop_back();
-    }
+    queue_.keep_front_only();
+    queued_bytes_ = queue_.empty() ? 0 : queue_.front().size() + kQueuedFrameOverhead;
     if (!queue_.empty()) {
         // The front frame is waiting for the line or for room in the pty: cancel that
         // wait rather than let it reach the next opener (the read is cancelled with it and
@@ -428,7 +426,7 @@ void PtyEndpoint::send(std::string_view bytes)
     }
     // Counted whole until written whole, its part already written included.
     queued_bytes_ += cost;
-    queue_.emplace_back(bytes);
+    queue_.push_back(bytes);
     if (queue_.size() == 1) {
         front_written_ = written;
         write();
@@ -487,7 +485,7 @@ void PtyEndpoint::paced_write()
     // echo of this write would come back as input.
     keep_echo_off();
     std::weak_ptr<bool> alive = alive_;
-    const auto& front = queue_.front();
+    const auto front = queue_.front();
     asio::async_write(master_, asio::buffer(front.data() + front_written_, front.size() - front_written_),
         [this, alive, generation = generation_](const boost::system::error_code& ec, std::size_t) {
             if (!alive.lock() || stopped_ || generation != generation_)

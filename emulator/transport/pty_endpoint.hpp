@@ -44,6 +44,7 @@
 // written; Hangup::Reset does not.
 
 #include "emulator/core/device.hpp"
+#include "emulator/core/frame_queue.hpp"
 #include "emulator/transport/inotify_watcher.hpp"
 
 #include <boost/asio/io_context.hpp>
@@ -65,8 +66,8 @@ class PtyEndpoint {
 public:
     /// Output that no client reads is dropped beyond this, as on an unread serial line.
     static constexpr std::size_t kMaxQueuedBytes = 1 << 20;
-    /// What a queued frame costs beyond its bytes, counted against kMaxQueuedBytes so that
-    /// it bounds memory rather than payload.
+    /// What a queued frame is counted beyond its bytes against kMaxQueuedBytes, so that the
+    /// bound is one of memory rather than payload (as TcpEndpoint::kQueuedFrameOverhead).
     static constexpr std::size_t kQueuedFrameOverhead = 64;
     /// A hang-up the wire asks for after what was sent (Hangup::Close) waits at most this long
     /// for the client to read it.
@@ -145,7 +146,7 @@ private:
     std::shared_ptr<spdlog::logger> log_;
     std::unique_ptr<Session> session_;
     std::array<char, 4096> buffer_{};
-    std::deque<std::string> queue_;
+    FrameQueue queue_;   ///< what the pty did not take yet, in pages of its own
     std::size_t front_written_ = 0;   ///< bytes of the front frame send() wrote before queuing it
     std::size_t queued_bytes_ = 0;
     bool dropping_ = false;

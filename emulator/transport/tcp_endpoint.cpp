@@ -1,12 +1,12 @@
 #include "emulator/transport/tcp_endpoint.hpp"
 #include "emulator/core/log_format.hpp"
+#include "emulator/core/frame_queue.hpp"
 
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
 #include <algorithm>
 #include <array>
-#include <deque>
 
 namespace rigsim {
 
@@ -187,7 +187,7 @@ private:
         }
         // Counted whole until written whole, its part already written included.
         queued_bytes_ += cost;
-        queue_.emplace_back(bytes);
+        queue_.push_back(bytes);
         if (queue_.size() == 1) {
             front_written_ = written;
             write();
@@ -196,7 +196,7 @@ private:
 
     void write()
     {
-        const auto& front = queue_.front();
+        const auto front = queue_.front();
         asio::async_write(socket_, asio::buffer(front.data() + front_written_, front.size() - front_written_),
             [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                 self->on_write(ec);
@@ -248,7 +248,7 @@ private:
     std::string peer_;
     std::unique_ptr<Session> session_;
     std::array<char, 4096> buffer_{};
-    std::deque<std::string> queue_;
+    FrameQueue queue_;   ///< what the kernel did not take yet, in pages of its own
     std::size_t front_written_ = 0;   ///< bytes of the front frame send() wrote before queuing it
     std::size_t queued_bytes_ = 0;
     int device_calls_ = 0;   ///< nesting depth of calls into or from the device

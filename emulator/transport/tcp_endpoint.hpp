@@ -35,9 +35,10 @@ class TcpEndpoint {
 public:
     /// A client that reads nothing while answers pile up beyond this is dropped.
     static constexpr std::size_t kMaxQueuedBytes = 4 << 20;
-    /// What a queued frame costs beyond its bytes (string object, allocation), counted
-    /// against kMaxQueuedBytes so that it bounds memory, not payload: a client that never
-    /// reads 4-byte answers would otherwise hold ten times its allowance.
+    /// What a queued frame is counted beyond its bytes against kMaxQueuedBytes, so that the
+    /// bound is one of memory, not payload, whatever the frames' size (set when each frame was a
+    /// string of its own; a FrameQueue holds 4 bytes beside each frame, in pages of its own,
+    /// and the bound is kept so that a client is dropped where it always was).
     static constexpr std::size_t kQueuedFrameOverhead = 64;
     /// First delay before an accept that failed for want of resources is retried.
     static constexpr std::chrono::milliseconds kAcceptBackoffMin{100};
