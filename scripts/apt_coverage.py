@@ -42,7 +42,8 @@ TABLE_OF = {
     "BPC301": ("BPC30x Series", 132), "BPC303": ("BPC30x Series", 132),
     "TSG001": ("TSG001", 134), "KSG101": ("TSG001", 134),
 }
-ORDER = ["TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "TSC001", "KSC101",
+ORDER = ["TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "K10CR1", "LTS150", "LTS300", "KBD101",
+         "TSC001", "KSC101",
          "TPZ001", "KPZ101", "BPC301", "BPC303", "TSG001", "KSG101"]
 
 # The module header(s) of each kind (catalogue.hpp UnitKind; motors by MotorKind).

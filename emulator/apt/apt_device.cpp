@@ -105,7 +105,7 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
       model_(*find_controller(config.model, config_of(config).firmware)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
       unit_{config.model, model_, serial_, std::max(rack_bays(), static_cast<std::size_t>(model_.max_bays)),
-            config_of(config).firmware,
+            model_.later_only ? model_.firmware : config_of(config).firmware,
             model_.reports_stage_type ? dc_stage_type(config_of(config).stage.name) : std::uint16_t{0}},
       store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
 {

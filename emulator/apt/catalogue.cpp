@@ -116,6 +116,71 @@ constexpr ControllerModel bbd203()
     return c;
 }
 
+// The Trinamic-driven steppers (KST101, BSC20x; also TST101, K10CR1, LTS in pyLabLib's list):
+// 2048 microsteps per full step where the manual's (TST001, BSC10x) count 128, velocity
+// 53.68 APT units per microstep/s and acceleration 53.68 × 204.94e-6 per microstep/s²
+// (AlexShkarin/pyLabLib, pylablib/devices/Thorlabs/kinesis.py, KinesisMotor._calculate_scale
+// and _get_step_scale). The DC servo cubes keep T = 2048 / 6e6 s and the brushless racks
+// 102.4 µs there: the manual's figures.
+constexpr double kTrinamicVelocity = 53.68;
+constexpr double kTrinamicAcceleration = 53.68 * 204.94e-6;
+constexpr double kTrinamicMicrosteps = 2048.0 / 128.0;
+
+// ---- Units made after the 2012 manual (issue 28; docs/protocol/apt.md "Units of today") ----
+// Sources: Thorlabs' "Motion Controllers Host-Controller Communications Protocol", issue 37
+// (22 May 2023; a copy in amsikking/thorlabs_MFF101), cited "issue 37 p. N"; Kinesis' default
+// settings file (ThorlabsDefaultSettings.xml in Thorlabs/Motion_Control_Examples), cited "Kinesis'
+// defaults". Each exists in the later generation only.
+
+/// A Trinamic-driven integrated stepper unit: its built-in stage counts its 2048 microsteps per
+/// full step (issue 37 p. 41: velocity = microsteps/s x 53.68, acceleration = microsteps/s² / 90.9).
+constexpr ControllerModel integrated_stepper(std::string_view name, std::uint32_t serial_prefix,
+                                             std::string_view notes, std::uint16_t hardware_version)
+{
+    auto c = stepper_cube(name, serial_prefix, notes);
+    c.velocity_per_count_s = kTrinamicVelocity;
+    c.acceleration_per_count_s2 = kTrinamicAcceleration;
+    c.built_in_stage = name;
+    c.later_only = true;
+    c.rich_fault_reports = true;
+    c.hardware_version = hardware_version;
+    return c;
+}
+
+// K10CR1 cage rotator: prefix 55 (issue 37 p. 33; Kinesis' DeviceType 55 "Cage Rotator", hardware
+// revision 3). No public HW_GET_INFO of a real unit gives its type or firmware: type 31 and
+// 1.0.3 as the other cubes.
+constexpr ControllerModel k10cr1()
+{
+    return integrated_stepper("K10CR1", 55, "Cage Rotator", 3);
+}
+
+// LTS150/LTS300 long-travel stages: prefix 45 (issue 37 p. 33; Kinesis' DeviceType 45
+// "LTS(Integrated)"). The ones sold today are the "HS" revisions (Kinesis' hardware revisions 3
+// and 4), which count 2048 microsteps per full step (MSLNZ/msl-equipment thorlabs/lts.py: 2048
+// when the hardware version is 3 or more, else 128): hardware version 3.
+constexpr ControllerModel lts(std::string_view name)
+{
+    return integrated_stepper(name, 45, "LTS(Integrated)", 3);
+}
+
+// KBD101 K-Cube brushless: prefix 28 (issue 37 p. 32); firmware 2.0.8 (amsikking/thorlabs_DDS100
+// asserts 131080 from a tested unit); type 44, issue 37 p. 53's "brushless DC controller" (no
+// public reading of a real unit's type). The brushless scaling of the BBD203: T = 102.4 us
+// (issue 37 p. 39), the same per count for every stage.
+constexpr ControllerModel kbd101()
+{
+    auto c = cube("KBD101", 28, MotorKind::Brushless, "Brushless Motor Controller");
+    c.hw_type = 44;
+    c.firmware_version = 0x00020008;
+    c.velocity_per_count_s = 134'218.0 / 20'000.0;
+    c.acceleration_per_count_s2 = 13.7439 / 20'000.0;
+    c.jerk_per_count_s3 = 92.2337 / 20'000.0;
+    c.later_only = true;
+    c.rich_fault_reports = true;
+    return c;
+}
+
 // ---- Solenoid, piezo and strain-gauge units ----
 // Their message sets are takes lists of messages.def (its last column: the manual's cross-reference
 // tables, p. 132-138, without the generic messages, with the choices of docs/protocol/errata.md; the
@@ -199,8 +264,8 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     return c;
 }
 
-constexpr std::array<ControllerModel, 14> kControllers{
-    tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(),
+constexpr std::array<ControllerModel, 18> kControllers{
+    tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(), k10cr1(), lts("LTS150"), lts("LTS300"), kbd101(),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
     later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), listed<kKscLater>()),
     later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), listed<kTCubeLater>()),
@@ -215,15 +280,6 @@ constexpr std::array<ControllerModel, 14> kControllers{
 
 // ---- The later generation ("issue-44.1"; docs/protocol/apt.md, "Firmware generations") ----
 
-// The Trinamic-driven steppers (KST101, BSC20x; also TST101, K10CR1, LTS in pyLabLib's list):
-// 2048 microsteps per full step where the manual's (TST001, BSC10x) count 128, velocity
-// 53.68 APT units per microstep/s and acceleration 53.68 × 204.94e-6 per microstep/s²
-// (AlexShkarin/pyLabLib, pylablib/devices/Thorlabs/kinesis.py, KinesisMotor._calculate_scale
-// and _get_step_scale). The DC servo cubes keep T = 2048 / 6e6 s and the brushless racks
-// 102.4 µs there: the manual's figures.
-constexpr double kTrinamicVelocity = 53.68;
-constexpr double kTrinamicAcceleration = 53.68 * 204.94e-6;
-constexpr double kTrinamicMicrosteps = 2048.0 / 128.0;
 
 constexpr bool trinamic_stepper(std::string_view name)
 {
@@ -272,9 +328,19 @@ constexpr std::pair<std::string_view, std::uint16_t> kDcStageTypes[]{
 
 const ControllerModel* find_controller(std::string_view name, Firmware firmware)
 {
-    const auto& table = firmware == Firmware::Issue3 ? kControllers : kLaterControllers;
-    for (const auto& c : table)
+    for (const auto& c : kLaterControllers)
+        if (c.name == name && (c.later_only || firmware != Firmware::Issue3))
+            return &c;
+    for (const auto& c : kControllers)
         if (c.name == name)
+            return &c;
+    return nullptr;
+}
+
+const ControllerModel* built_into(std::string_view stage)
+{
+    for (const auto& c : kLaterControllers)
+        if (!c.built_in_stage.empty() && c.built_in_stage == stage)
             return &c;
     return nullptr;
 }
@@ -295,8 +361,8 @@ std::uint16_t dc_stage_type(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, "
-           "KSG101";
+    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, TSC001, KSC101, TPZ001, "
+           "KPZ101, BPC301, BPC303, TSG001, KSG101";
 }
 
 } // namespace rigsim::apt

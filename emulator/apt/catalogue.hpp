@@ -81,6 +81,14 @@ struct ControllerModel {
     /// Faults go out as HW_RICHRESPONSE (K-Cubes, Thorlabs' later units) rather than the
     /// manual's HW_RESPONSE (p. 19).
     bool rich_fault_reports = false;
+    /// An integrated unit (K10CR1, LTS150, LTS300): the shipped stage it is built on, which its
+    /// "apt" object does not name and no other controller drives. Empty: the rig names the stage.
+    std::string_view built_in_stage;
+    /// Made after the 2012 manual: the unit exists in the later firmware generation only (its
+    /// default; a rig's "issue-3" is refused, find_controller gives the later entry).
+    bool later_only = false;
+    /// HW_GET_INFO hardware version (the later issue's field at data offset 78).
+    std::uint16_t hardware_version = 1;
 };
 
 /// What a stage's carriage does: move along a line (unit mm), turn without end (unit degree), or
@@ -140,5 +148,7 @@ StageModel driven_stage(const ControllerModel& controller, StageModel stage);
 std::uint16_t dc_stage_type(std::string_view name);
 /// Names for error messages ("TDC001, KDC101").
 std::string_view controller_names();
+/// The integrated unit whose built-in stage the shipped stage `stage` is, or nullptr.
+const ControllerModel* built_into(std::string_view stage);
 
 } // namespace rigsim::apt

@@ -37,6 +37,8 @@ std::vector<std::string_view> keys_of(const ControllerModel& c)
 {
     switch (c.kind) {
     case UnitKind::Motor:
+        if (!c.built_in_stage.empty())   // an integrated unit: its stage is built in
+            return {"serial_number"};
         return {"stage", "bays", "serial_number"};
     case UnitKind::Solenoid:
         return {"solenoid", "serial_number"};
@@ -55,6 +57,8 @@ std::string_view kind_noun(const ControllerModel& c)
 {
     switch (c.kind) {
     case UnitKind::Motor:
+        if (!c.built_in_stage.empty())
+            return "an integrated stage";
         return c.rack ? "a motor rack" : "a motor controller";
     case UnitKind::Solenoid:
         return "a solenoid controller";
@@ -201,6 +205,9 @@ StageModel load_stage(const ConfigReader& r, const json& v, const std::string& p
         if (!found)
             r.fail(pointer, "unknown stage " + quote(name) + " (expected one of " + stage_names()
                                 + ", or a stage object)");
+        if (const auto* owner = built_into(name); owner && owner->name != model)
+            r.fail(pointer, "stage " + quote(name) + " is the stage built into the " + std::string(owner->name)
+                                + ", which no other controller drives");
         if (found->motor != controller.motor)
             r.fail(pointer, "stage " + quote(name) + " has another kind of motor than a " + model);
         return *found;
@@ -227,6 +234,14 @@ StageModel load_stage(const ConfigReader& r, const json& v, const std::string& p
 void load_motor(const ConfigReader& r, const json& a, const std::string& apt_pointer, const ControllerModel& controller,
                 const std::string& model, AptConfig& apt)
 {
+    if (!controller.built_in_stage.empty()) {
+        const auto* stage = find_stage(controller.built_in_stage);
+        if (!stage)
+            throw ConfigError("config/stages/" + std::string(controller.built_in_stage) + ".json: the stage built into the "
+                              + model + " is not shipped");
+        apt.stage = *stage;
+        return;
+    }
     if (const auto* st = r.find(a, "stage"))
         apt.stage = load_stage(r, *st, pointer_to(apt_pointer, "stage"), controller, model);
     if (controller.rack) {
@@ -381,12 +396,17 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
         reader.fail(pointer_to(pointer, "model"), "expected an APT controller model (" +
                                                       std::string(controller_names()) + "), got " +
                                                       (named ? quote(config.model) : std::string("nothing")));
+    // A unit made after the 2012 manual has the later generation only (its default).
     if (config.firmware.empty())
-        config.firmware = firmware_name(Firmware::Issue3);
+        config.firmware = firmware_name(controller->later_only ? Firmware::Issue44_1 : Firmware::Issue3);
     const auto firmware = find_firmware(config.firmware);
     if (!firmware)
         reader.fail(pointer_to(pointer, "firmware"), "unknown APT firmware generation " + quote(config.firmware) +
                                                          " (expected " + std::string(firmware_names()) + ")");
+    if (controller->later_only && *firmware == Firmware::Issue3)
+        reader.fail(pointer_to(pointer, "firmware"),
+                    "the " + config.model + " was made after the 2012 manual: it has the later generation only (expected "
+                        + quote(std::string(firmware_name(Firmware::Issue44_1))) + ")");
     // The "apt" object is checked against the controller as its generation shapes it (the
     // scaling of the power-up velocities).
     const auto& a = reader.require(device, pointer, "apt");

@@ -47,6 +47,13 @@ unsigned blocks_of(std::string_view model)
         return kPower | kTrigger | kKstLoop | kActuator;
     if (model == "BBD203")
         return kTrigger;
+    // Issue 37 p. 22, "KBD101 only": the three K-Cube blocks; TRIGGER is the racks' and TBD001's.
+    if (model == "KBD101")
+        return kMmi | kTrigIo | kPosTrig;
+    // Issue 37 p. 15, "Messages applicable to K10CR1 only": TRIGGER; POWERPARAMS as the other
+    // Trinamic steppers (Kinesis' defaults give the K10CR1 a MoveFactor and a RestFactor).
+    if (model == "K10CR1")
+        return kPower | kTrigger;
     // The KSC101's display block and TRIG1/TRIG2 ports (MSLNZ/msl-equipment thorlabs/ksc.py;
     // its solenoid module holds a KCubeParams: docs/protocol/apt.md "K-Cube units").
     if (model == "KSC101")

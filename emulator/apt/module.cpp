@@ -48,15 +48,15 @@ msg::HwGetInfo hw_get_info(const UnitIdentity& unit, std::optional<std::size_t> 
         // The later issue's layout of the manual's 64 bytes of notes (data 18..81): notes
         // char[48], 12 bytes whose last word is the stage type (data 76), the hardware version
         // (78) and the modification state (80) (yaq-project/thorlabs-apt-protocol parsing.py,
-        // pyLabLib kinesis.py get_device_info). Hardware version 1, state 0: the values the
-        // manual's own example (p. 22) carries there.
+        // pyLabLib kinesis.py get_device_info). Hardware version 1 (3 for the units that report
+        // it, catalogue.cpp), state 0: the values the manual's own example (p. 22) carries there.
         constexpr std::size_t kNotesAt = 18;
         const auto put = [&info](std::size_t data_offset, std::uint16_t v) {
             info.notes[data_offset - kNotesAt] = static_cast<char>(v & 0xff);
             info.notes[data_offset - kNotesAt + 1] = static_cast<char>(v >> 8);
         };
         put(76, card ? std::uint16_t{0} : unit.stage_type);
-        put(78, 1);
+        put(78, model.hardware_version);
         put(80, 0);
     }
     return info;

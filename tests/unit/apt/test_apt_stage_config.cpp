@@ -208,7 +208,7 @@ TEST_CASE("apt stage: units, ranges, switches and the controller's APT units", "
 
     CHECK(error_of(rig_of("TST001", {{"stage", 42}}))
           == "rig.json: /devices/0/apt/stage: expected the name of a shipped stage or a stage object, got 42");
-    CHECK(error_of(rig_of("TST001", {{"stage", "MTS99"}})).find("(expected one of DDSM100, DRV001,") != std::string::npos);
+    CHECK(error_of(rig_of("TST001", {{"stage", "MTS99"}})).find("(expected one of DDS100, DDS220,") != std::string::npos);
 }
 
 } // namespace test_apt_stage_config

@@ -420,11 +420,11 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     rig["devices"][0]["protocol"] = "apt";
     CHECK(error_of(rig) == "rig.json: /devices/0/mcs: an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
     rig["devices"][0].erase("mcs");
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BSC203, BBD203, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101), got nothing");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101), got nothing");
     rig["devices"][0]["model"] = "TDC001";
     CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
     rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
-    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of DDSM100, DRV001, DRV014, MLS203-X, MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B, or a stage object)");
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of DDS100, DDS220, DDS300, DDS600, DDSM100, DRV001, DRV014, K10CR1, LTS150, LTS300, MLS203-X, MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B, or a stage object)");
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 27000001}};
     CHECK(error_of(rig).find("/devices/0/apt/serial_number: expected an integer 83000000..83999999") != std::string::npos);
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 83123456}};

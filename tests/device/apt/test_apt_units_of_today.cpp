@@ -1,0 +1,246 @@
+// The units made after the 2012 manual (docs/protocol/apt.md "Units of today"): the K10CR1 cage
+// rotator and the LTS150/LTS300 long-travel stages (integrated Trinamic steppers: their stage is
+// built in), the KBD101 K-Cube brushless with the DDS stages. Bytes in -> bytes out on the
+// stepped clock, each unit loaded from its rig JSON as a rig names it.
+#include "apt_harness.hpp"
+
+#include "emulator/core/config_reader.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace test_apt_units_of_today {
+
+using namespace rigsim;
+using namespace rigsim::apt;
+using namespace rigsim::test;
+using nlohmann::json;
+
+namespace {
+
+/// The device of `device` (a rig's devices[0]) as the rig loader reads it.
+DeviceConfig loaded(const json& device)
+{
+    DeviceConfig c;
+    c.name = device.at("name").get<std::string>();
+    c.protocol = "apt";
+    c.model = device.at("model").get<std::string>();
+    if (device.contains("firmware"))
+        c.firmware = device.at("firmware").get<std::string>();
+    load_device_section(ConfigReader("rig.json"), device, "/devices/0", c);
+    return c;
+}
+
+/// The rig loader's message for `device`, or "" when it takes it.
+std::string load_error(const json& device)
+{
+    try {
+        loaded(device);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
+json unit(const char* model, json apt = json::object())
+{
+    return json{{"name", "unit"}, {"protocol", "apt"}, {"model", model}, {"apt", std::move(apt)}};
+}
+
+/// The 16-bit word at data offset `offset` of a HW_GET_INFO reply (hex).
+std::uint16_t info_word(const std::string& reply_hex, std::size_t offset)
+{
+    const auto b = bytes(reply_hex);
+    REQUIRE(b.size() == 90);
+    return get_u16(b, 6 + offset);
+}
+
+std::uint32_t info_dword(const std::string& reply_hex, std::size_t offset)
+{
+    const auto b = bytes(reply_hex);
+    REQUIRE(b.size() == 90);
+    return get_u32(b, 6 + offset);
+}
+
+/// VELPARAMS of channel 1 as GET_VELPARAMS carries them: min, acceleration, max.
+std::string vel_params(std::int32_t acceleration, std::int32_t max)
+{
+    return "01 00 " + le32(0) + " " + le32(acceleration) + " " + le32(max);
+}
+
+std::string move_absolute(std::int32_t counts)
+{
+    return "53 04 06 00 D0 01 01 00 " + le32(counts);
+}
+
+/// The clock ms from now until the unit sends something, at most `limit` (-1: nothing).
+int ms_until_reply(AptHarness& h, std::string& reply, int limit)
+{
+    for (int ms = 1; ms <= limit; ++ms) {
+        h.advance_ms(1);
+        reply = h.take();
+        if (!reply.empty())
+            return ms;
+    }
+    return -1;
+}
+
+// K10CR1: 136,533.33 microsteps per degree, 53.68 per microstep/s, 1/90.9 per microstep/s²
+// (issue 37 p. 41: 7,329,109 per deg/s, 1,502 per deg/s²).
+constexpr double kK10PerDeg = 409'600.0 / 3.0;
+
+std::int32_t k10_counts(double deg)
+{
+    return static_cast<std::int32_t>(std::lround(deg * kK10PerDeg));
+}
+
+} // namespace
+
+TEST_CASE("K10CR1: identity, the later generation by default, the power-up parameters the official software "
+          "leaves",
+          "[device][apt][today]")
+{
+    const auto c = loaded(unit("K10CR1", {{"serial_number", 55'000'123}}));
+    CHECK(c.firmware == "issue-44.1");
+    CHECK(config_of(c).stage.name == "K10CR1");
+    AptHarness h(c);
+    const auto info = h.send("05 00 00 00 50 01");
+    CHECK(info.substr(0, 17) == "06 00 54 00 81 50");
+    CHECK(info_dword(info, 0) == 55'000'123);
+    CHECK(info.substr(30, 23) == "4B 31 30 43 52 31 00 00");   // "K10CR1"
+    CHECK(info_word(info, 78) == 3);   // hardware version 3 (Kinesis' hardware revision)
+    // PnPQ's observed values: VELPARAMS acceleration 15020 (10 deg/s²); max 10 deg/s by issue 37's
+    // factor; HOMEPARAMS reverse, the reverse (home) switch, 4 deg back off = 546133.
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(15'020, 73'291'093));
+    CHECK(h.send("41 04 01 00 50 01") == "42 04 0E 00 81 50 01 00 02 00 01 00 " + le32(73'291'093) + " "
+                                             + le32(546'133));
+    // TRIGGER is its own (issue 37 p. 15); the K-Cube display block is not.
+    CHECK(h.send("00 05 01 05 50 01") == "");
+    CHECK(h.send("01 05 01 00 50 01") == "02 05 01 05 01 50");
+    CHECK(h.send("21 05 01 00 50 01") == "");
+}
+
+TEST_CASE("K10CR1: a 90 degree move takes the trapezoid of its power-up VELPARAMS, and it turns past 360 degrees "
+          "without end",
+          "[device][apt][today]")
+{
+    AptHarness h(loaded(unit("K10CR1")));
+    // 10 deg/s, 10 deg/s²: 1 s up (5 deg), 8 s at speed, 1 s down: 10 s.
+    CHECK(h.send(move_absolute(k10_counts(90))) == "");
+    std::string done;
+    const int ms = ms_until_reply(h, done, 12'000);
+    CHECK(ms >= 9'990);
+    CHECK(ms <= 10'010);
+    REQUIRE(frames(done).size() == 1);
+    CHECK(done.substr(0, 17) == "64 04 0E 00 81 50");   // MOVE_COMPLETED with its status
+    CHECK(position_of(done) == k10_counts(90));
+    // Two turns and a quarter: the counter keeps counting (QMI k10crx.py: it overflows after 43 turns).
+    CHECK(h.send(move_absolute(k10_counts(810))) == "");
+    h.advance_ms(80'000);
+    CHECK(position_of(h.take()) == k10_counts(810));
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == k10_counts(810));
+}
+
+TEST_CASE("K10CR1: MOVE_HOME turns in reverse to the home switch, backs off 4 degrees and counts from there",
+          "[device][apt][today]")
+{
+    AptHarness h(loaded(unit("K10CR1")));
+    CHECK(h.send(move_absolute(k10_counts(30))) == "");
+    h.advance_ms(5'000);
+    h.take();
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    h.advance_ms(500);
+    CHECK((h.device().channel().status_bits() & status::kHoming) != 0);
+    h.advance_ms(40'000);   // it stood half a turn from the switch at power-up (motor_channel.cpp): 210 deg at 10 deg/s
+    CHECK(h.take() == "44 04 01 00 01 50");   // MOVE_HOMED
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+    CHECK((h.device().channel().status_bits() & status::kHomed) != 0);
+}
+
+TEST_CASE("LTS150 and LTS300: 409,600 microsteps per mm, homing to the reverse switch, the forward limit switch at "
+          "the end of the travel",
+          "[device][apt][today]")
+{
+    for (const auto& [model, travel] : {std::pair{"LTS150", 150}, std::pair{"LTS300", 300}}) {
+        INFO(model);
+        AptHarness h(loaded(unit(model)));
+        const auto info = h.send("05 00 00 00 50 01");
+        CHECK(info_dword(info, 0) == 45'000'001);
+        CHECK(info_word(info, 78) == 3);
+        // Issue 37 p. 41: 21,987,328 per mm/s, 4,506 per mm/s²; 20 mm/s and 20 mm/s² at power-up.
+        CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(90'122, 439'746'560));
+        // It stands mid-travel at power-up, counting from 0 there (motor_channel.cpp).
+        CHECK(h.send("57 04 01 01 50 01") == "");   // MOVE_VELOCITY forward, to the end
+        h.advance_ms(travel * 1'000 / 40 + 2'000);
+        const auto out = frames(h.take());
+        REQUIRE(out.size() == 1);
+        CHECK(out[0].substr(0, 17) == "64 04 0E 00 81 50");   // MOVE_COMPLETED on the switch
+        CHECK((status_of(out[0]) & status::kForwardHardLimit) != 0);
+        const auto at = position_of(out[0]);
+        CHECK(at <= travel / 2 * 409'600);
+        CHECK(at >= travel / 2 * 409'600 - 409'600);
+        CHECK(h.send("43 04 01 00 50 01") == "");
+        h.advance_ms(travel * 1'000 / 2 + 5'000);   // back at 2 mm/s
+        CHECK(h.take() == "44 04 01 00 01 50");
+        CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+    }
+}
+
+TEST_CASE("KBD101: identity, brushless scaling on the DDS stages, the K-Cube blocks its issue lists",
+          "[device][apt][today]")
+{
+    const auto c = loaded(unit("KBD101", {{"stage", "DDS100"}}));
+    AptHarness h(c);
+    const auto info = h.send("05 00 00 00 50 01");
+    CHECK(info_dword(info, 0) == 28'000'001);
+    CHECK(info_word(info, 12) == 44);                 // type: brushless DC controller (issue 37 p. 53)
+    CHECK(info_dword(info, 14) == 0x0002'0008);       // firmware 2.0.8 (amsikking/thorlabs_DDS100)
+    // DDS100: 2,000 counts per mm; 500 mm/s and 5,000 mm/s² in 13,421.8 per mm/s and 1.37439 per mm/s².
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(6'872, 6'710'900));
+    // 10 mm at 500 mm/s, 5000 mm/s²: 0.1 s up, 0.1 s down cover 50 mm: a triangle of 2 × sqrt(10/5000) s.
+    CHECK(h.send(move_absolute(20'000)) == "");
+    std::string done;
+    const int ms = ms_until_reply(h, done, 2'000);
+    CHECK(ms >= 85);
+    CHECK(ms <= 95);
+    CHECK(position_of(done) == 20'000);
+    // Thorlabs' own KBD101 trigger example: TRIG1 a relative-move input, TRIG2 an in-motion output.
+    CHECK(h.send("23 05 16 00 D0 01 01 00 02 00 01 00 0B 00 01 00 00 00 00 00 00 00 00 00 00 00 00 00") == "");
+    CHECK(h.send("24 05 01 00 50 01") == "25 05 16 00 81 50 01 00 02 00 01 00 0B 00 01 00 00 00 00 00 00 00 00 00 00 00 "
+                                         "00 00");
+    CHECK(h.send("27 05 01 00 50 01").substr(0, 17) == "28 05 2E 00 81 50");   // POSTRIGPARAMS
+    CHECK(h.send("01 05 01 00 50 01") == "");   // TRIGGER: the racks' (issue 37 p. 22), ignored
+
+    for (const auto& [stage, per_mm, travel] :
+         {std::tuple{"DDS220", 20'000, 220}, std::tuple{"DDS300", 20'000, 300}, std::tuple{"DDS600", 20'000, 600}}) {
+        INFO(stage);
+        const auto s = config_of(loaded(unit("KBD101", {{"stage", stage}}))).stage;
+        CHECK(s.counts_per_mm == per_mm);
+        CHECK(s.travel_mm == travel);
+    }
+}
+
+TEST_CASE("rig loader: the integrated units name no stage, have the later generation only, and keep their stages "
+          "to themselves",
+          "[device][apt][today][config]")
+{
+    CHECK(load_error(unit("K10CR1", {{"stage", "PRM1-Z8"}}))
+          == "rig.json: /devices/0/apt/stage: K10CR1 is an integrated stage: its keys are serial_number");
+    auto issue3 = unit("LTS150");
+    issue3["firmware"] = "issue-3";
+    CHECK(load_error(issue3) == "rig.json: /devices/0/firmware: the LTS150 was made after the 2012 manual: it has the "
+                                "later generation only (expected \"issue-44.1\")");
+    CHECK(load_error(unit("KST101", {{"stage", "K10CR1"}}))
+          == "rig.json: /devices/0/apt/stage: stage \"K10CR1\" is the stage built into the K10CR1, which no other "
+             "controller drives");
+    CHECK(load_error(unit("KBD101")) == "rig.json: /devices/0/apt/stage: required key missing (the default MTS50-Z8 is "
+                                        "not a stage for a KBD101)");
+    CHECK(load_error(unit("KBD101", {{"stage", "ZST225B"}})).find("has another kind of motor than a KBD101")
+          != std::string::npos);
+    CHECK(load_error(unit("K10CR1", {{"serial_number", 27'000'001}})).find("(the model's serial prefix)")
+          != std::string::npos);
+}
+
+} // namespace test_apt_units_of_today

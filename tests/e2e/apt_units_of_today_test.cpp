@@ -1,0 +1,75 @@
+// The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
+// today"): a K10CR1, an LTS150 and a KBD101 with a DDS100, each asked who it is over its pty and
+// moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
+#include "apt_support.hpp"
+#include "control_support.hpp"
+#include "e2e_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace apt_units_of_today_test {
+
+using namespace rigsim::e2e;
+using namespace std::chrono_literals;
+
+namespace {
+
+constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
+  {"name": "k10cr1", "protocol": "apt", "model": "K10CR1", "tcp_port": 0, "apt": {}},
+  {"name": "lts150", "protocol": "apt", "model": "LTS150", "tcp_port": 0, "apt": {"serial_number": 45000777}},
+  {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}}]})";
+
+void step(LineClient& api, int ms)
+{
+    REQUIRE(http(api, "POST", "/api/clock", "{\"step_ms\": " + std::to_string(ms) + "}").status == 200);
+}
+
+struct Unit {
+    const char* name;
+    const char* model;
+    std::uint32_t serial;
+    std::int32_t target;   ///< MOVE_ABSOLUTE counts
+    int moving_ms;         ///< the move's duration at the power-up VELPARAMS
+};
+
+} // namespace
+
+TEST_CASE("apt units of today: K10CR1, LTS150 and KBD101 tell who they are over the pty and move over TCP on the "
+          "daemon's clock",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    CHECK(http(api, "GET", "/api/devices/k10cr1").body.find("\"firmware\":\"issue-44.1\"") != std::string::npos);
+    // K10CR1: 90° at 10 °/s and 10 °/s² (10 s); LTS150: 10 mm at 20 mm/s² peaking below 20 mm/s
+    // (2 × sqrt(10 / 20) = 1.414 s); KBD101 + DDS100: 10 mm at 5,000 mm/s² (2 × sqrt(10 / 5000) = 89 ms).
+    for (const auto& u : {Unit{"k10cr1", "K10CR1", 55'000'001, 12'288'000, 10'000},
+                          Unit{"lts150", "LTS150", 45'000'777, 4'096'000, 1'414},
+                          Unit{"kbd101", "KBD101", 28'000'001, 20'000, 89}}) {
+        INFO(u.name);
+        PtyClient pty(daemon.endpoint(u.name).pty);
+        pty.send(header(0x0005, 0, 0));
+        const auto info = wait_for(pty.fd(), 0x0006);
+        REQUIRE(info);
+        REQUIRE(info->data.size() == 84);
+        CHECK(static_cast<std::uint32_t>(get32(info->data, 0)) == u.serial);
+        CHECK(info->data.substr(4, std::string(u.model).size()) == u.model);
+
+        TcpClient tcp(daemon.endpoint(u.name));
+        tcp.send(with_data(0x0453, std::string("\x01\x00", 2) + le32(u.target)));
+        tcp.send(header(0x0411, 1, 0));   // answered once the move has been taken
+        REQUIRE(wait_for(tcp.fd(), 0x0412));
+        step(api, u.moving_ms - 5);
+        CHECK_FALSE(read_frame(tcp.fd(), 300ms));   // still moving
+        step(api, 10);
+        const auto done = wait_for(tcp.fd(), 0x0464, 5000ms);
+        REQUIRE(done);
+        REQUIRE(done->data.size() == 14);
+        CHECK(get32(done->data, 2) == u.target);
+    }
+}
+
+} // namespace apt_units_of_today_test
