@@ -200,6 +200,19 @@ inline std::int32_t position_of(const std::string& reply_hex)
     return get_i32(b, 8);
 }
 
+/// The clock ms from now until the unit sends something (a MOVE_COMPLETED), at most `limit`
+/// (-1: nothing came).
+inline int ms_until_reply(AptHarness& h, std::string& reply, int limit)
+{
+    for (int ms = 1; ms <= limit; ++ms) {
+        h.advance_ms(1);
+        reply = h.take();
+        if (!reply.empty())
+            return ms;
+    }
+    return -1;
+}
+
 /// The frames of a reply stream (hex in, hex per frame out), split by their headers.
 inline std::vector<std::string> frames(const std::string& reply_hex)
 {

@@ -46,18 +46,6 @@ std::string move_relative(std::int32_t counts)
     return "48 04 06 00 D0 01 01 00 " + le32(counts);
 }
 
-/// The clock ms from now until the unit sends something (a MOVE_COMPLETED), at most `limit`.
-int ms_until_reply(AptHarness& h, std::string& reply, int limit)
-{
-    for (int ms = 1; ms <= limit; ++ms) {
-        h.advance_ms(1);
-        reply = h.take();
-        if (!reply.empty())
-            return ms;
-    }
-    return -1;
-}
-
 /// The 16-bit word at data offset `offset` of a HW_GET_INFO reply (hex).
 std::uint16_t info_word(const std::string& reply_hex, std::size_t offset)
 {

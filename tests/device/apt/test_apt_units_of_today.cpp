@@ -75,18 +75,6 @@ std::string move_absolute(std::int32_t counts)
     return "53 04 06 00 D0 01 01 00 " + le32(counts);
 }
 
-/// The clock ms from now until the unit sends something, at most `limit` (-1: nothing).
-int ms_until_reply(AptHarness& h, std::string& reply, int limit)
-{
-    for (int ms = 1; ms <= limit; ++ms) {
-        h.advance_ms(1);
-        reply = h.take();
-        if (!reply.empty())
-            return ms;
-    }
-    return -1;
-}
-
 // K10CR1: 136,533.33 microsteps per degree, 53.68 per microstep/s, 1/90.9 per microstep/s²
 // (issue 37 p. 41: 7,329,109 per deg/s, 1,502 per deg/s²).
 constexpr double kK10PerDeg = 409'600.0 / 3.0;
