@@ -21,6 +21,8 @@ std::string_view body_kind_name(BodyKind kind)
         return "gripper";
     case BodyKind::Solenoid:
         return "solenoid";
+    case BodyKind::Flipper:
+        return "flipper";
     case BodyKind::StrainGauge:
         return "strain_gauge";
     case BodyKind::Watch:
@@ -40,6 +42,7 @@ Travel travel_of(BodyKind kind)
         return Travel::Angle;
     case BodyKind::Gripper:
     case BodyKind::Solenoid:
+    case BodyKind::Flipper:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:
         return Travel::None;

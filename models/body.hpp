@@ -30,6 +30,7 @@ enum class BodyKind {
     PiezoActuator,   ///< a piezo stack that extends along a line (m); it pushes on: no obstacle stops it
     Gripper,         ///< jaws on a drive voltage closing on an object: no travel of its own (voltage, force)
     Solenoid,        ///< an output that opens and closes: no travel
+    Flipper,         ///< a flip mount's arm between two positions: no travel of its own
     StrainGauge,     ///< a sensor: no travel
     Watch,           ///< not a part: a watch over others (collisions)
 };

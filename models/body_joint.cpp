@@ -37,6 +37,7 @@ bool body_suits(BodyKind kind, JointType type)
         return type == JointType::Goniometer || type == JointType::Revolute;
     case BodyKind::Gripper:
     case BodyKind::Solenoid:
+    case BodyKind::Flipper:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:
         break;

@@ -36,6 +36,8 @@ const char* unit_name(UnitKind kind)
         return "piezo";
     case UnitKind::StrainGauge:
         return "strain_gauge";
+    case UnitKind::Flipper:
+        return "flipper";
     }
     return "motor";
 }
@@ -156,7 +158,9 @@ Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
             out = piezo->actuator().key();
             return std::nullopt;
         }
-        const char* what = model_.kind == UnitKind::Solenoid ? "a solenoid controller" : "a strain gauge reader";
+        const char* what = model_.kind == UnitKind::Solenoid  ? "a solenoid controller"
+                           : model_.kind == UnitKind::Flipper ? "a flip mount"
+                                                              : "a strain gauge reader";
         return bad("channel " + std::to_string(index) + " of the " + config_.model + " (" + what + ") moves nothing");
     }
     // The axis is the world's; its carriage, not the counters (lost steps do not move it).

@@ -4,6 +4,7 @@
 #include "emulator/core/state_store.hpp"
 
 #include "emulator/apt/brushless_module.hpp"
+#include "emulator/apt/flipper_module.hpp"
 #include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
@@ -166,6 +167,15 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
         return make_piezo_module(bay, std::move(save));
     case UnitKind::StrainGauge:
         return make_strain_gauge_module(unit_, address_of(bay), config_, world_, *log_, std::move(save));
+    case UnitKind::Flipper: {
+        // The arm is a body of the world ("<device>/1"); a power cycle keeps it where it is.
+        const auto key = config_.name + "/" + std::to_string(bay + 1);
+        const int position = config_of(config_).flipper.position;
+        auto* arm = world_.find_as<models::Flipper>(key);
+        if (!arm)
+            arm = &world_.emplace<models::Flipper>(key, position);
+        return std::make_unique<FlipperModule>(unit_, bay, address_of(bay), *arm, position, clock_, *log_, save);
+    }
     }
     throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");
 }

@@ -205,6 +205,20 @@ constexpr ControllerModel unit_cube(std::string_view name, std::uint32_t serial_
     return c;
 }
 
+// MFF101/MFF102 motorised flip mounts (issue 28): prefix 37 (issue 37 p. 32, "MFF10X"); the unit
+// reports its model as "MFF002" (amsikking/thorlabs_MFF101 asserts it of an MFF101; no reading of
+// an MFF102, whose controller is the same: the same name) and firmware 1.0.3 (that driver asserts
+// 65539). HW_GET_INFO type not published: 31 as the other cubes. Its messages: list kMff.
+constexpr ControllerModel mff(std::string_view name)
+{
+    auto c = unit_cube(name, 37, UnitKind::Flipper, listed<kMff>(), "MFF Filter Flipper");
+    c.reported_name = "MFF002";
+    c.later_only = true;
+    c.ack_id = MGMSG_MOT_ACK_DCSTATUSUPDATE;
+    c.mmi_wheel = false;
+    return c;
+}
+
 // Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
 constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
@@ -264,8 +278,9 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     return c;
 }
 
-constexpr std::array<ControllerModel, 18> kControllers{
+constexpr std::array<ControllerModel, 20> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(), k10cr1(), lts("LTS150"), lts("LTS300"), kbd101(),
+    mff("MFF101"), mff("MFF102"),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
     later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), listed<kKscLater>()),
     later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), listed<kTCubeLater>()),
@@ -361,8 +376,8 @@ std::uint16_t dc_stage_type(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, TSC001, KSC101, TPZ001, "
-           "KPZ101, BPC301, BPC303, TSG001, KSG101";
+    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, TSC001, "
+           "KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
 }
 
 } // namespace rigsim::apt

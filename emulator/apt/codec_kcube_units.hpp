@@ -1,5 +1,6 @@
 #pragma once
-// The K-Cube piezo driver's and strain gauge reader's own messages (KPZ101, KSG101), which later
+// The K-Cube piezo driver's and strain gauge reader's own messages (KPZ101, KSG101), and the MFF101/
+// MFF102 flipper's (issue 28), which later
 // issues of the APT protocol add and the 2012 manual lacks, typed as codec.hpp types the
 // manual's: one parameter block per SET/REQ/GET trio, with the field names of the public sources
 // (messages.def and docs/protocol/apt.md "K-Cube units" name them), and the header-only
@@ -109,11 +110,45 @@ using SetKsgTrigIoConfig = Set<KsgTrigIoConfig>;
 using ReqKsgTrigIoConfig = Req<KsgTrigIoConfig>;
 using GetKsgTrigIoConfig = Get<KsgTrigIoConfig>;
 
-/// The K-Cube piezo driver's and strain gauge reader's own messages (later protocol issues).
+/// MGMSG_MOT_SET/REQ/GET_MFF_OPERPARAMS (issue 37 p. 182-185, 34 bytes): the MFF101/MFF102 flipper's
+/// transit time and its two digital I/O ports.
+struct MffOperParams {
+    static constexpr std::uint16_t set_id = MGMSG_MOT_SET_MFF_OPERPARAMS;
+    static constexpr std::uint16_t req_id = MGMSG_MOT_REQ_MFF_OPERPARAMS;
+    static constexpr std::uint16_t get_id = MGMSG_MOT_GET_MFF_OPERPARAMS;
+    static constexpr Family family = Family::Flipper;
+    std::uint16_t chan_ident = 1;
+    std::int32_t transit_time = 500;        ///< ms from one position to the other, 300..2800
+    std::int32_t transit_time_adc = 508;    ///< 10,000,000 × TransitTime^-1.591, as the client computes it
+    std::uint16_t dig_io1_oper_mode = 1;    ///< 1 input: toggle, 2 input: go to position, 3 output: at position, 4 output: moving
+    std::uint16_t dig_io1_sig_mode = 1;     ///< 0x01 button, 0x02 logic edge, 0x04 swap (OR), 0x10 level out, 0x20 pulse out, 0x40 invert (OR)
+    std::int32_t dig_io1_pulse_width = 200; ///< ms, 10..200
+    std::uint16_t dig_io2_oper_mode = 1;
+    std::uint16_t dig_io2_sig_mode = 1;
+    std::int32_t dig_io2_pulse_width = 200;
+    std::int32_t not_used1 = 0;
+    std::uint32_t not_used2 = 0;
+    RIGSIM_APT_FIELDS(s.chan_ident, s.transit_time, s.transit_time_adc, s.dig_io1_oper_mode, s.dig_io1_sig_mode,
+                      s.dig_io1_pulse_width, s.dig_io2_oper_mode, s.dig_io2_sig_mode, s.dig_io2_pulse_width,
+                      s.not_used1, s.not_used2);
+    // Issue 37 p. 183-184 and Kinesis' FilterFlipper.h: transit 300..2800 ms, pulses 10..200 ms,
+    // operating modes 1..4.
+    RIGSIM_APT_RANGES({"TransitTime", s.transit_time, 300, 2800}, {"DigIO1OperMode", s.dig_io1_oper_mode, 1, 4},
+                      {"DigIO1PulseWidth", s.dig_io1_pulse_width, 10, 200}, {"DigIO2OperMode", s.dig_io2_oper_mode, 1, 4},
+                      {"DigIO2PulseWidth", s.dig_io2_pulse_width, 10, 200});
+};
+
+using SetMffOperParams = Set<MffOperParams>;
+using ReqMffOperParams = Req<MffOperParams>;
+using GetMffOperParams = Get<MffOperParams>;
+
+/// The K-Cube piezo driver's and strain gauge reader's own messages, and the flipper's (later
+/// protocol issues).
 struct KCubeUnitMessage
     : std::variant<SetKpzMmiParams, ReqKpzMmiParams, GetKpzMmiParams, SetKpzTrigIoConfig, ReqKpzTrigIoConfig,
                    GetKpzTrigIoConfig, SetKsgMmiParams, ReqKsgMmiParams, GetKsgMmiParams, SetKsgTrigIoConfig,
-                   ReqKsgTrigIoConfig, GetKsgTrigIoConfig, PzReqPzStatusUpdate> {
+                   ReqKsgTrigIoConfig, GetKsgTrigIoConfig, PzReqPzStatusUpdate, SetMffOperParams, ReqMffOperParams,
+                   GetMffOperParams> {
     using variant::variant;
 };
 

@@ -22,9 +22,10 @@ namespace {
 using nlohmann::json;
 
 /// Every key an "apt" object may hold; which ones a device has depends on its model's kind.
-constexpr std::array<std::string_view, 7> kAptKeys{"stage",    "bays",  "serial_number",         "solenoid",
-                                                    "actuator", "gauge", "hardware_max_voltage_v"};
+constexpr std::array<std::string_view, 8> kAptKeys{"stage",    "bays",  "serial_number",          "solenoid",
+                                                    "actuator", "gauge", "hardware_max_voltage_v", "flipper"};
 constexpr std::array<std::string_view, 1> kSolenoidKeys{"interlock_fitted"};
+constexpr std::array<std::string_view, 1> kFlipperKeys{"position"};
 constexpr std::array<std::string_view, 5> kActuatorKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
                                                         "creep"};
 constexpr std::array<std::string_view, 7> kBayKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
@@ -48,6 +49,8 @@ std::vector<std::string_view> keys_of(const ControllerModel& c)
         return {"actuator", "serial_number"};
     case UnitKind::StrainGauge:
         return {"gauge", "serial_number"};
+    case UnitKind::Flipper:
+        return {"flipper", "serial_number"};
     }
     return {};
 }
@@ -66,6 +69,8 @@ std::string_view kind_noun(const ControllerModel& c)
         return c.rack ? "a piezo rack" : "a piezo controller";
     case UnitKind::StrainGauge:
         return "a strain gauge reader";
+    case UnitKind::Flipper:
+        return "a flip mount";
     }
     return "";
 }
@@ -360,6 +365,10 @@ AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_
     case UnitKind::StrainGauge:
         if (const auto* g = k.find("gauge"))
             apt.gauge = load_gauge(r, *g, k.at("gauge"));
+        break;
+    case UnitKind::Flipper:
+        if (const auto* f = k.find("flipper"))
+            object_keys(r, *f, k.at("flipper"), kFlipperKeys).integer("position", apt.flipper.position, 1, 2);
         break;
     }
     if (const auto* sn = k.find("serial_number")) {

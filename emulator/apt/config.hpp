@@ -26,6 +26,11 @@ struct SolenoidConfig {
     bool interlock_fitted = true;
 };
 
+/// A flip mount's set-up (MFF101, MFF102: "flipper").
+struct FlipperConfig {
+    int position = 1;   ///< where the arm stands at power-up: 1 or 2
+};
+
 /// A piezo actuator (stack or stage) on a piezo output: a TPZ001/KPZ101's "actuator", or a
 /// BPC30x bay.
 struct PiezoActuatorConfig {
@@ -73,6 +78,7 @@ struct AptConfig {
     std::vector<StageModel> bays;     ///< motor racks: the stage in bay 0, 1, ...
     std::uint32_t serial_number = 0;  ///< 8 digits with the model's prefix; 0 = prefix × 10^6 + 1
     SolenoidConfig solenoid;          ///< solenoid controllers
+    FlipperConfig flipper;            ///< flip mounts
     PiezoActuatorConfig actuator;     ///< TPZ001, KPZ101
     StrainGaugeConfig gauge;          ///< TSG001, KSG101
     int hardware_max_voltage_v = 150; ///< BPC30x amplifier's maximum: 75, 100 or 150

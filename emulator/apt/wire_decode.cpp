@@ -236,6 +236,9 @@ LogContext log_context(const ControllerModel& model)
     case UnitKind::StrainGauge:
         c.unit = StatusTable::StrainGauge;
         break;
+    case UnitKind::Flipper:   // its positions in the limit bits (flipper_module.hpp): logged as a motor's
+        c.unit = StatusTable::Motor;
+        break;
     }
     return c;
 }

@@ -1,6 +1,6 @@
 // The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
-// today"): a K10CR1, an LTS150 and a KBD101 with a DDS100, each asked who it is over its pty and
-// moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
+// today"): a K10CR1, an LTS150, a KBD101 with a DDS100 and an MFF101, each asked who it is over its
+// pty and moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
 #include "apt_support.hpp"
 #include "control_support.hpp"
 #include "e2e_support.hpp"
@@ -20,7 +20,8 @@ namespace {
 constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "k10cr1", "protocol": "apt", "model": "K10CR1", "tcp_port": 0, "apt": {}},
   {"name": "lts150", "protocol": "apt", "model": "LTS150", "tcp_port": 0, "apt": {"serial_number": 45000777}},
-  {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}}]})";
+  {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}},
+  {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}}]})";
 
 void step(LineClient& api, int ms)
 {
@@ -70,6 +71,34 @@ TEST_CASE("apt units of today: K10CR1, LTS150 and KBD101 tell who they are over 
         REQUIRE(done->data.size() == 14);
         CHECK(get32(done->data, 2) == u.target);
     }
+}
+
+TEST_CASE("apt units of today: an MFF101 names itself MFF002 over the pty and flips over TCP in its transit time",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    PtyClient pty(daemon.endpoint("mff101").pty);
+    pty.send(header(0x0005, 0, 0));
+    const auto info = wait_for(pty.fd(), 0x0006);
+    REQUIRE(info);
+    CHECK(info->data.substr(4, 6) == "MFF002");
+    CHECK(get32(info->data, 0) == 37'000'001);
+
+    TcpClient tcp(daemon.endpoint("mff101"));
+    tcp.send(header(0x046A, 1, 2));   // MOVE_JOG to position 2
+    tcp.send(header(0x0429, 1, 0));   // REQ_STATUSBITS: on the way to 2
+    auto bits = wait_for(tcp.fd(), 0x042A);
+    REQUIRE(bits);
+    CHECK(get32(bits->data, 2) == 0x20);
+    step(api, 495);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    step(api, 10);   // 500 ms: issue 37's transit time
+    const auto done = wait_for(tcp.fd(), 0x0464, 5000ms);
+    REQUIRE(done);
+    REQUIRE(done->data.size() == 14);
+    CHECK(get32(done->data, 10) == 0x02);
+    CHECK(http(api, "GET", "/api/devices/mff101/channels/0").body.find("\"position\":2") != std::string::npos);
 }
 
 } // namespace apt_units_of_today_test

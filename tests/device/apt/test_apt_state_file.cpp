@@ -241,4 +241,30 @@ TEST_CASE("state file: PZ_SET_EEPROMPARAMS saves TPZ001 and TSG001 settings acro
     CHECK(f.log().find("skipped") == std::string::npos);
 }
 
+TEST_CASE("state file: an MFF101's saved MFF_OPERPARAMS are its transit time at the next power-up",
+          "[device][apt][eeprom][state][flipper]")
+{
+    // 1500 ms, I/O 1 an at-position output: saved by MOT_SET_EEPROMPARAMS, restored by a new unit.
+    const std::string block = "01 00 DC 05 00 00 57 00 00 00 03 00 10 00 64 00 00 00 01 00 01 00 C8 00 00 00 "
+                              "00 00 00 00 00 00 00 00";
+    DeviceConfig mff;
+    mff.name = "mff";
+    mff.protocol = "apt";
+    mff.model = "MFF101";
+    mff.firmware = "issue-44.1";
+    config_of(mff).firmware = Firmware::Issue44_1;
+    StateFileFixture f("{}");
+    {
+        AptHarness h(mff, &f.store());
+        CHECK(h.send("10 05 22 00 D0 01 " + block) == "");
+        CHECK(h.send("B9 04 04 00 D0 01 01 00 10 05") == "");
+        REQUIRE(f.store().get("mff", "bay0/0x0510"));
+    }
+    AptHarness again(mff, &f.store());
+    CHECK(again.send("11 05 01 00 50 01") == "12 05 22 00 81 50 " + block);
+    CHECK(again.send("6A 04 01 02 50 01") == "");
+    std::string done;
+    CHECK(ms_until_reply(again, done, 3'000) == 1'500);
+}
+
 } // namespace test_apt_state_file

@@ -231,4 +231,82 @@ TEST_CASE("rig loader: the integrated units name no stage, have the later genera
           != std::string::npos);
 }
 
+TEST_CASE("MFF101: names itself MFF002, flips to position 1 or 2 by MOVE_JOG in its transit time, reports "
+          "the position in its status bits",
+          "[device][apt][today][flipper]")
+{
+    const auto c = loaded(unit("MFF101"));
+    CHECK(c.firmware == "issue-44.1");
+    AptHarness h(c);
+    const auto info = h.send("05 00 00 00 50 01");
+    CHECK(info_dword(info, 0) == 37'000'001);
+    CHECK(info.substr(30, 23) == "4D 46 46 30 30 32 00 00");   // "MFF002", as a real MFF101 says
+    CHECK(info_dword(info, 14) == 0x0001'0003);
+    // At power-up it stands at position 1 (the rig's "flipper": {"position": 1}).
+    CHECK(h.send("29 04 01 00 50 01") == "2A 04 06 00 81 50 01 00 01 00 00 00");
+    // To position 2: 500 ms (issue 37's example transit time), moving toward 2 meanwhile.
+    CHECK(h.send("6A 04 01 02 50 01") == "");
+    h.advance_ms(250);
+    CHECK(h.send("29 04 01 00 50 01") == "2A 04 06 00 81 50 01 00 20 00 00 00");
+    std::string done;
+    const int ms = ms_until_reply(h, done, 1'000);
+    CHECK(ms == 250);
+    CHECK(done == "64 04 0E 00 81 50 01 00 00 00 00 00 00 00 00 00 02 00 00 00");   // MOVE_COMPLETED at 2
+    CHECK(h.send("29 04 01 00 50 01") == "2A 04 06 00 81 50 01 00 02 00 00 00");
+    // A jog to where it is: done at once, MOVE_COMPLETED right behind it.
+    CHECK(h.send("6A 04 01 02 50 01") == "64 04 0E 00 81 50 01 00 00 00 00 00 00 00 00 00 02 00 00 00");
+    // Another direction is no position: ignored.
+    CHECK(h.send("6A 04 01 03 50 01") == "");
+    h.advance_ms(1'000);
+    CHECK(h.take() == "");
+    // Back to 1, turned around half way: back at 2 after as long as it travelled.
+    CHECK(h.send("6A 04 01 01 50 01") == "");
+    h.advance_ms(100);
+    CHECK(h.send("29 04 01 00 50 01") == "2A 04 06 00 81 50 01 00 10 00 00 00");
+    CHECK(h.send("6A 04 01 02 50 01") == "");
+    CHECK(ms_until_reply(h, done, 1'000) == 100);
+    CHECK(done.substr(48) == "02 00 00 00");
+}
+
+TEST_CASE("MFF102: MFF_OPERPARAMS sets the transit time (300..2800 ms) and the I/O ports, is saved by "
+          "EEPROMPARAMS, and the rest of the motor messages are not its own",
+          "[device][apt][today][flipper]")
+{
+    AptHarness h(loaded(unit("MFF102", {{"flipper", {{"position", 2}}}, {"serial_number", 37'000'042}})));
+    CHECK(h.send("29 04 01 00 50 01") == "2A 04 06 00 81 50 01 00 02 00 00 00");
+    const std::string unused = " 00 00 00 00 00 00 00 00";
+    const std::string example = "01 00 F4 01 00 00 FC 01 00 00 01 00 01 00 C8 00 00 00 01 00 01 00 C8 00 00 00" + unused;
+    CHECK(h.send("11 05 01 00 50 01") == "12 05 22 00 81 50 " + example);
+    // 1500 ms (ADC as a client computes it: 10^7 × 1500^-1.591 = 87), I/O 1 an at-position output.
+    const std::string slow = "01 00 DC 05 00 00 57 00 00 00 03 00 10 00 64 00 00 00 01 00 01 00 C8 00 00 00" + unused;
+    CHECK(h.send("10 05 22 00 D0 01 " + slow) == "");
+    CHECK(h.send("11 05 01 00 50 01") == "12 05 22 00 81 50 " + slow);
+    CHECK(h.send("6A 04 01 01 50 01") == "");
+    std::string done;
+    CHECK(ms_until_reply(h, done, 3'000) == 1'500);
+    // Out of range (100 ms): ignored, the block stays.
+    CHECK(h.send("10 05 22 00 D0 01 01 00 64 00 00 00 57 00 00 00 03 00 10 00 64 00 00 00 01 00 01 00 C8 00 00 00"
+                 + unused)
+          == "");
+    CHECK(h.send("11 05 01 00 50 01") == "12 05 22 00 81 50 " + slow);
+    // Saved: MOT_SET_EEPROMPARAMS for 0x0510.
+    CHECK(h.send("B9 04 04 00 D0 01 01 00 10 05") == "");
+    // Not on its list (issue 37 p. 20): MOVE_HOME, VELPARAMS, STATUSUPDATE.
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    CHECK(h.send("14 04 01 00 50 01") == "");
+    CHECK(h.send("80 04 01 00 50 01") == "");
+    h.advance_ms(5'000);
+    CHECK(h.take() == "");
+}
+
+TEST_CASE("rig loader: a flip mount's \"flipper\" object holds its power-up position, 1 or 2",
+          "[device][apt][today][flipper][config]")
+{
+    CHECK(config_of(loaded(unit("MFF101", {{"flipper", {{"position", 2}}}}))).flipper.position == 2);
+    CHECK(load_error(unit("MFF101", {{"flipper", {{"position", 3}}}}))
+          == "rig.json: /devices/0/apt/flipper/position: expected an integer 1..2, got 3");
+    CHECK(load_error(unit("MFF101", {{"stage", "DDS100"}}))
+          == "rig.json: /devices/0/apt/stage: MFF101 is a flip mount: its keys are flipper, serial_number");
+}
+
 } // namespace test_apt_units_of_today

@@ -101,4 +101,18 @@ TEST_CASE("the K-Cube units' messages are later-issue entries of the table with 
     }
 }
 
+TEST_CASE("MGMSG_MOT_SET/REQ/GET_MFF_OPERPARAMS round-trip issue 37's example in their 34-byte layout",
+          "[unit][apt][codec][kcube]")
+{
+    // Issue 37 p. 183: "10 05 22 00 D0 01 | 01 00 F4 01 00 00 FC 01 00 00 01 00 01 00 C8 00 00 00 01 00
+    // 01 00 C8 00 00 00" and 8 unused bytes: 500 ms (ADC 508), toggle on a button, 200 ms, twice.
+    const MffOperParams p{1, 500, 508, 1, 1, 200, 1, 1, 200, 0, 0};
+    const std::string data = "01 00 F4 01 00 00 FC 01 00 00 01 00 01 00 C8 00 00 00 01 00 01 00 C8 00 00 00 "
+                             "00 00 00 00 00 00 00 00";
+    round_trip(SetMffOperParams{p}, "10 05 22 00 D0 01 " + data);
+    round_trip(ReqMffOperParams{1}, "11 05 01 00 50 01");
+    round_trip(GetMffOperParams{p}, "12 05 22 00 81 50 " + data, 0x01, 0x50);
+    STATIC_REQUIRE(SetMffOperParams::family == Family::Flipper);
+}
+
 } // namespace test_codec_kcube_units
