@@ -23,6 +23,8 @@ std::string_view body_kind_name(BodyKind kind)
         return "solenoid";
     case BodyKind::Flipper:
         return "flipper";
+    case BodyKind::Paddle:
+        return "paddle";
     case BodyKind::StrainGauge:
         return "strain_gauge";
     case BodyKind::Watch:
@@ -43,6 +45,7 @@ Travel travel_of(BodyKind kind)
     case BodyKind::Gripper:
     case BodyKind::Solenoid:
     case BodyKind::Flipper:
+    case BodyKind::Paddle:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:
         return Travel::None;

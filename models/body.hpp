@@ -31,6 +31,7 @@ enum class BodyKind {
     Gripper,         ///< jaws on a drive voltage closing on an object: no travel of its own (voltage, force)
     Solenoid,        ///< an output that opens and closes: no travel
     Flipper,         ///< a flip mount's arm between two positions: no travel of its own
+    Paddle,          ///< a polarisation controller's fibre paddle: turns 0..170 degrees, not a joint
     StrainGauge,     ///< a sensor: no travel
     Watch,           ///< not a part: a watch over others (collisions)
 };

@@ -38,6 +38,7 @@ bool body_suits(BodyKind kind, JointType type)
     case BodyKind::Gripper:
     case BodyKind::Solenoid:
     case BodyKind::Flipper:
+    case BodyKind::Paddle:
     case BodyKind::StrainGauge:
     case BodyKind::Watch:
         break;

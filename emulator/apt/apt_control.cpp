@@ -38,6 +38,8 @@ const char* unit_name(UnitKind kind)
         return "strain_gauge";
     case UnitKind::Flipper:
         return "flipper";
+    case UnitKind::Polariser:
+        return "polariser";
     }
     return "motor";
 }
@@ -160,6 +162,7 @@ Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
         }
         const char* what = model_.kind == UnitKind::Solenoid  ? "a solenoid controller"
                            : model_.kind == UnitKind::Flipper ? "a flip mount"
+                           : model_.kind == UnitKind::Polariser ? "a polarisation controller"
                                                               : "a strain gauge reader";
         return bad("channel " + std::to_string(index) + " of the " + config_.model + " (" + what + ") moves nothing");
     }

@@ -6,6 +6,7 @@
 #include "emulator/apt/brushless_module.hpp"
 #include "emulator/apt/flipper_module.hpp"
 #include "emulator/apt/piezo_module.hpp"
+#include "emulator/apt/polariser_module.hpp"
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/solenoid_module.hpp"
@@ -175,6 +176,18 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
         if (!arm)
             arm = &world_.emplace<models::Flipper>(key, position);
         return std::make_unique<FlipperModule>(unit_, bay, address_of(bay), *arm, position, clock_, *log_, save);
+    }
+    case UnitKind::Polariser: {
+        // The paddles are bodies of the world ("<device>/1" ... "/3"); a power cycle keeps them.
+        std::vector<models::Paddle*> paddles;
+        for (int p = 1; p <= model_.paddles; ++p) {
+            const auto key = config_.name + "/" + std::to_string(p);
+            auto* paddle = world_.find_as<models::Paddle>(key);
+            if (!paddle)
+                paddle = &world_.emplace<models::Paddle>(key, PolariserModule::kMaxDeg);
+            paddles.push_back(paddle);
+        }
+        return std::make_unique<PolariserModule>(unit_, bay, address_of(bay), std::move(paddles), clock_, *log_, save);
     }
     }
     throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");

@@ -219,6 +219,19 @@ constexpr ControllerModel mff(std::string_view name)
     return c;
 }
 
+// MPC320/MPC220 motorised polarisation controllers (issue 28): prefix 38 (Thorlabs/Motion_Control_
+// Examples 38000001, PnPQ's hardware test 38454784; not in issue 37's table); three or two paddles.
+// No public HW_GET_INFO of a unit: type 31, firmware 1.0.3 as the other cubes. Its messages: kMpc.
+constexpr ControllerModel mpc(std::string_view name, int paddles)
+{
+    auto c = unit_cube(name, 38, UnitKind::Polariser, listed<kMpc>(), "Polarization Controller");
+    c.paddles = paddles;
+    c.later_only = true;
+    c.ack_id = MGMSG_MOT_ACK_DCSTATUSUPDATE;
+    c.mmi_wheel = false;
+    return c;
+}
+
 // Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
 constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
@@ -278,9 +291,9 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     return c;
 }
 
-constexpr std::array<ControllerModel, 20> kControllers{
+constexpr std::array<ControllerModel, 22> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(), k10cr1(), lts("LTS150"), lts("LTS300"), kbd101(),
-    mff("MFF101"), mff("MFF102"),
+    mff("MFF101"), mff("MFF102"), mpc("MPC320", 3), mpc("MPC220", 2),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
     later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), listed<kKscLater>()),
     later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), listed<kTCubeLater>()),
@@ -376,8 +389,8 @@ std::uint16_t dc_stage_type(std::string_view name)
 
 std::string_view controller_names()
 {
-    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, TSC001, "
-           "KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
+    return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, MPC320, "
+           "MPC220, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
 }
 
 } // namespace rigsim::apt

@@ -16,7 +16,7 @@ namespace rigsim::apt {
 enum class MotorKind { DcServo, Stepper, Brushless };
 
 /// What a unit drives; it picks the module class a unit (or a rack's bay) is made of.
-enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge, Flipper };
+enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge, Flipper, Polariser };
 
 /// The message IDs a model takes beyond the generic ones (identify, enable state, info, update
 /// messages, bays): its column of the manual's "Message Cross Reference by Unit Part Number"
@@ -89,6 +89,8 @@ struct ControllerModel {
     bool later_only = false;
     /// HW_GET_INFO hardware version (the later issue's field at data offset 78).
     std::uint16_t hardware_version = 1;
+    /// A polarisation controller's fibre paddles (MPC320 3, MPC220 2).
+    int paddles = 0;
     /// HW_GET_INFO model number when the unit names itself otherwise than its product (an MFF101
     /// reports "MFF002"); empty: the name.
     std::string_view reported_name;

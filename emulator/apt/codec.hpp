@@ -50,6 +50,7 @@ enum class Family {
     StrainGauge, ///< StrainGaugeModule (TSG001, KSG101)
     KCubeMotor,  ///< motor messages of later protocol issues (codec_kcube.hpp): the motor modules' KCubeParams
     Flipper,     ///< FlipperModule (MFF101, MFF102): MFF_OPERPARAMS (codec_kcube_units.hpp)
+    Polariser,   ///< PolariserModule (MPC320, MPC220): POL_PARAMS (codec_kcube_units.hpp)
     UnitToHost,  ///< sent by units (GETs, end-of-move messages): a unit ignores them
     Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };

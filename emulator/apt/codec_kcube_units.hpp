@@ -142,13 +142,36 @@ using SetMffOperParams = Set<MffOperParams>;
 using ReqMffOperParams = Req<MffOperParams>;
 using GetMffOperParams = Get<MffOperParams>;
 
-/// The K-Cube piezo driver's and strain gauge reader's own messages, and the flipper's (later
+/// MGMSG_MOT_SET/REQ/GET_POLPARAMS (issue 37 p. 408-409, 12 bytes): the MPC320/MPC220's velocity,
+/// home position and each paddle's jog step (one set for the unit: no channel word).
+struct PolParams {
+    static constexpr std::uint16_t set_id = MGMSG_MOT_SET_POLPARAMS;
+    static constexpr std::uint16_t req_id = MGMSG_MOT_REQ_POLPARAMS;
+    static constexpr std::uint16_t get_id = MGMSG_MOT_GET_POLPARAMS;
+    static constexpr Family family = Family::Polariser;
+    std::uint16_t not_used = 0;
+    std::uint16_t velocity = 50;       ///< % of 400 deg/s, 10..100
+    std::uint16_t home_position = 0;   ///< counts, 0..1370 (0..170 deg)
+    std::uint16_t jog_step1 = 25;      ///< counts, paddle 1
+    std::uint16_t jog_step2 = 25;
+    std::uint16_t jog_step3 = 25;
+    RIGSIM_APT_FIELDS(s.not_used, s.velocity, s.home_position, s.jog_step1, s.jog_step2, s.jog_step3);
+    RIGSIM_APT_RANGES({"Velocity", s.velocity, 10, 100}, {"HomePosition", s.home_position, 0, 1370},
+                      {"JogStep1", s.jog_step1, 0, 1370}, {"JogStep2", s.jog_step2, 0, 1370},
+                      {"JogStep3", s.jog_step3, 0, 1370});
+};
+
+using SetPolParams = Set<PolParams>;
+using ReqPolParams = Req<PolParams>;
+using GetPolParams = Get<PolParams>;
+
+/// The K-Cube piezo driver's and strain gauge reader's own messages, the flipper's and the polarisation controller's (later
 /// protocol issues).
 struct KCubeUnitMessage
     : std::variant<SetKpzMmiParams, ReqKpzMmiParams, GetKpzMmiParams, SetKpzTrigIoConfig, ReqKpzTrigIoConfig,
                    GetKpzTrigIoConfig, SetKsgMmiParams, ReqKsgMmiParams, GetKsgMmiParams, SetKsgTrigIoConfig,
                    ReqKsgTrigIoConfig, GetKsgTrigIoConfig, PzReqPzStatusUpdate, SetMffOperParams, ReqMffOperParams,
-                   GetMffOperParams> {
+                   GetMffOperParams, SetPolParams, ReqPolParams, GetPolParams> {
     using variant::variant;
 };
 

@@ -51,6 +51,8 @@ std::vector<std::string_view> keys_of(const ControllerModel& c)
         return {"gauge", "serial_number"};
     case UnitKind::Flipper:
         return {"flipper", "serial_number"};
+    case UnitKind::Polariser:
+        return {"serial_number"};
     }
     return {};
 }
@@ -71,6 +73,8 @@ std::string_view kind_noun(const ControllerModel& c)
         return "a strain gauge reader";
     case UnitKind::Flipper:
         return "a flip mount";
+    case UnitKind::Polariser:
+        return "a polarisation controller";
     }
     return "";
 }
@@ -369,6 +373,8 @@ AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_
     case UnitKind::Flipper:
         if (const auto* f = k.find("flipper"))
             object_keys(r, *f, k.at("flipper"), kFlipperKeys).integer("position", apt.flipper.position, 1, 2);
+        break;
+    case UnitKind::Polariser:
         break;
     }
     if (const auto* sn = k.find("serial_number")) {

@@ -143,7 +143,7 @@ void Module::wrong_channel()
 
 bool Module::channel_ok()
 {
-    if (channel() == kChan1)
+    if (takes_channel(channel()))
         return true;
     wrong_channel();
     return false;

@@ -126,6 +126,9 @@ public:
 
     std::uint8_t address() const { return address_; }
     std::size_t bay() const { return bay_; }
+    /// Whether a message for channel `sent` (a cube's 0 read as 1) is this module's: channel 1;
+    /// a polarisation controller's paddles are bits 1, 2, 4 of the channel byte.
+    virtual bool takes_channel(std::uint16_t sent) const { return sent == 0x01; }
     /// MOD_SET/REQ_CHANENABLESTATE's state: a motor's channel, else the module's own flag.
     virtual bool enabled() const { return enabled_; }
     virtual void set_enabled(bool on) { enabled_ = on; }

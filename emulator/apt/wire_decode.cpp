@@ -237,6 +237,7 @@ LogContext log_context(const ControllerModel& model)
         c.unit = StatusTable::StrainGauge;
         break;
     case UnitKind::Flipper:   // its positions in the limit bits (flipper_module.hpp): logged as a motor's
+    case UnitKind::Polariser:
         c.unit = StatusTable::Motor;
         break;
     }

@@ -1,5 +1,5 @@
 // The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
-// today"): a K10CR1, an LTS150, a KBD101 with a DDS100 and an MFF101, each asked who it is over its
+// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101 and an MPC320, each asked who it is over its
 // pty and moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
 #include "apt_support.hpp"
 #include "control_support.hpp"
@@ -21,7 +21,8 @@ constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "k10cr1", "protocol": "apt", "model": "K10CR1", "tcp_port": 0, "apt": {}},
   {"name": "lts150", "protocol": "apt", "model": "LTS150", "tcp_port": 0, "apt": {"serial_number": 45000777}},
   {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}},
-  {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}}]})";
+  {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}},
+  {"name": "mpc320", "protocol": "apt", "model": "MPC320", "tcp_port": 0, "apt": {}}]})";
 
 void step(LineClient& api, int ms)
 {
@@ -99,6 +100,33 @@ TEST_CASE("apt units of today: an MFF101 names itself MFF002 over the pty and fl
     REQUIRE(done->data.size() == 14);
     CHECK(get32(done->data, 10) == 0x02);
     CHECK(http(api, "GET", "/api/devices/mff101/channels/0").body.find("\"position\":2") != std::string::npos);
+}
+
+TEST_CASE("apt units of today: an MPC320 tells who it is over the pty and turns paddle 3 (bit 0x04) over TCP",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    PtyClient pty(daemon.endpoint("mpc320").pty);
+    pty.send(header(0x0005, 0, 0));
+    const auto info = wait_for(pty.fd(), 0x0006);
+    REQUIRE(info);
+    CHECK(info->data.substr(4, 6) == "MPC320");
+
+    TcpClient tcp(daemon.endpoint("mpc320"));
+    tcp.send(with_data(0x0453, std::string("\x04\x00", 2) + le32(685)));   // paddle 3 to 85 deg: 425 ms
+    tcp.send(header(0x0411, 4, 0));
+    REQUIRE(wait_for(tcp.fd(), 0x0412));
+    step(api, 420);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    step(api, 10);
+    const auto done = wait_for(tcp.fd(), 0x0464, 5000ms);
+    REQUIRE(done);
+    CHECK(done->data.empty());   // the 6-byte form
+    tcp.send(header(0x0411, 4, 0));
+    const auto at = wait_for(tcp.fd(), 0x0412);
+    REQUIRE(at);
+    CHECK(get32(at->data, 2) == 685);
 }
 
 } // namespace apt_units_of_today_test

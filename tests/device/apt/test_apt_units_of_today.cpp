@@ -309,4 +309,88 @@ TEST_CASE("rig loader: a flip mount's \"flipper\" object holds its power-up posi
           == "rig.json: /devices/0/apt/stage: MFF101 is a flip mount: its keys are flipper, serial_number");
 }
 
+TEST_CASE("MPC320: paddles addressed as bits 1, 2, 4, moved at POL_PARAMS' velocity, each move ending with the "
+          "header-only MOVE_COMPLETED",
+          "[device][apt][today][polariser]")
+{
+    AptHarness h(loaded(unit("MPC320")));
+    const auto info = h.send("05 00 00 00 50 01");
+    CHECK(info_dword(info, 0) == 38'000'001);
+    CHECK(info.substr(30, 23) == "4D 50 43 33 32 30 00 00");   // "MPC320"
+    // POL_PARAMS at power-up: issue 37's example, 50 % of 400 deg/s, home 0, jog steps 25.
+    CHECK(h.send("31 05 00 00 50 01") == "32 05 0C 00 81 50 00 00 32 00 00 00 19 00 19 00 19 00");
+    // Paddle 2 (bit 0x02) to 685 counts (85 deg) at 200 deg/s: 425 ms.
+    CHECK(h.send("53 04 06 00 D0 01 02 00 " + le32(685)) == "");
+    h.advance_ms(200);
+    const auto mid = bytes(h.send("90 04 02 00 50 01"));   // REQ_DCSTATUSUPDATE, paddle 2
+    REQUIRE(mid.size() == 20);
+    CHECK(get_u16(mid, 6) == 2);
+    CHECK(get_i32(mid, 8) == 322);   // 40 deg
+    CHECK((get_u32(mid, 16) & 0x10) != 0);   // moving up
+    std::string done;
+    CHECK(ms_until_reply(h, done, 1'000) == 225);
+    CHECK(done == "64 04 02 00 01 50");   // MOVE_COMPLETED, paddle 2, header-only (PnPQ reads 6 bytes)
+    CHECK(get_i32(bytes(h.send("11 04 02 00 50 01")), 8) == 685);
+    CHECK(get_i32(bytes(h.send("11 04 01 00 50 01")), 8) == 0);   // paddle 1 did not move
+    // Channel 3 is not a paddle: bits 1, 2, 4 only (the pyLabLib report of paddle 3 not moving).
+    CHECK(h.send("53 04 06 00 D0 01 03 00 " + le32(100)) == "");
+    CHECK(h.send("53 04 06 00 D0 01 08 00 " + le32(100)) == "");
+    h.advance_ms(1'000);
+    CHECK(h.take() == "");
+    // Jog paddle 3 (bit 0x04) up one step, 25 counts; past 1370 is refused.
+    CHECK(h.send("6A 04 04 01 50 01") == "");
+    h.advance_ms(100);
+    CHECK(h.take() == "64 04 04 00 01 50");
+    CHECK(get_i32(bytes(h.send("11 04 04 00 50 01")), 8) == 25);
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(1371)) == "");
+    h.advance_ms(1'000);
+    CHECK(h.take() == "");
+}
+
+TEST_CASE("MPC320: MOVE_HOME takes the paddles of the mask to the home position, CHANENABLESTATE sets the enabled "
+          "set, POL_PARAMS are ranged, saved and restored to the factory's",
+          "[device][apt][today][polariser]")
+{
+    AptHarness h(loaded(unit("MPC320", {{"serial_number", 38'000'005}})));
+    // Home 649 counts (the home pyLabLib's issue 72 reads), velocity 100 %, jog steps 50.
+    CHECK(h.send("30 05 0C 00 D0 01 00 00 64 00 89 02 32 00 32 00 32 00") == "");
+    CHECK(h.send("43 04 07 00 50 01") == "");   // MOVE_HOME all three
+    h.advance_ms(50);
+    CHECK((get_u32(bytes(h.send("90 04 01 00 50 01")), 16) & 0x200) != 0);   // homing
+    h.advance_ms(250);   // 80.5 deg at 400 deg/s: 202 ms
+    CHECK(h.take() == "44 04 01 00 01 50 44 04 02 00 01 50 44 04 04 00 01 50");
+    CHECK(get_i32(bytes(h.send("11 04 04 00 50 01")), 8) == 649);
+    CHECK((get_u32(bytes(h.send("90 04 04 00 50 01")), 16) & 0x400) != 0);   // homed
+    // Enable paddles 1 and 3 only: 2 is disabled and does not move.
+    CHECK(h.send("10 02 05 01 50 01") == "");
+    CHECK(h.send("11 02 02 00 50 01") == "12 02 02 00 01 50");   // disabled: 0 (QMI: the MPC320 answers 0)
+    CHECK(h.send("11 02 05 00 50 01") == "12 02 05 01 01 50");
+    CHECK(h.send("6A 04 02 01 50 01") == "");
+    h.advance_ms(500);
+    CHECK(h.take() == "");
+    // Velocity 5 % is out of range (10..100): ignored.
+    CHECK(h.send("30 05 0C 00 D0 01 00 00 05 00 00 00 19 00 19 00 19 00") == "");
+    CHECK(h.send("31 05 00 00 50 01") == "32 05 0C 00 81 50 00 00 64 00 89 02 32 00 32 00 32 00");
+    CHECK(h.send("B9 04 04 00 D0 01 01 00 30 05") == "");   // saved
+    CHECK(h.send("86 06 01 00 50 01") == "");                // RESTOREFACTORYSETTINGS
+    CHECK(h.send("31 05 00 00 50 01") == "32 05 0C 00 81 50 00 00 32 00 00 00 19 00 19 00 19 00");
+}
+
+TEST_CASE("MPC220: two paddles, bits 1 and 2, MOVE_STOP ends a move where it is with a MOVE_STOPPED",
+          "[device][apt][today][polariser]")
+{
+    AptHarness h(loaded(unit("MPC220")));
+    CHECK(h.send("53 04 06 00 D0 01 04 00 " + le32(100)) == "");   // no paddle 3
+    h.advance_ms(500);
+    CHECK(h.take() == "");
+    CHECK(h.send("53 04 06 00 D0 01 01 00 " + le32(1370)) == "");   // 170 deg: 850 ms
+    h.advance_ms(425);
+    CHECK(h.send("65 04 01 02 50 01") == "66 04 01 00 01 50");   // MOVE_STOP: MOVE_STOPPED right away
+    const auto at = get_i32(bytes(h.send("11 04 01 00 50 01")), 8);
+    CHECK(at >= 680);
+    CHECK(at <= 690);
+    h.advance_ms(1'000);
+    CHECK(h.take() == "");
+}
+
 } // namespace test_apt_units_of_today

@@ -115,4 +115,15 @@ TEST_CASE("MGMSG_MOT_SET/REQ/GET_MFF_OPERPARAMS round-trip issue 37's example in
     STATIC_REQUIRE(SetMffOperParams::family == Family::Flipper);
 }
 
+TEST_CASE("MGMSG_MOT_SET/REQ/GET_POLPARAMS round-trip issue 37's example in their 12-byte layout",
+          "[unit][apt][codec][kcube]")
+{
+    // Issue 37 p. 408: "30 05 0C 00 D0 01 00 00 32 00 00 00 19 00 19 00 19 00": 50 %, home 0, jog 25 x 3.
+    const PolParams p{0, 50, 0, 25, 25, 25};
+    round_trip(SetPolParams{p}, "30 05 0C 00 D0 01 00 00 32 00 00 00 19 00 19 00 19 00");
+    round_trip(ReqPolParams{0}, "31 05 00 00 50 01");
+    round_trip(GetPolParams{p}, "32 05 0C 00 81 50 00 00 32 00 00 00 19 00 19 00 19 00", 0x01, 0x50);
+    STATIC_REQUIRE(SetPolParams::family == Family::Polariser);
+}
+
 } // namespace test_codec_kcube_units

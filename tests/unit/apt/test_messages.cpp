@@ -114,12 +114,13 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
             CHECK_FALSE(m.header_only());
     }
     CHECK(count(Group::Generic) == 22);
-    // The manual's, then the later issues' (test_codec_kcube.cpp) and the flip mount's MFF_OPERPARAMS.
-    CHECK(count(Group::Motor) == 92 + 19 + 3);
+    // The manual's, then the later issues' (test_codec_kcube.cpp), the flip mount's MFF_OPERPARAMS and the
+    // polarisation controller's POL_PARAMS.
+    CHECK(count(Group::Motor) == 92 + 19 + 3 + 3);
     // The piezo and strain gauge chapters' 47 and 5, and the K-Cube units' 7 and 6 of later issues.
     CHECK(count(Group::Piezo) == 47 + 7);
     CHECK(count(Group::StrainGauge) == 5 + 6);
-    CHECK(all_messages().size() == 166 + 19 + 13 + 3);
+    CHECK(all_messages().size() == 166 + 19 + 13 + 3 + 3);
     CHECK(find_message(0x0000) == nullptr);
     CHECK(find_message(0xFFFF) == nullptr);
     CHECK(find_message(0x0663) == nullptr);     // docs/protocol/apt.md's unknown ID beside 0x0000, 0xFFFF
@@ -297,7 +298,9 @@ TEST_CASE("apt message table flags the short forms and the later-issue messages"
                        "MGMSG_KSG_SET_KCUBETRIGIOCONFIG", "MGMSG_KSG_REQ_KCUBETRIGIOCONFIG",
                        "MGMSG_KSG_GET_KCUBETRIGIOCONFIG",
                        // The MFF101/MFF102 flip mount's (issue 28).
-                       "MGMSG_MOT_SET_MFF_OPERPARAMS", "MGMSG_MOT_REQ_MFF_OPERPARAMS", "MGMSG_MOT_GET_MFF_OPERPARAMS"});
+                       "MGMSG_MOT_SET_MFF_OPERPARAMS", "MGMSG_MOT_REQ_MFF_OPERPARAMS", "MGMSG_MOT_GET_MFF_OPERPARAMS",
+                       // The MPC320/MPC220 polarisation controllers' (issue 28).
+                       "MGMSG_MOT_SET_POLPARAMS", "MGMSG_MOT_REQ_POLPARAMS", "MGMSG_MOT_GET_POLPARAMS"});
     CHECK(find_message(MGMSG_HW_NO_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_HW_YES_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_MOT_MOVE_JOG)->header_only());

@@ -100,7 +100,7 @@ TEST_CASE("set ranges: GETs, REQs and blocks without ranges take any value", "[u
     CHECK_FALSE(check(msg::SetKpzMmiParams{}));   // the K-Cube units' own blocks: kcube_units.cpp
 }
 
-TEST_CASE("set ranges: the 25 SETs with ranges, each range named once and not empty", "[unit][apt][set_ranges]")
+TEST_CASE("set ranges: the 26 SETs with ranges, each range named once and not empty", "[unit][apt][set_ranges]")
 {
     RangedSets sets;
     add_chapters(sets, static_cast<const msg::Chapters*>(nullptr));
@@ -117,7 +117,7 @@ TEST_CASE("set ranges: the 25 SETs with ranges, each range named once and not em
                                      MGMSG_PZ_SET_TSG_IOSETTINGS, MGMSG_MOT_SET_POWERPARAMS,
                                      MGMSG_MOT_SET_KCUBEMMIPARAMS, MGMSG_MOT_SET_KCUBETRIGIOCONFIG,
                                      MGMSG_MOT_SET_KCUBEPOSTRIGPARAMS, MGMSG_MOT_SET_KCUBEKSTLOOPPARAMS,
-                                     MGMSG_MOT_SET_MFF_OPERPARAMS});
+                                     MGMSG_MOT_SET_MFF_OPERPARAMS, MGMSG_MOT_SET_POLPARAMS});
 }
 
 } // namespace test_set_ranges
