@@ -99,6 +99,10 @@ void BrushlessModule::on(const msg::SetPmdStageAxisParams& m)
 {
     // "can only be used to increase the Minimum position value and decrease the Maximum
     // position value": the travel narrows, nothing else changes (p. 75).
+    if (channel_.stage().kind == StageKind::Rotary)   // a DDR25: nothing to narrow
+        return ignore(fmt::format("MOT_SET_PMDSTAGEAXISPARAMS on the rotation stage {}: it turns without end, no "
+                                  "travel to narrow: ignored",
+                                  channel_.stage().name));
     const auto min_position = m.params.min_pos, max_position = m.params.max_pos;
     if (min_position >= max_position || min_position < channel_.min_position()
         || max_position > channel_.max_position())

@@ -517,8 +517,11 @@ void MotorChannel::conclude()
 
 void MotorChannel::complete_homing()
 {
-    // A brushless stage's counters count from its reverse end (PMDSTAGEAXISPARAMS MinPos 0).
-    const double zero = controller_.motor == MotorKind::Brushless ? axis_.travel_min_counts() : axis_.position_counts();
+    // A brushless stage's counters count from its reverse end (PMDSTAGEAXISPARAMS MinPos 0); a
+    // rotation stage's (a DDR25 on a KBD101 too) from its home switch.
+    const double zero = controller_.motor == MotorKind::Brushless && stage_.kind != StageKind::Rotary
+                            ? axis_.travel_min_counts()
+                            : axis_.position_counts();
     counter_offset_ = zero + axis_.lost_counts();
     encoder_offset_ = counter_offset_;
     homed_ = true;

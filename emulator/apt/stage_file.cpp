@@ -323,11 +323,6 @@ StageModel read_stage(const ConfigReader& r, const json& object, const std::stri
     }
     s.kind = k.choice("kind", k.required("kind", "\"linear\", \"rotary\" or \"goniometer\""), kKinds);
     s.motor = k.choice("motor", k.required("motor", "\"dc_servo\", \"stepper\" or \"brushless\""), kMotors);
-    // A brushless channel homes to its travel's forward end without switches (p. 37) and counts
-    // from the reverse end: an endless stage has neither.
-    if (s.kind == StageKind::Rotary && s.motor == MotorKind::Brushless)
-        k.fail("motor", "a rotary stage turns without end, and a brushless channel homes to the end of its travel "
-                        "(p. 37): expected \"dc_servo\" or \"stepper\"");
     refuse_other_keys(k, s);
 
     const auto unit_key = [&](const UnitKey& key) { return s.angular() ? key.deg : key.mm; };

@@ -210,6 +210,40 @@ TEST_CASE("KBD101: identity, brushless scaling on the DDS stages, the K-Cube blo
     }
 }
 
+TEST_CASE("KBD101 + DDR25: a brushless rotation stage turns without end and homes forward to its switch, counting "
+          "from there",
+          "[device][apt][today]")
+{
+    AptHarness h(loaded(unit("KBD101", {{"stage", "DDR25"}})));
+    // 4,000 counts per degree: 100 deg/s, 1,000 deg/s² at power-up.
+    CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 " + vel_params(2'749, 2'684'360));
+    CHECK(h.send(move_absolute(4'000 * 540)) == "");   // a turn and a half
+    h.advance_ms(7'000);
+    CHECK(position_of(h.take()) == 4'000 * 540);
+    // It stood half a turn from its switch at power-up; 540° on, the switch is 0°... forward from here.
+    CHECK(h.send("43 04 01 00 50 01") == "");
+    h.advance_ms(40'000);
+    CHECK(h.take() == "44 04 01 00 01 50");
+    CHECK(position_of(h.send("11 04 01 00 50 01")) == 0);
+    // PMDSTAGEAXISPARAMS cannot narrow an endless stage: ignored, the block as before.
+    const auto before = h.send("F1 04 01 00 50 01");
+    // The same block as a SET (to 0x50 from the host) with the travel narrowed to 0..90 degrees.
+    auto set = bytes(before);
+    REQUIRE(set.size() == 80);
+    set[0] = '\xF0';
+    set[4] = '\xD0';
+    set[5] = '\x01';
+    const auto put = [&set](std::size_t at, std::int32_t v) {
+        std::string le;
+        put_i32(le, v);
+        set.replace(at, 4, le);
+    };
+    put(6 + 28, 0);   // MinPos, MaxPos (p. 75)
+    put(6 + 32, 4'000 * 90);
+    CHECK(h.send(hex(set)) == "");
+    CHECK(h.send("F1 04 01 00 50 01") == before);
+}
+
 TEST_CASE("rig loader: the integrated units name no stage, have the later generation only, and keep their stages "
           "to themselves",
           "[device][apt][today][config]")

@@ -130,11 +130,12 @@ constexpr Pinned kPinned[]{
     {"DDS220", StageKind::Linear, MotorKind::Brushless, 220, 20'000, 100, 500, 10, 1},
     {"DDS300", StageKind::Linear, MotorKind::Brushless, 300, 20'000, 100, 500, 10, 1},
     {"DDS600", StageKind::Linear, MotorKind::Brushless, 600, 20'000, 100, 500, 10, 1},
+    {"DDR25", StageKind::Rotary, MotorKind::Brushless, 0, 4'000, 100, 1'000, 10, 0},
 };
 
 } // namespace
 
-TEST_CASE("shipped stages: the eighteen stages keep their audited figures", "[unit][apt][stages]")
+TEST_CASE("shipped stages: the nineteen stages keep their audited figures", "[unit][apt][stages]")
 {
     REQUIRE(shipped_stages().size() == std::size(kPinned));
     for (const auto& p : kPinned) {
@@ -160,8 +161,8 @@ TEST_CASE("shipped stages: the eighteen stages keep their audited figures", "[un
     CHECK(find_stage("MLS203-X")->pmd_stage_id == 0x10);
     CHECK(find_stage("MLS203-X")->pmd_part_number == "MLS203 X Axis");
     CHECK(find_stage("DDSM100")->pmd_part_number.empty());
-    CHECK(stage_names() == "DDS100, DDS220, DDS300, DDS600, DDSM100, DRV001, DRV014, K10CR1, LTS150, LTS300, MLS203-X, "
-                           "MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B");
+    CHECK(stage_names() == "DDR25, DDS100, DDS220, DDS300, DDS600, DDSM100, DRV001, DRV014, K10CR1, LTS150, LTS300, "
+                           "MLS203-X, MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B");
 }
 
 TEST_CASE("shipped stages: docs/config.md lists every one", "[unit][apt][stages]")

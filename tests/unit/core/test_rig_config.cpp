@@ -424,7 +424,7 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     rig["devices"][0]["model"] = "TDC001";
     CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
     rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
-    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of DDS100, DDS220, DDS300, DDS600, DDSM100, DRV001, DRV014, K10CR1, LTS150, LTS300, MLS203-X, MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B, or a stage object)");
+    CHECK(error_of(rig) == "rig.json: /devices/0/apt/stage: unknown stage \"MTS99\" (expected one of DDR25, DDS100, DDS220, DDS300, DDS600, DDSM100, DRV001, DRV014, K10CR1, LTS150, LTS300, MLS203-X, MLS203-Y, MTS25-Z8, MTS50-Z8, PRM1-Z8, Z812B, Z825B, ZST225B, or a stage object)");
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 27000001}};
     CHECK(error_of(rig).find("/devices/0/apt/serial_number: expected an integer 83000000..83999999") != std::string::npos);
     rig["devices"][0]["apt"] = {{"stage", "Z825B"}, {"serial_number", 83123456}};
