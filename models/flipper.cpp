@@ -52,8 +52,7 @@ void Flipper::on_event(Ticks now)
         return;
     position_ = target_;
     reschedule();
-    if (listener_)
-        listener_(arrive_, position_);
+    listener_(arrive_, position_);
 }
 
 } // namespace rigsim::models

@@ -7,6 +7,7 @@
 // The world wakes the body when the arm arrives (the listener hears it), and never while it rests.
 
 #include "models/clock.hpp"
+#include "models/owned_listener.hpp"
 #include "models/world.hpp"
 
 #include <functional>
@@ -21,19 +22,9 @@ public:
     explicit Flipper(int position = 1) : position_(position == 2 ? 2 : 1) {}
 
     /// The listener of `owner` (a module: a power cycle's new one takes over before the old goes).
-    void set_listener(const void* owner, Listener listener)
-    {
-        owner_ = owner;
-        listener_ = std::move(listener);
-    }
+    void set_listener(const void* owner, Listener listener) { listener_.set(owner, std::move(listener)); }
     /// No listener any more, if `owner`'s is the one set.
-    void clear_listener(const void* owner)
-    {
-        if (owner_ == owner) {
-            owner_ = nullptr;
-            listener_ = nullptr;
-        }
-    }
+    void clear_listener(const void* owner) { listener_.clear(owner); }
 
     /// From `now`, to `target` (1 or 2) in `transit` ticks (at least 1). Toward the position it
     /// is already at or travelling to: nothing changes. Back while travelling: it arrives after
@@ -58,8 +49,7 @@ private:
     int target_ = position_;
     Ticks start_ = 0;
     Ticks arrive_ = 0;
-    const void* owner_ = nullptr;
-    Listener listener_;
+    OwnedListener<Ticks, int> listener_;
 };
 
 } // namespace rigsim::models

@@ -61,8 +61,7 @@ void Paddle::on_event(Ticks now)
     moving_ = false;
     from_ = target_;
     reschedule();
-    if (listener_)
-        listener_(end_);
+    listener_(end_);
 }
 
 } // namespace rigsim::models

@@ -8,6 +8,7 @@
 // The world wakes the body when a move ends (the listener hears it), and never while it rests.
 
 #include "models/clock.hpp"
+#include "models/owned_listener.hpp"
 #include "models/world.hpp"
 
 #include <functional>
@@ -22,18 +23,9 @@ public:
     explicit Paddle(double max_deg) : max_deg_(max_deg) {}
 
     /// The listener of `owner` (a module: a power cycle's new one takes over before the old goes).
-    void set_listener(const void* owner, Listener listener)
-    {
-        owner_ = owner;
-        listener_ = std::move(listener);
-    }
-    void clear_listener(const void* owner)
-    {
-        if (owner_ == owner) {
-            owner_ = nullptr;
-            listener_ = nullptr;
-        }
-    }
+    void set_listener(const void* owner, Listener listener) { listener_.set(owner, std::move(listener)); }
+    /// No listener any more, if `owner`'s is the one set.
+    void clear_listener(const void* owner) { listener_.clear(owner); }
 
     /// From `now`, toward `target_deg` (clamped to 0..max) at `deg_per_tick` (> 0); replaces a move
     /// under way from where the paddle is.
@@ -62,8 +54,7 @@ private:
     Ticks start_ = 0;
     Ticks end_ = 0;
     bool moving_ = false;
-    const void* owner_ = nullptr;
-    Listener listener_;
+    OwnedListener<Ticks> listener_;
 };
 
 } // namespace rigsim::models
