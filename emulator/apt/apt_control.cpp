@@ -5,6 +5,7 @@
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/core/log_format.hpp"
 #include "emulator/apt/piezo_module.hpp"
+#include "emulator/apt/pzmot_module.hpp"
 #include "emulator/apt/stage_file.hpp"
 #include "emulator/apt/wire_decode.hpp"
 #include "emulator/core/event_bus.hpp"
@@ -40,6 +41,8 @@ const char* unit_name(UnitKind kind)
         return "flipper";
     case UnitKind::Polariser:
         return "polariser";
+    case UnitKind::PiezoMotor:
+        return "piezo_motor";
     }
     return "motor";
 }
@@ -85,18 +88,20 @@ void AptDevice::record(bool inbound, std::string_view peer, std::string_view fra
 std::vector<std::string> AptDevice::update_notes() const
 {
     // USB "server alive" (p. 80, p. 105): the unit counts the status update type messages it
-    // sends without the acknowledgement (MOT_ACK_DCSTATUSUPDATE, PZ_ACK_PZSTATUSUPDATE) and
-    // stops at 50.
-    if (!updates_ || (updates_since_ack_ != kUpdatesWarnAt && updates_since_ack_ != kUpdatesWithoutAck))
+    // sends without the acknowledgement (MOT_ACK_DCSTATUSUPDATE, PZ_ACK_PZSTATUSUPDATE,
+    // PZMOT_ACK_STATUSUPDATE) and stops at the model's cut-off (50; a KIM101/TIM101 10).
+    if (!updates_ || (updates_since_ack_ != updates_warn_at() && updates_since_ack_ != updates_without_ack()))
         return {};
     const auto* ack = find_message(model_.ack_id);
     const std::string ack_name = ack ? std::string(ack->name) : "the acknowledgement";
-    const std::string page = model_.ack_id == MGMSG_MOT_ACK_DCSTATUSUPDATE ? "(p. 80)" : "(p. 105)";
-    if (updates_since_ack_ == kUpdatesWarnAt)
-        return {std::to_string(kUpdatesWarnAt) + " of " + std::to_string(kUpdatesWithoutAck)
+    const std::string page = model_.ack_id == MGMSG_MOT_ACK_DCSTATUSUPDATE ? "(p. 80)"
+                             : model_.ack_id == MGMSG_PZMOT_ACK_STATUSUPDATE ? "(issue 37 p. 406)"
+                                                                              : "(p. 105)";
+    if (updates_since_ack_ == updates_warn_at())
+        return {std::to_string(updates_warn_at()) + " of " + std::to_string(updates_without_ack())
                 + " status update messages without " + ack_name + ": the unit stops sending them at "
-                + std::to_string(kUpdatesWithoutAck) + " " + page};
-    return {"cut-off: " + std::to_string(kUpdatesWithoutAck) + " status update messages without " + ack_name
+                + std::to_string(updates_without_ack()) + " " + page};
+    return {"cut-off: " + std::to_string(updates_without_ack()) + " status update messages without " + ack_name
             + "; the unit sends no more until the host acknowledges " + page};
 }
 
@@ -151,6 +156,16 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
 
 Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
 {
+    if (model_.kind == UnitKind::PiezoMotor) {
+        // Its four actuators are channels 0 to 3 for faults and kinematics (its one channel object,
+        // channel 0, lists them).
+        const auto* pzmot = modules_.empty() ? nullptr : dynamic_cast<const PzMotorModule*>(modules_[0].get());
+        if (!pzmot || index >= PzMotorModule::kChannels)
+            return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model
+                                    + "'s actuators are channels 0 to 3"};
+        out = pzmot->drive(index).key();
+        return std::nullopt;
+    }
     if (index >= modules_.size())
         return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
                                 + (modules_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(modules_.size() - 1))};
@@ -180,7 +195,7 @@ void AptDevice::describe(nlohmann::json& out) const
     out["serial_number"] = serial_;
     out["status_updates"] = {{"on", updates_},
                              {"unacknowledged", updates_since_ack_},
-                             {"cut_off", updates_ && updates_since_ack_ >= kUpdatesWithoutAck}};
+                             {"cut_off", updates_ && updates_since_ack_ >= updates_without_ack()}};
     out["end_of_move_messages"] = end_of_move_messages_;
 }
 

@@ -7,6 +7,7 @@
 #include "emulator/apt/flipper_module.hpp"
 #include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/polariser_module.hpp"
+#include "emulator/apt/pzmot_module.hpp"
 #include "emulator/apt/eeprom_entries.hpp"
 #include "emulator/apt/messages.hpp"
 #include "emulator/apt/solenoid_module.hpp"
@@ -188,6 +189,26 @@ std::unique_ptr<Module> AptDevice::make_module(std::size_t bay)
             paddles.push_back(paddle);
         }
         return std::make_unique<PolariserModule>(unit_, bay, address_of(bay), std::move(paddles), clock_, *log_, save);
+    }
+    case UnitKind::PiezoMotor: {
+        // Each channel's actuator is a body of the world ("<device>/1" ... "/4"); a power cycle keeps them.
+        const auto& actuators = config_of(config_).inertial_actuators;
+        std::vector<models::InertialDrive*> drives;
+        for (int c = 0; c < model_.pzmot_channels; ++c) {
+            const auto key = config_.name + "/" + std::to_string(c + 1);
+            auto* drive = world_.find_as<models::InertialDrive>(key);
+            if (!drive) {
+                const auto a = static_cast<std::size_t>(c) < actuators.size() ? actuators[c] : InertialActuatorConfig{};
+                models::InertialDriveConfig d;
+                d.travel_max_nm = a.travel_mm * 1e6;
+                d.start_nm = a.position_mm * 1e6;
+                d.step_forward_nm = a.step_forward_nm;
+                d.step_reverse_nm = a.step_reverse_nm;
+                drive = &world_.emplace<models::InertialDrive>(key, clock_, d);
+            }
+            drives.push_back(drive);
+        }
+        return std::make_unique<PzMotorModule>(unit_, bay, address_of(bay), std::move(drives), *log_, save);
     }
     }
     throw std::invalid_argument(config_.name + ": the " + config_.model + " is of a unit kind rigsim has no module for");
@@ -484,7 +505,7 @@ void AptDevice::flush()
                 continue;
             // USB "server alive" (p. 80): end-of-move messages count as status update type
             // messages too, while update messages are on.
-            if (updates_ && updates_since_ack_ >= kUpdatesWithoutAck)
+            if (updates_ && updates_since_ack_ >= updates_without_ack())
                 continue;
             if (updates_)
                 ++updates_since_ack_;
@@ -512,7 +533,7 @@ void AptDevice::flush()
 
 Ticks AptDevice::next_change(Ticks now) const
 {
-    Ticks next = updates_ && updates_since_ack_ < kUpdatesWithoutAck ? std::max(next_update_, now + 1) : kNever;
+    Ticks next = updates_ && updates_since_ack_ < updates_without_ack() ? std::max(next_update_, now + 1) : kNever;
     for (const auto& ch : channels_)
         next = std::min(next, ch->next_change(now));
     for (const auto& module : modules_)
@@ -535,7 +556,7 @@ void AptDevice::tick(Ticks now)
     if (updates_ && now >= next_update_) {
         next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
-        if (updates_since_ack_ < kUpdatesWithoutAck) {
+        if (updates_since_ack_ < updates_without_ack()) {
             ++updates_since_ack_;
             for (const auto& module : modules_)
                 if (auto update = module->status_update(host_); !update.empty())

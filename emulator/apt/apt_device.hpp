@@ -43,11 +43,13 @@ class AptDevice : public Device, public Tickable, public ControlSurface {
 public:
     /// Status updates every 100 ms of clock time (section 5 (c)).
     static constexpr std::int64_t kUpdatePeriod_ms = 100;
-    /// USB units stop their update messages after 50 without the model's acknowledgement
-    /// (ControllerModel::ack_id: MOT_ACK_DCSTATUSUPDATE p. 80, PZ_ACK_PZSTATUSUPDATE p. 105).
-    static constexpr int kUpdatesWithoutAck = 50;
-    /// The wire log warns when this many went unacknowledged (docs/control-api/apt.md "Notes").
-    static constexpr int kUpdatesWarnAt = 40;
+    /// USB units stop their update messages after this many without the model's acknowledgement
+    /// (ControllerModel::ack_id: MOT_ACK_DCSTATUSUPDATE p. 80, PZ_ACK_PZSTATUSUPDATE p. 105: 50;
+    /// PZMOT_ACK_STATUSUPDATE, issue 37 p. 406: 10).
+    int updates_without_ack() const { return model_.updates_without_ack; }
+    /// The wire log warns when this many went unacknowledged, four fifths of the cut-off (40 of
+    /// 50; docs/control-api/apt.md "Notes").
+    int updates_warn_at() const { return model_.updates_without_ack * 4 / 5; }
     /// A frame whose bytes stop for longer than this (clock time) is dropped when the next bytes
     /// arrive. The manual gives no serial timing beyond 115200 baud (2.3), at which a whole
     /// frame of 261 bytes takes 23 ms.

@@ -232,6 +232,23 @@ constexpr ControllerModel mpc(std::string_view name, int paddles)
     return c;
 }
 
+// KIM101 (K-Cube) and TIM101 (T-Cube) piezo inertia motor controllers (issue 28): four channels,
+// each a PIA actuator. Prefixes: KIM101 97 (Thorlabs/Motion_Control_Examples C#/KCube/KIM101
+// 97000001, its MATLAB example 97100058; not in issue 37's table), TIM101 65 (issue 37 p. 33, "T-Cube
+// Inertial Piezo Driver TIM001", pyLabLib's 65:"TIM001"). No public HW_GET_INFO of a unit: type 31,
+// firmware 1.0.3 as the other cubes. Its messages: kPzmot; its updates stop after 10 without
+// PZMOT_ACK_STATUSUPDATE (issue 37 p. 406).
+constexpr ControllerModel pzmot(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
+{
+    auto c = unit_cube(name, serial_prefix, UnitKind::PiezoMotor, listed<kPzmot>(), notes);
+    c.pzmot_channels = 4;
+    c.later_only = true;
+    c.ack_id = MGMSG_PZMOT_ACK_STATUSUPDATE;
+    c.updates_without_ack = 10;
+    c.mmi_wheel = false;
+    return c;
+}
+
 // Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
 constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
@@ -291,9 +308,10 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     return c;
 }
 
-constexpr std::array<ControllerModel, 22> kControllers{
+constexpr std::array<ControllerModel, 24> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(), k10cr1(), lts("LTS150"), lts("LTS300"), kbd101(),
     mff("MFF101"), mff("MFF102"), mpc("MPC320", 3), mpc("MPC220", 2),
+    pzmot("KIM101", 97, "Inertial Piezo Motor Controller"), pzmot("TIM101", 65, "T-Cube Inertial Piezo Driver"),
     solenoid_cube("TSC001", 85, "APT Solenoid Controller"),
     later_unit(rich(solenoid_cube("KSC101", 68, "Solenoid Controller")), listed<kKscLater>()),
     later_unit(piezo_cube("TPZ001", 81, "APT Piezo Driver"), listed<kTCubeLater>()),
@@ -390,7 +408,7 @@ std::uint16_t dc_stage_type(std::string_view name)
 std::string_view controller_names()
 {
     return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, MPC320, "
-           "MPC220, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
+           "MPC220, KIM101, TIM101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
 }
 
 } // namespace rigsim::apt

@@ -16,7 +16,7 @@ namespace rigsim::apt {
 enum class MotorKind { DcServo, Stepper, Brushless };
 
 /// What a unit drives; it picks the module class a unit (or a rack's bay) is made of.
-enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge, Flipper, Polariser };
+enum class UnitKind { Motor, Solenoid, Piezo, StrainGauge, Flipper, Polariser, PiezoMotor };
 
 /// The message IDs a model takes beyond the generic ones (identify, enable state, info, update
 /// messages, bays): its column of the manual's "Message Cross Reference by Unit Part Number"
@@ -91,6 +91,11 @@ struct ControllerModel {
     std::uint16_t hardware_version = 1;
     /// A polarisation controller's fibre paddles (MPC320 3, MPC220 2).
     int paddles = 0;
+    /// A piezo motor controller's channels (KIM101, TIM101: 4), each a piezo inertia actuator.
+    int pzmot_channels = 0;
+    /// The status updates a USB unit sends without the host's acknowledgement before it stops
+    /// (50, p. 80 and 105; a KIM101/TIM101 10, issue 37 p. 406).
+    int updates_without_ack = 50;
     /// HW_GET_INFO model number when the unit names itself otherwise than its product (an MFF101
     /// reports "MFF002"); empty: the name.
     std::string_view reported_name;

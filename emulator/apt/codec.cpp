@@ -47,6 +47,44 @@ Message untyped(const Frame& f)
     return Untyped{f.id, f.param1, f.param2, f.has_data, std::string(f.data)};
 }
 
+/// The block of sub-message `sub` read from `data` (the bytes after the SubMsgID): nullopt for
+/// an ID no block has, or data short of its block's fields (a longer one's tail is ignored).
+template <class... Blocks> std::optional<PzmotBlock> read_block(std::uint16_t sub, std::string_view data,
+                                                               const std::variant<Blocks...>*)
+{
+    std::optional<PzmotBlock> out;
+    (
+        [&] {
+            if (out || Blocks::sub_id != sub)
+                return;
+            Blocks b{};
+            if (data.size() < encode_data(b).size())
+                return;
+            Reader r{data};
+            std::apply([&](auto&... field) { (r.get(field), ...); }, Blocks::fields(b));
+            out = b;
+        }(),
+        ...);
+    return out;
+}
+
+/// Whether message T carries a PZMOT sub-message block (PZMOT_SET_PARAMS, PZMOT_GET_PARAMS).
+template <class T> constexpr bool kCarriesBlock = std::is_same_v<T, PzmotSetParams> || std::is_same_v<T, PzmotGetParams>;
+
+/// Frame `f` as message T, a message that carries a block: the first data word names the block
+/// (issue 37 p. 371); an unknown one, or a block short of its fields, is untyped.
+template <class T> Message as_block(const Frame& f)
+{
+    if (!f.has_data || f.data.size() < 2)
+        return untyped(f);
+    auto block = read_block(get_u16(f.data, 0), std::string_view(f.data).substr(2), static_cast<const PzmotBlock*>(nullptr));
+    if (!block)
+        return untyped(f);
+    T m{};
+    m.block = std::move(*block);
+    return m;
+}
+
 /// Frame `f` as message T: from its data packet, or from param1 and param2 of its header.
 template <class T> Message as(const Frame& f)
 {
@@ -87,13 +125,21 @@ template <class T> Message as(const Frame& f)
 
 /// Decodes a frame whose ID is its message's.
 using Decoder = Message (*)(const Frame&);
-/// Above the highest ID of the message table (MGMSG_KSG_GET_KCUBETRIGIOCONFIG, 0x07FB).
-constexpr std::size_t kDecoderSlots = 0x0800;
+/// Above the highest ID of the message table (MGMSG_PZMOT_ACK_STATUSUPDATE, 0x08E2).
+constexpr std::size_t kDecoderSlots = 0x0900;
 using DecoderTable = std::array<Decoder, kDecoderSlots>;
+
+template <class T> constexpr Decoder decoder_of()
+{
+    if constexpr (kCarriesBlock<T>)
+        return &as_block<T>;
+    else
+        return &as<T>;
+}
 
 template <class... T> constexpr void add_decoders(DecoderTable& table, const std::variant<T...>*)
 {
-    ((T::id < kDecoderSlots && table[T::id] == nullptr ? void(table[T::id] = &as<T>)
+    ((T::id < kDecoderSlots && table[T::id] == nullptr ? void(table[T::id] = decoder_of<T>())
                                                         : throw "two messages share an ID, or one is past the table"),
      ...);
 }

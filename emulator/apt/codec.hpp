@@ -15,7 +15,7 @@
 //
 // The structs stand in one file per chapter of the manual, each a part of this header:
 // codec_system.hpp, codec_motor.hpp, codec_solenoid.hpp, codec_piezo.hpp (with the strain gauge
-// reader), and the later issues' codec_kcube_units.hpp and codec_kcube.hpp.
+// reader), and the later issues' codec_kcube_units.hpp, codec_pzmot.hpp and codec_kcube.hpp.
 
 #include "emulator/apt/frame_framer.hpp"
 #include "emulator/apt/messages.hpp"
@@ -51,6 +51,7 @@ enum class Family {
     KCubeMotor,  ///< motor messages of later protocol issues (codec_kcube.hpp): the motor modules' KCubeParams
     Flipper,     ///< FlipperModule (MFF101, MFF102): MFF_OPERPARAMS (codec_kcube_units.hpp)
     Polariser,   ///< PolariserModule (MPC320, MPC220): POL_PARAMS (codec_kcube_units.hpp)
+    PzMotor,     ///< PzMotorModule (KIM101, TIM101): the PZMOT family (codec_pzmot.hpp)
     UnitToHost,  ///< sent by units (GETs, end-of-move messages): a unit ignores them
     Untyped,     ///< not typed by the codec (unknown ID, or a form its struct does not have)
 };
@@ -165,6 +166,8 @@ template <class P> struct Get {
 #include "emulator/apt/codec_piezo.hpp"
 // The K-Cube piezo driver's and strain gauge reader's own messages (later protocol issues).
 #include "emulator/apt/codec_kcube_units.hpp"
+// The KIM101/TIM101 piezo motor controllers' PZMOT family (later protocol issues).
+#include "emulator/apt/codec_pzmot.hpp"
 
 namespace rigsim::apt {
 namespace msg {
@@ -281,7 +284,7 @@ struct GroupOf<T, G, Groups...>
 
 /// Every chapter, in the order of Message's alternatives.
 using Chapters = std::tuple<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                            PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage>;
+                            PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage, PzmotMessage>;
 
 namespace codec_detail {
 template <class T, class C> struct GroupOfIn;
@@ -293,7 +296,8 @@ template <class T> using GroupOf = typename codec_detail::GroupOfIn<T, Chapters>
 
 /// Every message decode() can return: a chapter's message, or an Untyped.
 struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, MoveStatusMessage, SolenoidMessage,
-                              PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage, Untyped> {
+                              PiezoTrioMessage, PiezoMessage, KCubeMotorMessage, KCubeUnitMessage, PzmotMessage,
+                              Untyped> {
     Message() = default;
     /// Typed message `m`, in its chapter.
     template <class T, class G = GroupOf<T>>
@@ -353,6 +357,16 @@ inline void put(std::string& out, const std::optional<std::int32_t>& v)
     if (v)
         put_i32(out, *v);
 }
+/// A PZMOT sub-message block: its SubMsgID, then its fields.
+inline void put(std::string& out, const PzmotBlock& b)
+{
+    std::visit(
+        [&](const auto& s) {
+            put_u16(out, std::decay_t<decltype(s)>::sub_id);
+            std::apply([&](const auto&... f) { (put(out, f), ...); }, s.fields(s));
+        },
+        b);
+}
 
 template <class T> std::uint8_t param_byte(const T& v) { return static_cast<std::uint8_t>(v); }
 
@@ -405,6 +419,15 @@ inline void put(FrameBuffer& out, const std::optional<std::int32_t>& v)
 {
     if (v)
         put(out, *v);
+}
+inline void put(FrameBuffer& out, const PzmotBlock& b)
+{
+    std::visit(
+        [&](const auto& s) {
+            put(out, std::decay_t<decltype(s)>::sub_id);
+            std::apply([&](const auto&... f) { (put(out, f), ...); }, s.fields(s));
+        },
+        b);
 }
 
 /// The frame of `m` with its data packet: the header (length patched in at the end), then the fields.

@@ -26,6 +26,7 @@ constexpr std::array<std::string_view, 8> kAptKeys{"stage",    "bays",  "serial_
                                                     "actuator", "gauge", "hardware_max_voltage_v", "flipper"};
 constexpr std::array<std::string_view, 1> kSolenoidKeys{"interlock_fitted"};
 constexpr std::array<std::string_view, 1> kFlipperKeys{"position"};
+constexpr std::array<std::string_view, 4> kInertialKeys{"travel_mm", "position_mm", "step_forward_nm", "step_reverse_nm"};
 constexpr std::array<std::string_view, 5> kActuatorKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
                                                         "creep"};
 constexpr std::array<std::string_view, 7> kBayKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
@@ -53,6 +54,8 @@ std::vector<std::string_view> keys_of(const ControllerModel& c)
         return {"flipper", "serial_number"};
     case UnitKind::Polariser:
         return {"serial_number"};
+    case UnitKind::PiezoMotor:
+        return {"actuators", "serial_number"};
     }
     return {};
 }
@@ -75,6 +78,8 @@ std::string_view kind_noun(const ControllerModel& c)
         return "a flip mount";
     case UnitKind::Polariser:
         return "a polarisation controller";
+    case UnitKind::PiezoMotor:
+        return "a piezo motor controller";
     }
     return "";
 }
@@ -301,6 +306,30 @@ void load_piezo_rack(const ConfigReader& r, const Keys& k, const ControllerModel
     }
 }
 
+/// A KIM101/TIM101's "actuators": one object per channel from channel 1 (at most the model's
+/// channels); the channels it does not name get the default actuator (a PIA13 at mid-travel).
+void load_inertial_actuators(const ConfigReader& r, const Keys& k, const ControllerModel& c, AptConfig& apt)
+{
+    const auto channels = static_cast<std::size_t>(c.pzmot_channels);
+    apt.inertial_actuators.assign(channels, InertialActuatorConfig{});
+    const auto* list = k.find("actuators");
+    if (!list)
+        return;
+    if (!list->is_array() || list->empty() || list->size() > channels)
+        r.fail(k.at("actuators"), "expected an array of 1.." + std::to_string(channels) + " actuator objects, got "
+                                      + describe(*list));
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const auto at = pointer_to(k.at("actuators"), i);
+        const auto keys = object_keys(r, (*list)[i], at, kInertialKeys);
+        auto& a = apt.inertial_actuators[i];
+        keys.number("travel_mm", a.travel_mm, 0.001, 1000, "from 0.001 to 1000");
+        a.position_mm = a.travel_mm / 2;
+        keys.number("position_mm", a.position_mm, 0, a.travel_mm, "from 0 to travel_mm");
+        keys.number("step_forward_nm", a.step_forward_nm, 0.001, 10'000, "from 0.001 to 10000");
+        keys.number("step_reverse_nm", a.step_reverse_nm, 0.001, 10'000, "from 0.001 to 10000");
+    }
+}
+
 /// A strain gauge reader's "gauge" object at `pointer`.
 StrainGaugeConfig load_gauge(const ConfigReader& r, const json& g, const std::string& pointer)
 {
@@ -375,6 +404,9 @@ AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_
             object_keys(r, *f, k.at("flipper"), kFlipperKeys).integer("position", apt.flipper.position, 1, 2);
         break;
     case UnitKind::Polariser:
+        break;
+    case UnitKind::PiezoMotor:
+        load_inertial_actuators(r, k, controller, apt);
         break;
     }
     if (const auto* sn = k.find("serial_number")) {

@@ -31,6 +31,14 @@ struct FlipperConfig {
     int position = 1;   ///< where the arm stands at power-up: 1 or 2
 };
 
+/// A piezo inertia actuator on a KIM101/TIM101 channel (models::InertialDrive): a PIA13 by default.
+struct InertialActuatorConfig {
+    double travel_mm = 13;        ///< from the reverse end stop (0) to the forward one
+    double position_mm = 6.5;     ///< where the screw stands when the rig starts
+    double step_forward_nm = 20;  ///< one forward pulse at 110 V
+    double step_reverse_nm = 18;  ///< one reverse pulse at 110 V
+};
+
 /// A piezo actuator (stack or stage) on a piezo output: a TPZ001/KPZ101's "actuator", or a
 /// BPC30x bay.
 struct PiezoActuatorConfig {
@@ -79,6 +87,8 @@ struct AptConfig {
     std::uint32_t serial_number = 0;  ///< 8 digits with the model's prefix; 0 = prefix × 10^6 + 1
     SolenoidConfig solenoid;          ///< solenoid controllers
     FlipperConfig flipper;            ///< flip mounts
+    /// KIM101/TIM101: the actuator of channel 1, 2, ... (the loader fills every channel).
+    std::vector<InertialActuatorConfig> inertial_actuators;
     PiezoActuatorConfig actuator;     ///< TPZ001, KPZ101
     StrainGaugeConfig gauge;          ///< TSG001, KSG101
     int hardware_max_voltage_v = 150; ///< BPC30x amplifier's maximum: 75, 100 or 150

@@ -114,6 +114,7 @@ inline constexpr TakesLists kKsgLater = 1U << 6;     ///< a KSG101 of the later 
 inline constexpr TakesLists kTCubeLater = 1U << 7;   ///< a TPZ001 or TSG001 of the later generation
 inline constexpr TakesLists kMff = 1U << 8;          ///< MFF101, MFF102 (issue 37 p. 20)
 inline constexpr TakesLists kMpc = 1U << 9;          ///< MPC320, MPC220 (issue 37 p. 29)
+inline constexpr TakesLists kPzmot = 1U << 10;       ///< KIM101, TIM101 (issue 37 p. 28-29)
 
 namespace messages_detail {
 /// A message's ID and takes lists, one per line of messages.def.

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <algorithm>
 #include <cassert>
 #include <cstdint>
 #include <functional>
@@ -175,6 +176,20 @@ protected:
     bool in_range();
     /// Reply with message `m` from this module.
     template <class T> void answer(const T& m);
+    /// next_change() of a module whose bodies (`bodies`, pointers to models::Body) end their moves
+    /// by themselves and whose end messages wait for the tick after (`pending`: some do now).
+    template <class Bodies> static Ticks next_body_event(const Bodies& bodies, Ticks now, bool pending)
+    {
+        if (pending)
+            return now + 1;   // an end the world has woken a body for is sent at that tick
+        Ticks next = kNever;
+        for (const auto* body : bodies) {
+            const Ticks at = body->next_event(now);
+            if (at != kNever)
+                next = std::min(next, std::max(at, now + 1));
+        }
+        return next;
+    }
     /// Publish event `type` with `data` (an object) through the shell's sink, if any.
     void publish(std::string_view type, const nlohmann::json& data) const
     {

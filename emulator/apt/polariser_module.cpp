@@ -68,15 +68,7 @@ double PolariserModule::counts_at(std::size_t p) const
 
 Ticks PolariserModule::next_change(Ticks now) const
 {
-    if (!ended_.empty())
-        return now + 1;   // an end the world has woken a paddle for is sent at that tick
-    Ticks next = kNever;
-    for (const auto* paddle : paddles_) {
-        const Ticks at = paddle->next_event(now);
-        if (at != kNever)
-            next = std::min(next, std::max(at, now + 1));
-    }
-    return next;
+    return next_body_event(paddles_, now, !ended_.empty());
 }
 
 void PolariserModule::tick(Ticks now)

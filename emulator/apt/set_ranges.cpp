@@ -38,6 +38,17 @@ template <class T> std::optional<std::string> out_of_range_of(const T& m, bool m
             return first_out_of_range(T::Params::ranges(m.params), mmi_wheel);
         else
             return std::nullopt;
+    } else if constexpr (std::is_same_v<T, msg::PzmotSetParams>) {
+        // A PZMOT sub-message: its block's ranges (issue 37 p. 372-401).
+        return std::visit(
+            [mmi_wheel](const auto& block) -> std::optional<std::string> {
+                using B = std::decay_t<decltype(block)>;
+                if constexpr (kHasRanges<B>)
+                    return first_out_of_range(B::ranges(block), mmi_wheel);
+                else
+                    return std::nullopt;
+            },
+            m.block);
     } else if constexpr (kHasRanges<T>) {
         return first_out_of_range(T::ranges(m), mmi_wheel);
     } else {

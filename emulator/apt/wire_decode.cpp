@@ -84,6 +84,20 @@ nlohmann::json value(std::int16_t v) { return v; }
 nlohmann::json value(std::uint32_t v) { return v; }
 nlohmann::json value(std::int32_t v) { return v; }
 nlohmann::json value(const std::optional<std::int32_t>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+/// A PZMOT sub-message block (codec_pzmot.hpp): its ID, its name and its fields by name.
+nlohmann::json value(const msg::PzmotBlock& b)
+{
+    return std::visit(
+        [](const auto& block) {
+            using B = std::decay_t<decltype(block)>;
+            nlohmann::json out{{"sub_msg_id", B::sub_id}, {"sub_msg", B::sub_name}};
+            static const auto names = split_field_names(B::field_names);
+            std::size_t i = 0;
+            std::apply([&](const auto&... f) { ((out[std::string(names[i++])] = f), ...); }, B::fields(block));
+            return out;
+        },
+        b);
+}
 template <std::size_t N> nlohmann::json value(const std::array<char, N>& a)
 {
     std::size_t n = 0;
@@ -238,6 +252,7 @@ LogContext log_context(const ControllerModel& model)
         break;
     case UnitKind::Flipper:   // its positions in the limit bits (flipper_module.hpp): logged as a motor's
     case UnitKind::Polariser:
+    case UnitKind::PiezoMotor:   // PZMOT_GET_STATUSUPDATE's bits are the motor table's (issue 37 p. 405)
         c.unit = StatusTable::Motor;
         break;
     }

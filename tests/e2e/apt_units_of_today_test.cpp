@@ -1,5 +1,5 @@
 // The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
-// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101 and an MPC320, each asked who it is over its
+// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101, an MPC320 and a KIM101, each asked who it is over its
 // pty and moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
 #include "apt_support.hpp"
 #include "control_support.hpp"
@@ -22,7 +22,8 @@ constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "lts150", "protocol": "apt", "model": "LTS150", "tcp_port": 0, "apt": {"serial_number": 45000777}},
   {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}},
   {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}},
-  {"name": "mpc320", "protocol": "apt", "model": "MPC320", "tcp_port": 0, "apt": {}}]})";
+  {"name": "mpc320", "protocol": "apt", "model": "MPC320", "tcp_port": 0, "apt": {}},
+  {"name": "kim101", "protocol": "apt", "model": "KIM101", "tcp_port": 0, "apt": {}}]})";
 
 void step(LineClient& api, int ms)
 {
@@ -127,6 +128,36 @@ TEST_CASE("apt units of today: an MPC320 tells who it is over the pty and turns 
     const auto at = wait_for(tcp.fd(), 0x0412);
     REQUIRE(at);
     CHECK(get32(at->data, 2) == 685);
+}
+
+TEST_CASE("apt units of today: a KIM101 tells who it is over the pty and drives channel 1 (bit 0x01) over TCP",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    PtyClient pty(daemon.endpoint("kim101").pty);
+    pty.send(header(0x0005, 0, 0));
+    const auto info = wait_for(pty.fd(), 0x0006);
+    REQUIRE(info);
+    CHECK(info->data.substr(4, 6) == "KIM101");
+
+    TcpClient tcp(daemon.endpoint("kim101"));
+    // PZMOT_MOVE_ABSOLUTE, channel 1 to 1000 steps: 500 steps/s after a 5 ms ramp, 2005 ms.
+    tcp.send(with_data(0x08D4, std::string("\x01\x00", 2) + le32(1000)));
+    tcp.send(header(0x08C1, 0x07, 0x01));   // PZMOT_REQ_PARAMS DriveOPParams, channel 1
+    const auto drive = wait_for(tcp.fd(), 0x08C2);
+    REQUIRE(drive);
+    CHECK(drive->data.size() == 14);
+    step(api, 2000);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    step(api, 10);
+    const auto done = wait_for(tcp.fd(), 0x08D6, 5000ms);
+    REQUIRE(done);
+    REQUIRE(done->data.size() == 14);
+    CHECK(get32(done->data, 2) == 1000);
+    const auto channel = http(api, "GET", "/api/devices/kim101/channels/0").body;
+    CHECK(channel.find("\"unit\":\"piezo_motor\"") != std::string::npos);
+    CHECK(channel.find("\"position\":1000") != std::string::npos);
 }
 
 } // namespace apt_units_of_today_test

@@ -15,10 +15,12 @@
 #include "models/world.hpp"
 #include "emulator/apt/config.hpp"
 #include "emulator/apt/shipped_stages.hpp"
+#include "emulator/core/config_reader.hpp"
 #include "emulator/core/state_store.hpp"
 #include "tests/support/hex.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <spdlog/logger.h>
 #include <spdlog/sinks/null_sink.h>
 
@@ -49,6 +51,20 @@ inline DeviceConfig apt_cube(const std::string& model, const std::string& stage)
     c.protocol = "apt";
     c.model = model;
     config_of(c).stage = shipped_stage(stage);
+    return c;
+}
+
+/// The device of rig device object `device` (its "name", "model", "firmware" and "apt") as the
+/// rig loader reads it; the loader's ConfigError names "/devices/0" pointers.
+inline DeviceConfig loaded_apt_device(const nlohmann::json& device)
+{
+    DeviceConfig c;
+    c.name = device.at("name").get<std::string>();
+    c.protocol = "apt";
+    c.model = device.at("model").get<std::string>();
+    if (device.contains("firmware"))
+        c.firmware = device.at("firmware").get<std::string>();
+    load_device_section(ConfigReader("rig.json"), device, "/devices/0", c);
     return c;
 }
 

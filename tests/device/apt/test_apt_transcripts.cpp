@@ -273,7 +273,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_faults.txt", "apt_stages_scurve.txt", "apt_two_devices.txt",
     "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
     "apt_piezo_bpc303.txt", "apt_kdc101_issue44.txt", "apt_kst101_issue44.txt",
-    "apt_kcube_msgs_issue44.txt", "apt_kcube_msgs_issue3.txt",
+    "apt_kcube_msgs_issue44.txt", "apt_kcube_msgs_issue3.txt", "apt_pzmot_kim101.txt",
 };
 
 } // namespace
@@ -285,6 +285,11 @@ TEST_CASE("apt transcripts: every file in transcripts/ is replayed", "[device][a
         INFO(file);
         CHECK(std::find(kTranscripts.begin(), kTranscripts.end(), file) != kTranscripts.end());
     }
+}
+
+TEST_CASE("apt transcript: the KIM101's PZMOT messages", "[device][apt][transcript][pzmot]")
+{
+    replay("apt_pzmot_kim101.txt");
 }
 
 TEST_CASE("apt transcript: generic system messages", "[device][apt][transcript]")

@@ -23,14 +23,7 @@ namespace {
 /// The device of `device` (a rig's devices[0]) as the rig loader reads it.
 DeviceConfig loaded(const json& device)
 {
-    DeviceConfig c;
-    c.name = device.at("name").get<std::string>();
-    c.protocol = "apt";
-    c.model = device.at("model").get<std::string>();
-    if (device.contains("firmware"))
-        c.firmware = device.at("firmware").get<std::string>();
-    load_device_section(ConfigReader("rig.json"), device, "/devices/0", c);
-    return c;
+    return loaded_apt_device(device);
 }
 
 /// The rig loader's message for `device`, or "" when it takes it.

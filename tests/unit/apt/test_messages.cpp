@@ -90,7 +90,8 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
         CHECK(find_message(m.id) == &m);
         CHECK(m.name.substr(0, 6) == "MGMSG_");
         if (m.group == Group::Motor) {
-            CHECK(m.name.substr(0, 10) == "MGMSG_MOT_");
+            // The motor messages, and the piezo motor controllers' PZMOT_ ones of later issues.
+            CHECK((m.name.substr(0, 10) == "MGMSG_MOT_" || (m.later_issue && m.name.substr(0, 12) == "MGMSG_PZMOT_")));
         } else if (m.group == Group::Piezo) {
             // The piezo chapter's PZ_ messages, and the KPZ101's own KPZ_ ones of later issues.
             CHECK((m.name.substr(0, 9) == "MGMSG_PZ_" || (m.later_issue && m.name.substr(0, 10) == "MGMSG_KPZ_")));
@@ -115,12 +116,12 @@ TEST_CASE("apt message table is consistent", "[unit][apt][messages]")
     }
     CHECK(count(Group::Generic) == 22);
     // The manual's, then the later issues' (test_codec_kcube.cpp), the flip mount's MFF_OPERPARAMS and the
-    // polarisation controller's POL_PARAMS.
-    CHECK(count(Group::Motor) == 92 + 19 + 3 + 3);
+    // polarisation controller's POL_PARAMS, the piezo motor controllers' PZMOT family.
+    CHECK(count(Group::Motor) == 92 + 19 + 3 + 3 + 9);
     // The piezo and strain gauge chapters' 47 and 5, and the K-Cube units' 7 and 6 of later issues.
     CHECK(count(Group::Piezo) == 47 + 7);
     CHECK(count(Group::StrainGauge) == 5 + 6);
-    CHECK(all_messages().size() == 166 + 19 + 13 + 3 + 3);
+    CHECK(all_messages().size() == 166 + 19 + 13 + 3 + 3 + 9);
     CHECK(find_message(0x0000) == nullptr);
     CHECK(find_message(0xFFFF) == nullptr);
     CHECK(find_message(0x0663) == nullptr);     // docs/protocol/apt.md's unknown ID beside 0x0000, 0xFFFF
@@ -300,7 +301,12 @@ TEST_CASE("apt message table flags the short forms and the later-issue messages"
                        // The MFF101/MFF102 flip mount's (issue 28).
                        "MGMSG_MOT_SET_MFF_OPERPARAMS", "MGMSG_MOT_REQ_MFF_OPERPARAMS", "MGMSG_MOT_GET_MFF_OPERPARAMS",
                        // The MPC320/MPC220 polarisation controllers' (issue 28).
-                       "MGMSG_MOT_SET_POLPARAMS", "MGMSG_MOT_REQ_POLPARAMS", "MGMSG_MOT_GET_POLPARAMS"});
+                       "MGMSG_MOT_SET_POLPARAMS", "MGMSG_MOT_REQ_POLPARAMS", "MGMSG_MOT_GET_POLPARAMS",
+                       // The KIM101/TIM101 piezo motor controllers' (issue 28).
+                       "MGMSG_PZMOT_SET_PARAMS", "MGMSG_PZMOT_REQ_PARAMS", "MGMSG_PZMOT_GET_PARAMS",
+                       "MGMSG_PZMOT_MOVE_ABSOLUTE", "MGMSG_PZMOT_MOVE_COMPLETED", "MGMSG_PZMOT_MOVE_JOG",
+                       "MGMSG_PZMOT_REQ_STATUSUPDATE", "MGMSG_PZMOT_GET_STATUSUPDATE",
+                       "MGMSG_PZMOT_ACK_STATUSUPDATE"});
     CHECK(find_message(MGMSG_HW_NO_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_HW_YES_FLASH_PROGRAMMING)->header_only());
     CHECK(find_message(MGMSG_MOT_MOVE_JOG)->header_only());

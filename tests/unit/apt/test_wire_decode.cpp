@@ -14,9 +14,11 @@ using namespace rigsim::apt;
 TEST_CASE("decode_for_log names every field of the names table for every message", "[unit][apt][wire]")
 {
     for (const auto& info : all_messages()) {
-        const std::string frame = info.header_only()
-                                      ? encode_header_only(info.id, 1, 0, 0x50, 0x01)
-                                      : encode_with_data(info.id, 0x50, 0x01, std::string(info.data_length, '\0'));
+        std::string data(info.header_only() ? 0 : static_cast<std::size_t>(info.data_length), '\0');
+        if (info.id == MGMSG_PZMOT_SET_PARAMS || info.id == MGMSG_PZMOT_GET_PARAMS)
+            data[0] = 0x07;   // a sub-message the codec knows (DriveOPParams): sub-message 0 has no block
+        const std::string frame = info.header_only() ? encode_header_only(info.id, 1, 0, 0x50, 0x01)
+                                                     : encode_with_data(info.id, 0x50, 0x01, data);
         nlohmann::json out = nlohmann::json::object();
         decode_for_log(frame, out);
         INFO(info.name);

@@ -3,6 +3,7 @@
 #include "emulator/core/wire_log.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
 
