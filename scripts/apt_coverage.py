@@ -44,7 +44,7 @@ TABLE_OF = {
 }
 ORDER = ["TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "K10CR1", "LTS150", "LTS300", "KBD101",
          "MFF101", "MFF102", "MPC320", "MPC220", "KIM101", "TIM101", "TSC001", "KSC101",
-         "TPZ001", "KPZ101", "BPC301", "BPC303", "TSG001", "KSG101"]
+         "TPZ001", "KPZ101", "BPC301", "BPC303", "MMR601", "TSG001", "KSG101"]
 
 # The module header(s) of each kind (catalogue.hpp UnitKind; motors by MotorKind).
 # kcube_params.hpp: the motor messages of later protocol issues, which every motor module hands to its
@@ -52,7 +52,7 @@ ORDER = ["TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "K10CR1", "
 KIND_HEADERS = {
     "DcServo": ["motor_module.hpp", "kcube_params.hpp"], "Stepper": ["motor_module.hpp", "kcube_params.hpp"],
     "Brushless": ["motor_module.hpp", "brushless_module.hpp", "kcube_params.hpp"],
-    "Solenoid": ["solenoid_module.hpp"], "Piezo": ["piezo_module.hpp"], "StrainGauge": ["strain_gauge_module.hpp"],
+    "Solenoid": ["solenoid_module.hpp"], "Piezo": ["piezo_module.hpp", "piezo_card.hpp"], "StrainGauge": ["strain_gauge_module.hpp"],
     "Flipper": ["flipper_module.hpp"], "Polariser": ["polariser_module.hpp"], "PiezoMotor": ["pzmot_module.hpp"],
 }
 # What a unit sends unprompted (docs/protocol/apt.md "Unsolicited messages", "Faults"): motor units

@@ -166,6 +166,16 @@ Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
         out = pzmot->drive(index).key();
         return std::nullopt;
     }
+    if (model_.bay_channels > 1) {
+        // Two channels a card (an MMR601's MPZ601): channel 2 × bay + card channel - 1 for faults and
+        // kinematics (its channel objects are the cards, channel = bay).
+        const auto per_bay = static_cast<std::size_t>(model_.bay_channels);
+        if (index >= modules_.size() * per_bay)
+            return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + "'s piezo channels are 0 to "
+                                    + std::to_string(modules_.size() * per_bay - 1) + " (2 × bay + card channel - 1)"};
+        out = piezo_key(index / per_bay, index % per_bay);
+        return std::nullopt;
+    }
     if (index >= modules_.size())
         return Refusal{404, "no channel " + std::to_string(index) + ": the " + config_.model + " has "
                                 + (modules_.size() == 1 ? "channel 0 only" : "channels 0 to " + std::to_string(modules_.size() - 1))};
@@ -186,6 +196,14 @@ Refused AptDevice::axis_body_key(std::size_t index, std::string& out) const
     return std::nullopt;
 }
 
+Refused AptDevice::channel_body_key(std::size_t index, std::string& out) const
+{
+    // A two-channel card's object lists its channels' bodies (PiezoCard::describe).
+    if (model_.bay_channels > 1)
+        return Refusal{400, "an " + std::string(model_.bay_model_name) + " card has two channels"};
+    return axis_body_key(index, out);
+}
+
 void AptDevice::describe(nlohmann::json& out) const
 {
     auto channels = nlohmann::json::array();
@@ -197,6 +215,8 @@ void AptDevice::describe(nlohmann::json& out) const
                              {"unacknowledged", updates_since_ack_},
                              {"cut_off", updates_ && updates_since_ack_ >= updates_without_ack()}};
     out["end_of_move_messages"] = end_of_move_messages_;
+    if (model_.wrong_address_freezes)
+        out["frozen"] = frozen_;
 }
 
 Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
@@ -322,6 +342,7 @@ void AptDevice::power_cycle(const PowerCycle& how)
     next_update_ = kNever;
     updates_since_ack_ = 0;
     end_of_move_messages_ = true;
+    frozen_ = false;
     host_ = kHost;
     last_set_.clear();
     if (how.keep_saved)

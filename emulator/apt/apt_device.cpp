@@ -5,6 +5,7 @@
 
 #include "emulator/apt/brushless_module.hpp"
 #include "emulator/apt/flipper_module.hpp"
+#include "emulator/apt/piezo_card.hpp"
 #include "emulator/apt/piezo_module.hpp"
 #include "emulator/apt/polariser_module.hpp"
 #include "emulator/apt/pzmot_module.hpp"
@@ -107,7 +108,10 @@ AptDevice::AptDevice(const DeviceConfig& config, models::World& world, std::shar
     : config_(config), clock_(world.clock()), world_(world), log_(std::move(log)),
       model_(*find_controller(config.model, config_of(config).firmware)),
       serial_(config_of(config).serial_number != 0 ? config_of(config).serial_number : model_.serial_prefix * 1'000'000 + 1),
-      unit_{config.model, model_, serial_, std::max(rack_bays(), static_cast<std::size_t>(model_.max_bays)),
+      // A rack's slots are built in (a BPC303's three channels), but a modular rack's (an MMR601's)
+      // hold the cards the rig puts in them.
+      unit_{config.model, model_, serial_,
+            model_.bay_model_name.empty() ? std::max(rack_bays(), static_cast<std::size_t>(model_.max_bays)) : rack_bays(),
             model_.later_only ? model_.firmware : config_of(config).firmware,
             model_.reports_stage_type ? dc_stage_type(config_of(config).stage.name) : std::uint16_t{0}},
       store_(store), events_(events), wire_log_(config.name, clock_.tick_hz(), events, log_)
@@ -233,16 +237,35 @@ std::size_t AptDevice::rack_bays() const
     if (!model_.rack)
         return 1;
     const auto& apt = config_of(config_);
-    return model_.kind == UnitKind::Piezo ? apt.piezo_bays.size() : apt.bays.size();
+    return model_.kind == UnitKind::Piezo ? apt.piezo_bays.size() / static_cast<std::size_t>(model_.bay_channels)
+                                          : apt.bays.size();
+}
+
+std::string AptDevice::piezo_key(std::size_t bay, std::size_t card_channel) const
+{
+    // A channel of a two-channel card (an MMR601's MPZ601) is "<device>/<bay + 1>.<channel>".
+    const auto key = config_.name + "/" + std::to_string(bay + 1);
+    return model_.bay_channels > 1 ? key + "." + std::to_string(card_channel + 1) : key;
 }
 
 std::unique_ptr<Module> AptDevice::make_piezo_module(std::size_t bay, Module::SaveToEeprom save)
 {
+    if (model_.bay_channels == 1)
+        return make_piezo_channel(bay, 0, std::move(save));
+    std::array<std::unique_ptr<Module>, PiezoCard::kChannels> channels;
+    for (std::size_t c = 0; c < PiezoCard::kChannels; ++c)
+        channels[c] = make_piezo_channel(bay, c, save);
+    return std::make_unique<PiezoCard>(unit_, bay, address_of(bay), std::move(channels), *log_);
+}
+
+std::unique_ptr<Module> AptDevice::make_piezo_channel(std::size_t bay, std::size_t card_channel, Module::SaveToEeprom save)
+{
     const auto& apt = config_of(config_);
     const PiezoBayConfig cube_bay{apt.actuator, false, 2000};
-    const PiezoBayConfig& b = model_.rack ? apt.piezo_bays[bay] : cube_bay;
+    const auto index = bay * static_cast<std::size_t>(model_.bay_channels) + card_channel;
+    const PiezoBayConfig& b = model_.rack ? apt.piezo_bays[index] : cube_bay;
     // The actuator is the world's: a power cycle makes a new module over the same body.
-    const auto key = config_.name + "/" + std::to_string(bay + 1);
+    const auto key = piezo_key(bay, card_channel);
     auto* actuator = world_.find_as<models::PiezoActuator>(key);
     if (!actuator) {
         models::PiezoActuatorConfig a;
@@ -349,9 +372,27 @@ void AptDevice::handle(const Frame& f, std::string_view peer, std::string& reply
 
 void AptDevice::route(const Frame& f, std::string_view peer, std::string& reply)
 {
+    if (frozen_) {
+        // pyLabLib issue 81: "some devices will completely freeze if you try to communicate with them
+        // using the wrong is_rack_system"; only a power cycle brings them back.
+        log_->warn("{}: {} to 0x{:02x}: the {} is frozen (it was addressed as a single unit), ignored until a power "
+                   "cycle",
+                   peer, f.info->name, f.dest, config_.model);
+        note("ignored by the unit: it is frozen since a client addressed it as a single unit (0x50); power cycle it");
+        return;
+    }
     host_ = f.source;
     const auto m = msg::decode(f);
     Request r{f, peer, reply, host_};
+    if (model_.rack && model_.wrong_address_freezes && f.dest == kGenericUsb) {
+        frozen_ = true;
+        log_->error("{}: {} to 0x50 (a single unit's address; the rack is 0x11, its bays 0x21..): the {} freezes "
+                    "until it is power cycled",
+                    peer, f.info->name, config_.model);
+        note("the unit freezes: a rack addressed as a single unit (0x50, the wrong rack flag) answers nothing until "
+             "power cycled");
+        return;
+    }
     if (!model_.rack) {
         // A single unit answers as 0x50 and, as the real cubes do, also acts on messages
         // that clients address to the motherboard (0x11) or bay 0 (0x21).
@@ -558,9 +599,16 @@ void AptDevice::tick(Ticks now)
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
         if (updates_since_ack_ < updates_without_ack()) {
             ++updates_since_ack_;
-            for (const auto& module : modules_)
-                if (auto update = module->status_update(host_); !update.empty())
-                    broadcast(update, update_notes());
+            for (const auto& module : modules_) {
+                // One frame, or one per channel of a two-channel card (PiezoCard): each its own send.
+                const auto update = module->status_update(host_);
+                for (std::string_view rest = update; rest.size() >= kHeaderSize;) {
+                    const bool data = (static_cast<unsigned char>(rest[4]) & kDataFlag) != 0;
+                    const std::size_t n = std::min(rest.size(), kHeaderSize + (data ? std::size_t{get_u16(rest, 2)} : 0));
+                    broadcast(std::string(rest.substr(0, n)), update_notes());
+                    rest.remove_prefix(n);
+                }
+            }
         }
     }
 }

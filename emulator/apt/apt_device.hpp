@@ -122,6 +122,7 @@ public:
     Refused trace(std::size_t index, std::int64_t from_tick, std::size_t max, nlohmann::json& out) const override;
     /// A motor bay's stage, a piezo bay's actuator; solenoid outputs and gauges move nothing (400).
     Refused axis_body_key(std::size_t index, std::string& out) const override;
+    Refused channel_body_key(std::size_t index, std::string& out) const override;
     WireLog& wire_log() override { return wire_log_; }
     /// Record one frame crossing the wire of connection `peer` (notes: the client's mistakes).
     void record(bool inbound, std::string_view peer, std::string_view frame, std::vector<std::string> notes = {},
@@ -140,6 +141,10 @@ private:
     std::size_t rack_bays() const;
     /// The piezo module of bay `bay` over its actuator (world key "<device>/<bay+1>").
     std::unique_ptr<Module> make_piezo_module(std::size_t bay, Module::SaveToEeprom save);
+    /// One piezo channel of `bay` (`card_channel` 0 but on a two-channel card) over its world body.
+    std::unique_ptr<Module> make_piezo_channel(std::size_t bay, std::size_t card_channel, Module::SaveToEeprom save);
+    /// The world key of the actuator of `bay`'s channel `card_channel`.
+    std::string piezo_key(std::size_t bay, std::size_t card_channel) const;
     /// A TPZ/KPZ's feedback: the gauge of the (linked) world mounted on its actuator, if any.
     void connect_feedback(std::size_t bay);
     /// The module of this controller's motor kind for bay `bay`.
@@ -201,6 +206,8 @@ private:
     Ticks next_update_ = kNever;
     int updates_since_ack_ = 0;
     bool end_of_move_messages_ = true;      ///< MOT_SUSPEND/RESUME_ENDOFMOVEMSGS
+    /// Addressed as a single unit (ControllerModel::wrong_address_freezes): deaf until a power cycle.
+    bool frozen_ = false;
     int identify_count_ = 0;
     std::uint8_t host_ = 0x01;              ///< where replies go (the last requester's source)
     bool linked_ = false;                   ///< power_up() ran: the world's bodies are linked

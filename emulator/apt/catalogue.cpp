@@ -249,6 +249,40 @@ constexpr ControllerModel pzmot(std::string_view name, std::uint32_t serial_pref
     return c;
 }
 
+// MMR601 modular rack ("Midi Rack") with MPZ601 piezo modules (issue 28). The rack's own HW_GET_INFO,
+// read from a unit (AlexShkarin/pyLabLib issue 97): serial 75000000 (issue 37 p. 33 lists 48 for "MMR
+// series Midi Rack bay serial number"), model "MMR601", type 3, firmware 1.0.2, hardware version 3,
+// 6 channels, notes "MMR601 Rack USB Communications Board (Issue 3)". Its bays: MPZ601 cards, serial
+// prefix 51 (issue 37 p. 33; Kinesis shows the same unit's bays as 511xxxxx), two channels each
+// (Thorlabs/Motion_Control_Examples MMR601: "Piezo and StepperMotor have 2"); no public HW_GET_INFO of
+// a card: type 45 as the BPC cards. Their messages: issue 37 p. 7's list (kMpz); their LUT and loop
+// as a BPC bay's (no public figure). Addressed as a single unit, it freezes (pyLabLib issue 81).
+constexpr ControllerModel mmr601()
+{
+    ControllerModel c;
+    c.name = "MMR601";
+    c.kind = UnitKind::Piezo;
+    c.takes = listed<kMpz>();
+    c.ack_id = MGMSG_PZ_ACK_PZSTATUSUPDATE;
+    c.lut_max_index = 7'999;
+    c.lut_base_interval_us = 1'000;
+    c.loop_rate_hz = 1'000;
+    c.serial_prefix = 75;
+    c.hw_type = 3;
+    c.firmware_version = 0x00010002;
+    c.hardware_version = 3;
+    c.notes = "MMR601 Rack USB Communications Board (Issue 3)";
+    c.rack = true;
+    c.max_bays = 6;
+    c.bay_hw_type = 45;
+    c.bay_serial_prefix = 51;
+    c.bay_model_name = "MPZ601";
+    c.bay_channels = 2;
+    c.later_only = true;
+    c.wrong_address_freezes = true;
+    return c;
+}
+
 // Serial prefixes: the manual lists none for these units (2.2); Thorlabs' own (D-1).
 constexpr ControllerModel solenoid_cube(std::string_view name, std::uint32_t serial_prefix, std::string_view notes)
 {
@@ -308,7 +342,7 @@ constexpr ControllerModel bpc(std::string_view name, std::uint32_t serial_prefix
     return c;
 }
 
-constexpr std::array<ControllerModel, 24> kControllers{
+constexpr std::array<ControllerModel, 25> kControllers{
     tst001(), kst101(), tdc001(), kdc101(), bsc203(), bbd203(), k10cr1(), lts("LTS150"), lts("LTS300"), kbd101(),
     mff("MFF101"), mff("MFF102"), mpc("MPC320", 3), mpc("MPC220", 2),
     pzmot("KIM101", 97, "Inertial Piezo Motor Controller"), pzmot("TIM101", 65, "T-Cube Inertial Piezo Driver"),
@@ -320,6 +354,7 @@ constexpr std::array<ControllerModel, 24> kControllers{
     // 2.2 (the least certain of D-1).
     bpc("BPC301", 41, 1),
     bpc("BPC303", 71, 3),
+    mmr601(),
     later_unit(gauge_cube("TSG001", 84, "APT Strain Gauge Reader"), listed<kTCubeLater>()),
     later_unit(rich(gauge_cube("KSG101", 59, "Strain Gauge Reader")), listed<kKsgLater>()),
 };
@@ -408,7 +443,7 @@ std::uint16_t dc_stage_type(std::string_view name)
 std::string_view controller_names()
 {
     return "TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, MPC320, "
-           "MPC220, KIM101, TIM101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101";
+           "MPC220, KIM101, TIM101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, MMR601, TSG001, KSG101";
 }
 
 } // namespace rigsim::apt

@@ -99,6 +99,14 @@ struct ControllerModel {
     /// HW_GET_INFO model number when the unit names itself otherwise than its product (an MFF101
     /// reports "MFF002"); empty: the name.
     std::string_view reported_name;
+    /// A rack whose bays hold modules of their own model (an MMR601's MPZ601 cards): their HW_GET_INFO
+    /// model number; empty: the rack's.
+    std::string_view bay_model_name;
+    /// The channels of each bay's card (an MPZ601: 2, PiezoCard); 1: a bay is one channel.
+    int bay_channels = 1;
+    /// A rack that stops answering when a client addresses it as a single unit (0x50, "the wrong rack
+    /// flag"), until it is power cycled (pyLabLib issues 81 and 97; docs/protocol/apt.md "Units of today").
+    bool wrong_address_freezes = false;
 };
 
 /// What a stage's carriage does: move along a line (unit mm), turn without end (unit degree), or

@@ -26,6 +26,7 @@ constexpr std::array<std::string_view, 8> kAptKeys{"stage",    "bays",  "serial_
                                                     "actuator", "gauge", "hardware_max_voltage_v", "flipper"};
 constexpr std::array<std::string_view, 1> kSolenoidKeys{"interlock_fitted"};
 constexpr std::array<std::string_view, 1> kFlipperKeys{"position"};
+constexpr std::array<std::string_view, 1> kCardKeys{"channels"};
 constexpr std::array<std::string_view, 4> kInertialKeys{"travel_mm", "position_mm", "step_forward_nm", "step_reverse_nm"};
 constexpr std::array<std::string_view, 5> kActuatorKeys{"travel_um", "max_voltage_v", "response_ms", "hysteresis",
                                                         "creep"};
@@ -276,15 +277,33 @@ void load_motor(const ConfigReader& r, const json& a, const std::string& apt_poi
     }
 }
 
+/// One piezo channel's object (a BPC30x bay, a channel of an MMR601's MPZ601 card) at `pointer`.
+PiezoBayConfig load_piezo_channel(const ConfigReader& r, const json& object, const std::string& pointer,
+                                  const AptConfig& apt)
+{
+    const auto bay_keys = object_keys(r, object, pointer, kBayKeys);
+    PiezoBayConfig bay;
+    load_actuator(bay_keys, bay.actuator);
+    bay_keys.flag("strain_gauge", bay.strain_gauge);
+    bay_keys.integer("zero_time_ms", bay.zero_time_ms, 0, 60'000);
+    if (bay.actuator.max_voltage_v > apt.hardware_max_voltage_v)
+        r.fail(bay_keys.at("max_voltage_v"), "expected at most the rack's hardware_max_voltage_v (" +
+                                                 std::to_string(apt.hardware_max_voltage_v) + "), got " +
+                                                 std::to_string(bay.actuator.max_voltage_v));
+    return bay;
+}
+
 /// A BPC30x: "hardware_max_voltage_v" and a bay object per occupied slot (default: every slot,
-/// each with the defaults).
+/// each with the defaults). An MMR601: a bay object per MPZ601 card, `{"channels": [ch1, ch2]}`
+/// (each a BPC bay's keys; default: both with the defaults); apt.piezo_bays holds every card's two.
 void load_piezo_rack(const ConfigReader& r, const Keys& k, const ControllerModel& controller, AptConfig& apt)
 {
     k.voltage("hardware_max_voltage_v", apt.hardware_max_voltage_v);
     const auto max = static_cast<std::size_t>(controller.max_bays);
+    const auto per_bay = static_cast<std::size_t>(controller.bay_channels);
     const auto* bays = k.find("bays");
     if (!bays) {
-        apt.piezo_bays.resize(max);
+        apt.piezo_bays.resize(max * per_bay);
         return;
     }
     if (!bays->is_array() || bays->empty() || bays->size() > max) {
@@ -293,16 +312,18 @@ void load_piezo_rack(const ConfigReader& r, const Keys& k, const ControllerModel
     }
     for (std::size_t i = 0; i < bays->size(); ++i) {
         const auto bay_pointer = pointer_to(k.at("bays"), i);
-        const auto bay_keys = object_keys(r, (*bays)[i], bay_pointer, kBayKeys);
-        PiezoBayConfig bay;
-        load_actuator(bay_keys, bay.actuator);
-        bay_keys.flag("strain_gauge", bay.strain_gauge);
-        bay_keys.integer("zero_time_ms", bay.zero_time_ms, 0, 60'000);
-        if (bay.actuator.max_voltage_v > apt.hardware_max_voltage_v)
-            r.fail(bay_keys.at("max_voltage_v"), "expected at most the rack's hardware_max_voltage_v (" +
-                                                     std::to_string(apt.hardware_max_voltage_v) + "), got " +
-                                                     std::to_string(bay.actuator.max_voltage_v));
-        apt.piezo_bays.push_back(bay);
+        if (per_bay > 1) {
+            const auto card = object_keys(r, (*bays)[i], bay_pointer, kCardKeys);
+            const auto* channels = card.find("channels");
+            if (channels && (!channels->is_array() || channels->size() != per_bay))
+                r.fail(card.at("channels"), "expected an array of " + std::to_string(per_bay) + " channel objects, got "
+                                                + describe(*channels));
+            for (std::size_t c = 0; c < per_bay; ++c)
+                apt.piezo_bays.push_back(channels ? load_piezo_channel(r, (*channels)[c], pointer_to(card.at("channels"), c), apt)
+                                                  : PiezoBayConfig{});
+            continue;
+        }
+        apt.piezo_bays.push_back(load_piezo_channel(r, (*bays)[i], bay_pointer, apt));
     }
 }
 

@@ -115,6 +115,7 @@ inline constexpr TakesLists kTCubeLater = 1U << 7;   ///< a TPZ001 or TSG001 of 
 inline constexpr TakesLists kMff = 1U << 8;          ///< MFF101, MFF102 (issue 37 p. 20)
 inline constexpr TakesLists kMpc = 1U << 9;          ///< MPC320, MPC220 (issue 37 p. 29)
 inline constexpr TakesLists kPzmot = 1U << 10;       ///< KIM101, TIM101 (issue 37 p. 28-29)
+inline constexpr TakesLists kMpz = 1U << 11;         ///< an MMR601's MPZ601 card (issue 37 p. 7)
 
 namespace messages_detail {
 /// A message's ID and takes lists, one per line of messages.def.

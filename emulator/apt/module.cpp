@@ -38,7 +38,9 @@ msg::HwGetInfo hw_get_info(const UnitIdentity& unit, std::optional<std::size_t> 
         card ? model.bay_serial_prefix * 1'000'000 + (unit.serial % 1'000'000) * 10 % 1'000'000
                    + static_cast<std::uint32_t>(*bay)
              : unit.serial;
-    info.model_number = padded<8>(model.reported_name.empty() ? unit.model_name : std::string(model.reported_name));
+    info.model_number = padded<8>(card && !model.bay_model_name.empty() ? std::string(model.bay_model_name)
+                                  : model.reported_name.empty()        ? unit.model_name
+                                                                       : std::string(model.reported_name));
     info.type = card ? model.bay_hw_type : model.hw_type;
     for (std::size_t i = 0; i < info.firmware_version.size(); ++i)   // minor, interim, major, 0 (p. 21)
         info.firmware_version[i] = static_cast<char>((model.firmware_version >> (8 * i)) & 0xFF);

@@ -123,7 +123,7 @@ public:
     /// Where a module publishes its events (lut_started, lut_ended, solenoid) for the control
     /// API's stream: the unit shell's, which adds the channel and drops them while nobody listens.
     using EventSink = std::function<void(std::string_view type, const nlohmann::json& data)>;
-    void set_event_sink(EventSink sink) { event_sink_ = std::move(sink); }
+    virtual void set_event_sink(EventSink sink) { event_sink_ = std::move(sink); }
 
     std::uint8_t address() const { return address_; }
     std::size_t bay() const { return bay_; }

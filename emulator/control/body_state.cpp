@@ -37,7 +37,7 @@ void describe_device(const ControlSurface& surface, const models::World* world, 
     for (auto& ch : out["channels"]) {
         const int index = ch.value("index", -1);
         std::string key;
-        if (index < 0 || surface.axis_body_key(static_cast<std::size_t>(index), key))
+        if (index < 0 || surface.channel_body_key(static_cast<std::size_t>(index), key))
             continue;
         const models::Body* body = world->find(key);
         if (body && body->travel() != models::Travel::None)

@@ -8,6 +8,9 @@ namespace rigsim::control {
 
 namespace {
 
+/// The highest channel a joint's axis names (docs/config.md "Kinematics": 0..255).
+constexpr std::size_t kMaxJointChannel = 255;
+
 bool same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b)
 {
     return a.matrix() == b.matrix();
@@ -19,21 +22,22 @@ std::vector<std::optional<JointAxis>> joint_axes(const std::vector<JointBinding>
                                                  const std::vector<ControlledDevice>& devices)
 {
     // Each device's channels, asked once which body they drive (the world's keys are the
-    // families' own: an APT bay's is 1-based, an MCS channel's 0-based).
+    // families' own: an APT bay's is 1-based, an MCS channel's 0-based), from channel 0 up to the
+    // first the device does not have (404): a joint's channel, which on a KIM101 or an MMR601
+    // numbers actuators beyond the channel objects of describe().
     std::map<std::string, JointAxis, std::less<>> by_body;
     for (const auto& d : devices) {
         if (!d.surface)
             continue;
-        auto state = nlohmann::json::object();
-        d.surface->describe(state);
-        if (!state.contains("channels"))
-            continue;
-        for (const auto& ch : state["channels"]) {
-            const auto index = ch.value("index", -1);
+        for (std::size_t index = 0; index <= kMaxJointChannel; ++index) {
             std::string key;
-            if (index < 0 || d.surface->axis_body_key(static_cast<std::size_t>(index), key) || key.empty())
+            if (const auto refused = d.surface->axis_body_key(index, key)) {
+                if (refused->status == 404)
+                    break;
                 continue;
-            by_body.emplace(key, JointAxis{d.endpoints.name, static_cast<std::size_t>(index)});
+            }
+            if (!key.empty())
+                by_body.emplace(key, JointAxis{d.endpoints.name, index});
         }
     }
     std::vector<std::optional<JointAxis>> out;

@@ -98,6 +98,10 @@ public:
         (void)index, (void)out;
         return Refusal{400, "this device has no axis to mount"};
     }
+    /// The world body the channel object `index` of describe() shows (its position_si, body): by
+    /// default the one axis_body_key() gives; a device whose channel objects hold several bodies
+    /// (an APT card of two channels) names none here and lists them itself.
+    virtual Refused channel_body_key(std::size_t index, std::string& out) const { return axis_body_key(index, out); }
     /// The world body a physical fault `f` (physical(f.kind)) acts on: its key in `out`, after
     /// the checks only the device can make. By default the body channel `f.channel` (0 if absent)
     /// moves (axis_body_key); a family adds its own checks (an MCS channel needs a sensor to fail).

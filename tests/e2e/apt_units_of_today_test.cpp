@@ -1,5 +1,5 @@
 // The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
-// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101, an MPC320 and a KIM101, each asked who it is over its
+// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101, an MPC320, a KIM101 and an MMR601 rack, each asked who it is over its
 // pty and moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
 #include "apt_support.hpp"
 #include "control_support.hpp"
@@ -23,7 +23,8 @@ constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "kbd101", "protocol": "apt", "model": "KBD101", "tcp_port": 0, "apt": {"stage": "DDS100"}},
   {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}},
   {"name": "mpc320", "protocol": "apt", "model": "MPC320", "tcp_port": 0, "apt": {}},
-  {"name": "kim101", "protocol": "apt", "model": "KIM101", "tcp_port": 0, "apt": {}}]})";
+  {"name": "kim101", "protocol": "apt", "model": "KIM101", "tcp_port": 0, "apt": {}},
+  {"name": "mmr601", "protocol": "apt", "model": "MMR601", "tcp_port": 0, "apt": {"bays": [{}]}}]})";
 
 void step(LineClient& api, int ms)
 {
@@ -158,6 +159,42 @@ TEST_CASE("apt units of today: a KIM101 tells who it is over the pty and drives 
     const auto channel = http(api, "GET", "/api/devices/kim101/channels/0").body;
     CHECK(channel.find("\"unit\":\"piezo_motor\"") != std::string::npos);
     CHECK(channel.find("\"position\":1000") != std::string::npos);
+}
+
+TEST_CASE("apt units of today: an MMR601 rack tells who it is over the pty, its MPZ601 card answers for channel 2 "
+          "over TCP, and a client that addresses it as a single unit freezes it until a power cycle",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    PtyClient pty(daemon.endpoint("mmr601").pty);
+    auto to_rack = header(0x0005, 0, 0);
+    to_rack[4] = 0x11;   // the motherboard
+    pty.send(to_rack);
+    const auto info = wait_for(pty.fd(), 0x0006);
+    REQUIRE(info);
+    CHECK(info->data.substr(4, 6) == "MMR601");
+
+    TcpClient tcp(daemon.endpoint("mmr601"));
+    auto volts = with_data(0x0643, std::string("\x02\x00\xFF\x3F", 4));   // PZ_SET_OUTPUTVOLTS, channel 2
+    volts[4] = static_cast<char>(0x21 | 0x80);   // bay 0's card
+    tcp.send(volts);
+    auto req = header(0x0644, 2, 0);
+    req[4] = 0x21;
+    tcp.send(req);
+    const auto got = wait_for(tcp.fd(), 0x0645);
+    REQUIRE(got);
+    CHECK(got->data == std::string("\x02\x00\xFF\x3F", 4));
+    // pyLabLib with is_rack_system=False: to 0x50. The rack answers nothing more ...
+    tcp.send(header(0x0005, 0, 0));
+    tcp.send(req);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    CHECK(http(api, "GET", "/api/devices/mmr601").body.find("\"frozen\":true") != std::string::npos);
+    // ... until it is power cycled.
+    const auto cycled = http(api, "POST", "/api/faults", R"({"device":"mmr601","kind":"power_cycle"})").status;
+    CHECK((cycled == 200 || cycled == 201));
+    tcp.send(req);
+    REQUIRE(wait_for(tcp.fd(), 0x0645));
 }
 
 } // namespace apt_units_of_today_test

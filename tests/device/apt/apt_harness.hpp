@@ -68,6 +68,17 @@ inline DeviceConfig loaded_apt_device(const nlohmann::json& device)
     return c;
 }
 
+/// The rig loader's message for rig device object `device`, or "" when it takes it.
+inline std::string apt_load_error(const nlohmann::json& device)
+{
+    try {
+        loaded_apt_device(device);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
 /// A card-slot controller (BBD203, BSC203) with these shipped stages in bays 0, 1, ...
 inline DeviceConfig apt_rack(const std::string& model, std::vector<std::string> bays)
 {

@@ -25,16 +25,6 @@ json unit(const char* model, json apt = json::object())
     return json{{"name", "unit"}, {"protocol", "apt"}, {"model", model}, {"apt", std::move(apt)}};
 }
 
-/// The rig loader's message for `device`, or "" when it takes it.
-std::string load_error(const json& device)
-{
-    try {
-        loaded_apt_device(device);
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
-}
 
 /// Channel `c`'s (1..4) screw position in nm.
 double screw_nm(AptHarness& h, int c)
@@ -227,18 +217,18 @@ TEST_CASE("TIM101: MOD_SET_CHANENABLESTATE selects the channel that moves, TIM_J
 
 TEST_CASE("KIM101/TIM101: the rig's actuators, refused with the JSON pointer", "[device][apt][today][pzmot]")
 {
-    CHECK(load_error(unit("KIM101", {{"actuators", json::array({json::object(), json::object(), json::object(),
+    CHECK(apt_load_error(unit("KIM101", {{"actuators", json::array({json::object(), json::object(), json::object(),
                                                                json::object(), json::object()})}}))
           == "rig.json: /devices/0/apt/actuators: expected an array of 1..4 actuator objects, got an array of 5 "
              "elements");
-    CHECK(load_error(unit("KIM101", {{"actuators", json::array({{{"travel_mm", 25}, {"position_mm", 30}}})}}))
+    CHECK(apt_load_error(unit("KIM101", {{"actuators", json::array({{{"travel_mm", 25}, {"position_mm", 30}}})}}))
           == "rig.json: /devices/0/apt/actuators/0/position_mm: expected a number from 0 to travel_mm, got 30");
-    CHECK(load_error(unit("TIM101", {{"actuators", json::array({{{"stroke", 1}}})}})).find("/devices/0/apt/actuators/0")
+    CHECK(apt_load_error(unit("TIM101", {{"actuators", json::array({{{"stroke", 1}}})}})).find("/devices/0/apt/actuators/0")
           != std::string::npos);
-    CHECK(load_error(unit("KIM101", {{"stage", "PIA13"}})).find("its keys are actuators, serial_number")
+    CHECK(apt_load_error(unit("KIM101", {{"stage", "PIA13"}})).find("its keys are actuators, serial_number")
           != std::string::npos);
-    CHECK(load_error(unit("KIM101", {{"serial_number", 65'000'001}})).find("serial_number") != std::string::npos);
-    CHECK(load_error(unit("KIM101", {{"actuators", json::array({{{"travel_mm", 50}, {"position_mm", 0}}})}})) == "");
+    CHECK(apt_load_error(unit("KIM101", {{"serial_number", 65'000'001}})).find("serial_number") != std::string::npos);
+    CHECK(apt_load_error(unit("KIM101", {{"actuators", json::array({{{"travel_mm", 50}, {"position_mm", 0}}})}})) == "");
 }
 
 } // namespace test_apt_pzmot

@@ -274,6 +274,7 @@ const std::vector<std::string> kTranscripts = {
     "apt_solenoid.txt", "apt_piezo_tpz001.txt", "apt_piezo_lut.txt", "apt_strain_gauge.txt",
     "apt_piezo_bpc303.txt", "apt_kdc101_issue44.txt", "apt_kst101_issue44.txt",
     "apt_kcube_msgs_issue44.txt", "apt_kcube_msgs_issue3.txt", "apt_pzmot_kim101.txt",
+    "apt_mmr601.txt",
 };
 
 } // namespace
@@ -290,6 +291,11 @@ TEST_CASE("apt transcripts: every file in transcripts/ is replayed", "[device][a
 TEST_CASE("apt transcript: the KIM101's PZMOT messages", "[device][apt][transcript][pzmot]")
 {
     replay("apt_pzmot_kim101.txt");
+}
+
+TEST_CASE("apt transcript: the MMR601 rack with an MPZ601 card", "[device][apt][transcript][mmr601]")
+{
+    replay("apt_mmr601.txt");
 }
 
 TEST_CASE("apt transcript: generic system messages", "[device][apt][transcript]")

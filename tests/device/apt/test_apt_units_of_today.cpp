@@ -29,12 +29,7 @@ DeviceConfig loaded(const json& device)
 /// The rig loader's message for `device`, or "" when it takes it.
 std::string load_error(const json& device)
 {
-    try {
-        loaded(device);
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
+    return apt_load_error(device);
 }
 
 json unit(const char* model, json apt = json::object())

@@ -420,7 +420,7 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     rig["devices"][0]["protocol"] = "apt";
     CHECK(error_of(rig) == "rig.json: /devices/0/mcs: an \"mcs\" object belongs to an MCS device, not to protocol \"apt\"");
     rig["devices"][0].erase("mcs");
-    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, MPC320, MPC220, KIM101, TIM101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, TSG001, KSG101), got nothing");
+    CHECK(error_of(rig) == "rig.json: /devices/0/model: expected an APT controller model (TDC001, KDC101, TST001, KST101, BSC203, BBD203, K10CR1, LTS150, LTS300, KBD101, MFF101, MFF102, MPC320, MPC220, KIM101, TIM101, TSC001, KSC101, TPZ001, KPZ101, BPC301, BPC303, MMR601, TSG001, KSG101), got nothing");
     rig["devices"][0]["model"] = "TDC001";
     CHECK(error_of(rig) == "rig.json: /devices/0/apt: required key missing");
     rig["devices"][0]["apt"] = {{"stage", "MTS99"}};
