@@ -1,5 +1,5 @@
 // The units made after the 2012 manual through the real daemon (docs/protocol/apt.md "Units of
-// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101, an MPC320, a KIM101 and an MMR601 rack, each asked who it is over its
+// today"): a K10CR1, an LTS150, a KBD101 with a DDS100, an MFF101, an MPC320, a KIM101, a TIM101 and an MMR601 rack, each asked who it is over its
 // pty and moved over TCP, the moves timed on the daemon's paused clock stepped through the control API.
 #include "apt_support.hpp"
 #include "control_support.hpp"
@@ -24,6 +24,7 @@ constexpr const char* kRig = R"({"tick_hz": 1000, "devices": [
   {"name": "mff101", "protocol": "apt", "model": "MFF101", "tcp_port": 0, "apt": {"flipper": {"position": 1}}},
   {"name": "mpc320", "protocol": "apt", "model": "MPC320", "tcp_port": 0, "apt": {}},
   {"name": "kim101", "protocol": "apt", "model": "KIM101", "tcp_port": 0, "apt": {}},
+  {"name": "tim101", "protocol": "apt", "model": "TIM101", "tcp_port": 0, "apt": {}},
   {"name": "mmr601", "protocol": "apt", "model": "MMR601", "tcp_port": 0, "apt": {"bays": [{}]}}]})";
 
 void step(LineClient& api, int ms)
@@ -159,6 +160,35 @@ TEST_CASE("apt units of today: a KIM101 tells who it is over the pty and drives 
     const auto channel = http(api, "GET", "/api/devices/kim101/channels/0").body;
     CHECK(channel.find("\"unit\":\"piezo_motor\"") != std::string::npos);
     CHECK(channel.find("\"position\":1000") != std::string::npos);
+}
+
+TEST_CASE("apt units of today: a TIM101 tells who it is over the pty and jogs the channel MOD_SET_CHANENABLESTATE "
+          "selects over TCP",
+          "[e2e][apt]")
+{
+    Daemon daemon(Daemon::Options{kRig, {}, {"--control", "127.0.0.1:0", "--paused"}});
+    TcpClient api(control_endpoint(daemon));
+    PtyClient pty(daemon.endpoint("tim101").pty);
+    pty.send(header(0x0005, 0, 0));
+    const auto info = wait_for(pty.fd(), 0x0006);
+    REQUIRE(info);
+    CHECK(info->data.substr(4, 6) == "TIM101");
+
+    TcpClient tcp(daemon.endpoint("tim101"));
+    // Channel 1 is the selected one at power-up: channel 2 jogs only once MOD_SET_CHANENABLESTATE
+    // selects it (bit 0x02).
+    tcp.send(header(0x08D9, 0x02, 0x02));
+    step(api, 1000);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    tcp.send(header(0x0210, 0x02, 0x01));
+    tcp.send(header(0x08D9, 0x02, 0x02));   // PZMOT_MOVE_JOG channel 2 reverse: 250 steps, 505 ms
+    step(api, 500);
+    CHECK_FALSE(read_frame(tcp.fd(), 300ms));
+    step(api, 5);
+    const auto done = wait_for(tcp.fd(), 0x08D6, 5000ms);
+    REQUIRE(done);
+    REQUIRE(done->data.size() == 14);
+    CHECK(get32(done->data, 2) == -250);
 }
 
 TEST_CASE("apt units of today: an MMR601 rack tells who it is over the pty, its MPZ601 card answers for channel 2 "
