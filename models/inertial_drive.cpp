@@ -92,6 +92,7 @@ double InertialDrive::si_velocity() const
 void InertialDrive::run(int direction, std::optional<std::int64_t> pulses, double rate_per_s, double accel_per_s2,
                         double voltage_v)
 {
+    finish_due();
     stop();
     direction_ = direction >= 0 ? 1 : -1;
     voltage_v_ = voltage_v;
@@ -106,8 +107,21 @@ void InertialDrive::run(int direction, std::optional<std::int64_t> pulses, doubl
     reschedule();
 }
 
+void InertialDrive::finish_due()
+{
+    // A run whose end tick has come but whom the world has not woken yet (a command in the same
+    // tick) ends first: its listener hears of it.
+    if (running_ && !endless_ && clock_.now() >= end_)
+        on_event(clock_.now());
+}
+
 void InertialDrive::stop()
 {
+    finish_due();
+    if (!running_ && start_ == end_) {   // at rest (or just ended): nothing to cut short
+        reschedule();
+        return;
+    }
     const double at = position_nm();
     pulses_before_ = pulses();
     running_ = false;

@@ -51,7 +51,7 @@ public:
     /// std::nullopt pulses: until stopped.
     void run(int direction, std::optional<std::int64_t> pulses, double rate_per_s, double accel_per_s2,
              double voltage_v);
-    /// Stop now, after the pulses made so far (no event).
+    /// Stop now, after the pulses made so far (no event; a run already at its end ends as it would).
     void stop();
     /// Put the screw at `nm` (clamped to the end stops), at rest.
     void place(double nm);
@@ -92,6 +92,8 @@ private:
     double pulse_nm() const;
     /// Start the distance over from where the screw is now (the stops, the slip or a stall changed).
     void rebase();
+    /// End a run whose end tick has come before anything replaces or stops it.
+    void finish_due();
 
     const Clock& clock_;
     InertialDriveConfig config_;

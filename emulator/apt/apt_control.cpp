@@ -286,6 +286,14 @@ Refused AptDevice::patch_channel(std::size_t index, const nlohmann::json& body)
 
 Refused AptDevice::fault_body(const DeviceFault& f, std::string& out) const
 {
+    if (model_.kind == UnitKind::PiezoMotor) {
+        // A KIM101/TIM101's actuators suffer the physical faults their bodies take (stall, slip);
+        // the unit keeps no reference to lose (open loop).
+        if (!physical(f.kind))
+            return bad("\"kind\": " + std::string(fault_name(f.kind)) + ": the " + config_.model
+                       + " counts pulses open loop: it has no reference to lose");
+        return axis_body_key(f.channel.value_or(0), out);
+    }
     if (model_.kind != UnitKind::Motor)   // every physical fault kind acts on a motor and its stage
         return bad("\"kind\": " + std::string(fault_name(f.kind)) + " is a motor fault and the " + config_.model
                    + " (a " + unit_name(model_.kind) + " unit) has no motor; its link faults (unplugged, drop_bytes, "

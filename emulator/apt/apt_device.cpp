@@ -538,6 +538,14 @@ std::string AptDevice::fault_report(std::size_t bay) const
 
 void AptDevice::flush()
 {
+    if (frozen_) {
+        // A frozen rack sends nothing: what its modules and channels raise meanwhile is dropped.
+        for (auto& ch : channels_)
+            ch->take_events();
+        for (const auto& module : modules_)
+            module->take_unprompted(host_);
+        return;
+    }
     for (std::size_t bay = 0; bay < channels_.size(); ++bay) {
         const std::uint8_t me = address_of(bay);
         const auto events = channels_[bay]->take_events();
@@ -594,7 +602,7 @@ void AptDevice::tick(Ticks now)
     for (const auto& module : modules_)
         module->tick(now);
     flush();   // end-of-move events the axes raised (the World moves them, not this tick), and the modules' own
-    if (updates_ && now >= next_update_) {
+    if (updates_ && now >= next_update_ && !frozen_) {
         next_update_ += clock_.ticks_from_ms(kUpdatePeriod_ms);
         // USB units stop after 50 updates that the host did not acknowledge (MOT_ACK_DCSTATUSUPDATE).
         if (updates_since_ack_ < updates_without_ack()) {

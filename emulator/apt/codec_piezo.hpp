@@ -238,6 +238,7 @@ struct MotSetPzStageParamDefaults {
 /// MGMSG_PZ_SET_LUTVALUETYPE (p. 126).
 struct PzSetLutValueType {
     RIGSIM_APT_MESSAGE(MGMSG_PZ_SET_LUTVALUETYPE, Piezo);
+    static constexpr bool no_channel = true;   ///< param1 is the type: the message addresses no channel
     std::uint8_t lut_type = 0;
     RIGSIM_APT_FIELDS(s.lut_type);
 };

@@ -220,9 +220,13 @@ struct HasChannelWord<T, std::void_t<decltype(std::declval<T&>().params.chan_ide
 /// Whether T is a parameter SET/GET (it has a parameter block).
 template <class T, class = void> struct HasParams : std::false_type {};
 template <class T> struct HasParams<T, std::void_t<decltype(std::declval<T&>().params)>> : std::true_type {};
+/// Whether T declares it addresses no channel (PZ_SET_LUTVALUETYPE: param1 is the type, p. 126).
+template <class T, class = void> struct DeclaresNoChannel : std::false_type {};
+template <class T> struct DeclaresNoChannel<T, std::void_t<decltype(T::no_channel)>> : std::bool_constant<T::no_channel> {};
 /// A parameter SET whose block carries no channel word (PZ_SET_TPZ_DISPSETTINGS, p. 114): the
-/// unit's one display, whatever its first word says.
-template <class T> constexpr bool kNoChannelWord = HasParams<T>::value && !HasChannelWord<T>::value;
+/// unit's one display, whatever its first word says; or a message that addresses no channel.
+template <class T>
+constexpr bool kNoChannelWord = (HasParams<T>::value && !HasChannelWord<T>::value) || DeclaresNoChannel<T>::value;
 } // namespace module_detail
 
 template <class... Sets> std::optional<std::string> SavedSets<Sets...>::data(const msg::Message& m)

@@ -49,6 +49,14 @@ void PiezoCard::handle(const msg::Message& m, Request& r)
     // The card's own questions: its channel 1 answers them as the card.
     if (msg::holds<msg::HwReqInfo>(m) || msg::holds<msg::HubReqBayUsed>(m))
         return channels_[0]->handle(m, r);
+    // PZ_SET_LUTVALUETYPE has no channel (param1 is the type, p. 126): the card's, both channels.
+    if (msg::holds<msg::PzSetLutValueType>(m)) {
+        channels_[0]->handle(m, r);
+        std::string reply;
+        Request r2{r.frame, r.peer, reply, r.host};
+        channels_[1]->handle(m, r2);
+        return;
+    }
     const std::uint16_t sent = sent_channel(r.frame);
     if (sent == 1)
         return channels_[0]->handle(m, r);

@@ -13,6 +13,12 @@ void PiezoModule::describe(nlohmann::json& out) const
     const Ticks now = clock_.now();
     const double v = output_at(now);
     out["mode"] = mode_;
+    if (unit_.model.takes.contains(MGMSG_PZ_SET_LUTVALUETYPE)) {   // the MPZ601's
+        out["lut_value_type"] = lut_value_type_ == 2 ? "position" : "volts";
+        out["io_settings"] = {{"amp_current_lim", io_settings_.amp_current_lim},
+                              {"amp_lp_filter", io_settings_.amp_lp_filter},
+                              {"bnc_trig_or_lv_out", io_settings_.bnc_trig_or_lv_out}};
+    }
     out["output_voltage_v"] = v;
     out["output_code"] = code_of(v);
     out["voltage_limit_v"] = max_v_;

@@ -531,14 +531,23 @@ std::uint16_t PiezoModule::max_travel_word() const
     return static_cast<std::uint16_t>(std::lround(actuator_.config().travel_um * 10));   // 100 nm steps (p. 118)
 }
 
-void PiezoModule::on(const msg::SetPzIoSettings&)
+void PiezoModule::on(const msg::SetPzIoSettings& m)
 {
-    not_mine();   // MPZ601 only (p. 135); no model's MessageSet lets it reach here
+    // MPZ601 only (p. 135: only its takes list, kMpz, lets it reach here). p. 119: current limit
+    // 0..2, low-pass filter 0..3, the BNC mode 0x0000 (trigger) or 0xFFFF (LV output); FeedbackSig
+    // "for future use", kept as sent. Stored: rigsim's amplifier has no current limit or filter.
+    const auto& p = m.params;
+    if (p.amp_current_lim > 2 || p.amp_lp_filter > 3 || (p.bnc_trig_or_lv_out != 0 && p.bnc_trig_or_lv_out != 0xFFFF))
+        return ignore(fmt::format("{}: PZ_SET_IOSETTINGS AmpCurrentLim {} (0..2), AmpLPFilter {} (0..3), BNCTrigORLVOut "
+                                  "0x{:04x} (0x0000 or 0xFFFF): ignored",
+                                  request_->peer, p.amp_current_lim, p.amp_lp_filter, p.bnc_trig_or_lv_out));
+    io_settings_ = p;
+    io_settings_.chan_ident = kChan1;
 }
 
 void PiezoModule::on(const msg::ReqPzIoSettings&)
 {
-    not_mine();
+    answer(msg::GetPzIoSettings{io_settings_});
 }
 
 msg::GetPzOutputMaxVolts PiezoModule::max_volts_message() const
@@ -582,9 +591,15 @@ void PiezoModule::on(const msg::MotSetPzStageParamDefaults&)
     demand(ramp_.target_v, clock_.now());
 }
 
-void PiezoModule::on(const msg::PzSetLutValueType&)
+void PiezoModule::on(const msg::PzSetLutValueType& m)
 {
-    not_mine();   // MPZ601 only (p. 135); no model's MessageSet lets it reach here
+    // MPZ601 only (p. 135, kMpz). p. 126: 1 the LUT's values are volts, 2 positions; "must be called
+    // BEFORE the LUT values are downloaded". Stored (the control API shows it); the samples are read
+    // by the loop mode they run in, as the BPC's are.
+    if (m.lut_type != 1 && m.lut_type != 2)
+        return ignore(fmt::format("{}: PZ_SET_LUTVALUETYPE {} (1 volts, 2 position): ignored", request_->peer,
+                                  m.lut_type));
+    lut_value_type_ = m.lut_type;
 }
 
 } // namespace rigsim::apt

@@ -184,6 +184,10 @@ private:
     std::uint16_t hub_analog_input_ = 1;
     std::uint16_t slew_open_ = 0;
     std::uint16_t slew_closed_ = 0;
+    /// PZ_SET_IOSETTINGS (p. 119, the MPZ601's): as set; power-up 0s (no public reading).
+    msg::PzIoSettings io_settings_{};
+    /// PZ_SET_LUTVALUETYPE (p. 126, the MPZ601's): 1 volts, 2 position; as set.
+    std::uint8_t lut_value_type_ = 1;
     double max_v_ = 75;
     msg::PzOutputLut last_lut_{1, 0, 0};
     msg::PzOutputLutParams lut_params_{};

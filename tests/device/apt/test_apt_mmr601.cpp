@@ -77,12 +77,18 @@ TEST_CASE("MMR601: addressed as a single unit (0x50), it freezes until a power c
 {
     AptHarness h(loaded_apt_device(rack()));
     CHECK(frames(h.send("05 00 00 00 11 01")).size() == 1);
+    CHECK(h.send("11 00 00 00 11 01") == "");   // status updates on: 12 a period (6 cards, 2 channels)
+    h.advance_ms(100);
+    CHECK(frames(h.take()).size() == 12);
     CHECK(h.send("05 00 00 00 50 01") == "");   // pyLabLib with is_rack_system=False
     CHECK(h.send("05 00 00 00 11 01") == "");
     CHECK(h.send("44 06 01 00 21 01") == "");
     json d;
     h.device().describe(d);
     CHECK(d["frozen"] == true);
+    // Frozen, it sends nothing by itself either: no status updates.
+    h.advance_ms(1000);
+    CHECK(h.take() == "");
     h.device().power_cycle(PowerCycle{});
     CHECK(frames(h.send("05 00 00 00 11 01")).size() == 1);
     CHECK(h.send("44 06 01 00 21 01") == "45 06 04 00 81 21 01 00 00 00");
@@ -104,6 +110,27 @@ TEST_CASE("MMR601: the rig's cards, refused with the JSON pointer", "[device][ap
     CHECK(apt_load_error(json{{"name", "mmr"}, {"protocol", "apt"}, {"model", "MMR601"}, {"firmware", "issue-3"}, {"apt", json::object()}})
               .find("firmware")
           != std::string::npos);
+}
+
+TEST_CASE("MMR601: an MPZ601 card takes PZ_SET_IOSETTINGS per channel and PZ_SET_LUTVALUETYPE for both",
+          "[device][apt][today][mmr601]")
+{
+    AptHarness h(loaded_apt_device(rack({{"bays", json::array({json::object()})}})));
+    CHECK(h.send("71 06 02 00 21 01") == "72 06 0A 00 81 21 02 00 00 00 00 00 00 00 00 00");
+    CHECK(h.send("70 06 0A 00 A1 01 02 00 02 00 03 00 00 00 FF FF") == "");
+    CHECK(h.send("71 06 02 00 21 01") == "72 06 0A 00 81 21 02 00 02 00 03 00 00 00 FF FF");
+    CHECK(h.send("71 06 01 00 21 01") == "72 06 0A 00 81 21 01 00 00 00 00 00 00 00 00 00");
+    CHECK(h.send("70 06 0A 00 A1 01 01 00 03 00 00 00 00 00 00 00") == "");   // current limit 3: out of range
+    CHECK(h.send("71 06 01 00 21 01") == "72 06 0A 00 81 21 01 00 00 00 00 00 00 00 00 00");
+    // LUTVALUETYPE 2 (positions): param1 is the type, not a channel; both channels take it.
+    CHECK(h.send("08 07 02 00 21 01") == "");
+    json d;
+    h.device().describe(d);
+    CHECK(d["channels"][0]["card_channels"][0]["lut_value_type"] == "position");
+    CHECK(d["channels"][0]["card_channels"][1]["lut_value_type"] == "position");
+    CHECK(h.send("08 07 03 00 21 01") == "");   // no type 3: ignored
+    h.device().describe(d);
+    CHECK(d["channels"][0]["card_channels"][1]["lut_value_type"] == "position");
 }
 
 } // namespace test_apt_mmr601

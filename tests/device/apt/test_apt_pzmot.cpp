@@ -231,4 +231,28 @@ TEST_CASE("KIM101/TIM101: the rig's actuators, refused with the JSON pointer", "
     CHECK(apt_load_error(unit("KIM101", {{"actuators", json::array({{{"travel_mm", 50}, {"position_mm", 0}}})}})) == "");
 }
 
+TEST_CASE("KIM101: a stall on an actuator holds its screw while the pulses are counted, no reference to lose",
+          "[device][apt][today][pzmot]")
+{
+    AptHarness h(loaded_apt_device(unit("KIM101")));
+    std::string key;
+    DeviceFault stall;
+    stall.kind = FaultKind::Stall;
+    stall.channel = 0;
+    REQUIRE_FALSE(h.device().fault_body(stall, key));
+    CHECK(key == "unit/1");
+    DeviceFault lost;
+    lost.kind = FaultKind::ReferenceLost;
+    CHECK(h.device().fault_body(lost, key));
+    DeviceFault past;
+    past.channel = 4;
+    CHECK(h.device().fault_body(past, key)->status == 404);
+    h.world().add_fault(1, key, models::BodyFault{});
+    CHECK(h.send("D4 08 06 00 D0 01 01 00 " + le32(100)) == "");
+    h.advance_ms(205);
+    CHECK(frames(h.take()).size() == 1);
+    CHECK(screw_nm(h, 1) == Approx(6.5e6));   // stalled: the counter says 100, the screw did not move
+    CHECK(status_position(h.send("E0 08 01 00 50 01"), 1) == 100);
+}
+
 } // namespace test_apt_pzmot
