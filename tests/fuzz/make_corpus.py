@@ -319,8 +319,24 @@ def control_seeds(src, corpus):
                 corpus.add("control_api", connection)
 
 
+def mcs2_seeds(src, corpus):
+    """The MCS2 messages the grammar's unit test quotes (the guide's examples among them): each
+    alone and all of them as one stream, CR LF terminated."""
+    path = src / "tests/unit/mcs2/test_mcs2_message.cpp"
+    if not path.exists():
+        return
+    text = path.read_text()
+    messages = [m.encode().decode("unicode_escape").encode("latin-1")
+                for m in re.findall(r'(?:parse_message|error)\("((?:[^"\\]|\\.)*)"\)', text)]
+    messages += [m.encode() for m in re.findall(r'R"\((.*?)\)"', text)]
+    for m in messages:
+        corpus.add("mcs2_message", b"\x00" + m + b"\r\n")
+    corpus.add("mcs2_message", b"\x07" + b"\r\n".join(messages) + b"\n")
+
+
 def write_corpus(src, out):
     corpus = Corpus(out)
+    mcs2_seeds(src, corpus)
     mcs_seeds(src, corpus)
     apt_seeds(src, corpus)
     rig_seeds(src, corpus)
