@@ -3,7 +3,9 @@
 // Checked beyond the sanitizers: the framer finds the same lines and overruns however the bytes are
 // cut (whole, byte by byte, in the chosen pieces), no line is longer than its limit or holds a line
 // feed; every command of a line is a piece of it, its error lies within it, and its keywords,
-// parameters and count keep the grammar's bounds.
+// parameters and count keep the grammar's bounds; each well-formed command resolves in a command
+// tree of the guide's paths (or not) with as many indices as its path has.
+#include "emulator/mcs2/command_tree.hpp"
 #include "emulator/mcs2/line_framer.hpp"
 #include "emulator/mcs2/message.hpp"
 
@@ -25,9 +27,31 @@ void check(bool ok)
 
 constexpr std::size_t kMaxLine = 512;   // small, so that overruns are reached
 
+const CommandTree& tree()
+{
+    static const CommandTree t({"[:PROPerty]:DEVice:SNUMber", "[:PROPerty]:MODule#:PSUPply[:ENABled]",
+                                "[:PROPerty]:CHANnel#:MMODe", "[:PROPerty]:CHANnel#:VELocity",
+                                "[:PROPerty]:CHANnel#:POSition[:CURRent]", "[:PROPerty]:CHANnel#:POSition:TARGet",
+                                "[:PROPerty]:CHANnel#:PTYPe[:CODE]", ":MOVE#", ":STOP#", ":SYSTem:ERRor[:NEXT]",
+                                ":STReam:FRAMe", "*IDN"});
+    return t;
+}
+
 void check_message(std::string_view line)
 {
     const auto commands = parse_message(line);
+    CommandTree::Level level;
+    for (const auto& c : commands) {
+        const auto found = tree().resolve(c, level);
+        if (found) {
+            check(c.error == ScpiError::None && found->node >= 0);
+            std::size_t indexed = 0;
+            for (const auto& k : c.path)
+                indexed += k.index ? 1 : 0;
+            check(found->indices.size() >= indexed && found->indices.size() <= indexed + level.indices.size() + kMaxKeywords);
+        }
+        check(level.node >= 0 && static_cast<std::size_t>(level.node) < tree().size());
+    }
     check(commands.size() <= kMaxCommandsPerMessage + 1);
     for (const auto& c : commands) {
         check(!c.text.empty() && c.text.data() >= line.data() && c.text.data() + c.text.size() <= line.data() + line.size());
