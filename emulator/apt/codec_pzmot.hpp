@@ -80,7 +80,7 @@ struct PzmotTimButtonParams {
     RIGSIM_APT_RANGES({"Mode", s.mode, 1, 2});
 };
 
-/// 0x0B LimSwitchParams (p. 381, KIM101): "not implemented at this time" on the unit.
+/// 0x0B LimSwitchParams (p. 381, KIM101): issue 37 says the unit does not act on it yet: stored and answered.
 struct PzmotLimSwitchParams {
     static constexpr std::uint16_t sub_id = 0x0B;
     static constexpr std::string_view sub_name = "LimSwitchParams";
