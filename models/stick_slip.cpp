@@ -326,6 +326,31 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     return profile_end_;
 }
 
+Ticks StickSlipPositioner::decelerate(double acceleration_nm_per_s2)
+{
+    const Ticks now = clock_.now();
+    if (motion_ != Motion::Profile || !legs_nm_.empty() || acceleration_nm_per_s2 <= 0) {
+        halt();
+        return now;
+    }
+    const auto state = profile_.sample(clock_.seconds(now - profile_start_));
+    const double v = state.velocity;
+    const double distance = v * v / (2.0 * acceleration_nm_per_s2);
+    const double target = std::clamp(state.position + (v >= 0 ? distance : -distance), stop_min_nm(), stop_max_nm());
+    auto braking = MotionProfile::plan(state, target, std::abs(v), acceleration_nm_per_s2);
+    const Ticks end = now + static_cast<Ticks>(std::ceil(braking.duration() * clock_.tick_hz() - 1e-9));
+    if (end <= now) {
+        halt();
+        return now;
+    }
+    outcome_ = Outcome::None;
+    profile_ = std::move(braking);
+    profile_start_ = now;
+    profile_end_ = end;
+    reschedule();
+    return profile_end_;
+}
+
 bool StickSlipPositioner::start_legs(std::vector<double> legs_nm, double speed_nm_per_s)
 {
     settle();

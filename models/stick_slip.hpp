@@ -142,6 +142,10 @@ public:
     /// Closed-loop move from rest at the position now to `target_nm`; `acceleration_nm_per_s2`
     /// 0 means unlimited. Returns the end tick; a move that ends now is done at return.
     Ticks move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2);
+    /// A closed-loop move under way brakes at `acceleration_nm_per_s2` (> 0) from the speed it has
+    /// now and comes to rest where that takes it (within the end stops): one event, outcome Arrived.
+    /// Returns the end tick; anything but a closed-loop move halts at once (and returns now).
+    Ticks decelerate(double acceleration_nm_per_s2);
     /// Drive through `legs_nm` in order at `speed_nm_per_s` without acceleration limit, each
     /// leg from rest where the last one ended (a reference search turning at end stops);
     /// one event per leg end, outcome Arrived after the last. Returns false if all legs

@@ -4,6 +4,8 @@
 #include "emulator/apt/config.hpp"
 #include "emulator/mcs/config.hpp"
 #include "emulator/mcs/mcs_device.hpp"
+#include "emulator/mcs2/config_loader.hpp"
+#include "emulator/mcs2/device.hpp"
 
 #include <memory>
 #include <string>
@@ -26,6 +28,10 @@ FamilyRegistry make_families()
                             return std::make_unique<mcs::McsDevice>(config, context.world, context.log, context.events);
                         }});
     families.add(Family{"apt", "an APT device", &apt::load_device_section, &make_apt_device, &apt::validate_rig});
+    families.add(Family{"mcs2", "an MCS2 device", &mcs2::load_device_section,
+                        [](const DeviceConfig& config, const DeviceContext& context) -> std::unique_ptr<Device> {
+                            return std::make_unique<mcs2::Mcs2Device>(config, context.world, context.log, context.events);
+                        }});
     return families;
 }
 

@@ -43,7 +43,9 @@ CommandTree::CommandTree(const std::vector<std::string_view>& paths)
         if (!path.empty() && path[0] == '*') {
             if (path.size() < 2)
                 bad("an empty common command");
-            nodes_[static_cast<std::size_t>(child(kCommonRoot, path.substr(1), false, false))].command = true;
+            const int node = child(kCommonRoot, path.substr(1), false, false);
+            nodes_[static_cast<std::size_t>(node)].command = true;
+            path_nodes_.push_back(node);
             continue;
         }
         int node = 0;
@@ -75,6 +77,7 @@ CommandTree::CommandTree(const std::vector<std::string_view>& paths)
         if (node == 0)
             bad("no keyword");
         nodes_[static_cast<std::size_t>(node)].command = true;
+        path_nodes_.push_back(node);
     }
 }
 

@@ -51,6 +51,8 @@ public:
     /// The path of node `node` as given (its name in long forms).
     const std::string& name_of(int node) const { return nodes_[static_cast<std::size_t>(node)].name; }
     std::size_t size() const { return nodes_.size(); }
+    /// The node of the constructor's `paths[i]`.
+    int node_of_path(std::size_t i) const { return path_nodes_[i]; }
 
 private:
     struct Node {
@@ -72,6 +74,7 @@ private:
     static bool matches(const Node& n, const Keyword& k);
 
     std::vector<Node> nodes_;   ///< nodes_[0]: the root
+    std::vector<int> path_nodes_;   ///< per constructor path, its node
 };
 
 } // namespace rigsim::mcs2

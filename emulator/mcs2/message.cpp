@@ -175,6 +175,16 @@ private:
                     return failed(ScpiError::DataTypeError);   // past int64
                 ++i_;
             }
+            // A decimal fraction (`:MOVE0 1000000.000000`, as EPICS motorSmarAct prints every value
+            // with %f) is taken, rounded to the nearest integer: the properties are integers.
+            if (i_ + 1 < s_.size() && s_[i_] == '.' && is_digit(s_[i_ + 1])) {
+                const bool round_up = s_[i_ + 1] >= '5';
+                ++i_;
+                while (i_ < s_.size() && is_digit(s_[i_]))
+                    ++i_;
+                if (round_up && ++v > kLimit)
+                    return failed(ScpiError::DataTypeError);
+            }
             if (i_ < s_.size() && !is_space(s_[i_]) && s_[i_] != ',')
                 return failed(ScpiError::DataTypeError);   // `12ab`
             if (!negative && v == kLimit)
@@ -215,6 +225,8 @@ std::string_view scpi_error_text(ScpiError e)
         return "Invalid separator";
     case ScpiError::DataTypeError:
         return "Data type error";
+    case ScpiError::ParameterNotAllowed:
+        return "Parameter not allowed";
     case ScpiError::MissingParameter:
         return "Missing parameter";
     case ScpiError::UndefinedHeader:

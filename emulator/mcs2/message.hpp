@@ -17,7 +17,7 @@
 //   instrument = [':'] keyword { ':' keyword } ['?'] [params]     * the first ':' may be left out (6.5.2)
 //   keyword    = letter { letter } { digit }                      the digits: the index (6.2.2)
 //   params     = ws+ param { [ws] ',' [ws] param }
-//   param      = ['+'|'-'] digit { digit }                        an integer (int32/int64)
+//   param      = ['+'|'-'] digit { digit } ['.' digit { digit }]  * an integer (int32/int64); a fraction is rounded
 //              | '"' { char | '""' } '"'                          * a string; "" is one quote (SCPI)
 //              | word                                             * a bare string: no space, ',', ';', '"'
 // An empty command (nothing between two ';', or an empty message) is no command.
@@ -36,7 +36,8 @@ enum class ScpiError : std::int32_t {
     InvalidCharacter = -101,   ///< a character no command has (`:CHAN0:STAT?!`)
     InvalidSeparator = -103,   ///< a separator out of place (`::`, `:CHAN0,`, a ':' at the end)
     DataTypeError = -104,      ///< a parameter of no type (`12ab`)
-    MissingParameter = -109,   ///< a ',' with nothing after it
+    ParameterNotAllowed = -108, ///< a parameter where the command takes none (from the controller)
+    MissingParameter = -109,   ///< a ',' with nothing after it; a setting without its value
     UndefinedHeader = -113,    ///< no header (`?`, `:`, `* `)
     InvalidStringData = -151,  ///< a string without its closing quote
     QueueOverflow = -350,      ///< the error queue overflowed

@@ -50,7 +50,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, mcs, apt)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, mcs, apt, mcs2)";
 
 } // namespace
 
@@ -414,7 +414,7 @@ TEST_CASE("rig config: names are 1..64 characters from A-Z a-z 0-9 _ . -", "[uni
     CHECK(error_of(rig) == "(no error)");
 }
 
-TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[unit][config]")
+TEST_CASE("rig config: protocols are mcs, apt and mcs2, each with its own object", "[unit][config]")
 {
     auto rig = minimal_rig();
     rig["devices"][0]["protocol"] = "apt";
@@ -448,7 +448,7 @@ TEST_CASE("rig config: protocols are mcs and apt, each with its own object", "[u
     CHECK(error_of(rig) == "rig.json: /devices/0/apt/bays/1: stage \"MLS203-X\" has another kind of motor than a BSC203");
     rig["devices"][0]["protocol"] = "MCS";
     CHECK(error_of(rig) ==
-          "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\" or \"apt\")");
+          "rig.json: /devices/0/protocol: unknown protocol \"MCS\" (expected \"mcs\", \"apt\" or \"mcs2\")");
     rig["devices"][0]["protocol"] = 1;
     CHECK(error_of(rig) == "rig.json: /devices/0/protocol: expected a string, got 1");
 }
@@ -611,13 +611,14 @@ TEST_CASE("rig config: an explicit pty path is used once", "[unit][config]")
           "rig.json: /devices/1/pty: path \"/tmp/x\" is already used by /devices/0");
 }
 
-TEST_CASE("rig config: the daemon's families are \"mcs\" then \"apt\"", "[unit][config]")
+TEST_CASE("rig config: the daemon's families are \"mcs\", \"apt\" then \"mcs2\"", "[unit][config]")
 {
     const auto& families = rigsim::rig_families();
-    REQUIRE(families.all().size() == 2);
+    REQUIRE(families.all().size() == 3);
     CHECK(families.all()[0].name == "mcs");
     CHECK(families.all()[1].name == "apt");
-    CHECK(families.quoted_names() == "\"mcs\" or \"apt\"");
+    CHECK(families.all()[2].name == "mcs2");
+    CHECK(families.quoted_names() == "\"mcs\", \"apt\" or \"mcs2\"");
     CHECK(families.find("apt") == &families.all()[1]);
     CHECK(families.find("pz") == nullptr);
 }

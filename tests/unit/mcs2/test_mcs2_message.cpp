@@ -169,4 +169,27 @@ TEST_CASE("mcs2 message: each syntax error has its SCPI code (Table 6.4) and its
     CHECK(scpi_error_text(ScpiError::InvalidCharacter) == "Invalid character");
 }
 
+TEST_CASE("mcs2 message: a decimal fraction is taken and rounded (EPICS motorSmarAct prints values with %f)",
+          "[unit][mcs2]")
+{
+    const auto value = [](const std::string& m) {
+        const auto c = parse_message(m);
+        REQUIRE(c.size() == 1);
+        REQUIRE(c[0].error == ScpiError::None);
+        REQUIRE(c[0].params.size() == 1);
+        return c[0].params[0].integer;
+    };
+    CHECK(value(":CHAN0:VEL 1000000000.000000") == 1'000'000'000);
+    CHECK(value(":MOVE0 -1000000.000000") == -1'000'000);
+    CHECK(value(":MOVE0 12.5") == 13);
+    CHECK(value(":MOVE0 -12.5") == -13);
+    CHECK(value(":MOVE0 12.4999") == 12);
+    CHECK(value(":MOVE0 9223372036854775806.5") == 9'223'372'036'854'775'807);
+    const auto c = parse_message(":MOVE0 9223372036854775807.5");
+    REQUIRE(c.size() == 1);
+    CHECK(c[0].error == ScpiError::DataTypeError);   // rounds past int64
+    CHECK(parse_message(":MOVE0 1.")[0].error == ScpiError::DataTypeError);
+    CHECK(parse_message(":MOVE0 1.5e3")[0].error == ScpiError::DataTypeError);
+}
+
 } // namespace test_mcs2_message

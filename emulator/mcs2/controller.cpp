@@ -1,0 +1,726 @@
+#include "emulator/mcs2/controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+// The switches over Id below handle the rows with behaviour of their own and leave the others to
+// the table's generic handling (their default): listing ~130 ids in each would hide that.
+#pragma GCC diagnostic ignored "-Wswitch-enum"
+
+namespace rigsim::mcs2 {
+
+namespace {
+
+/// A string answer: quoted, as units answer (`"MCS2-00013416"`, slaclab/pyMCS2's and BLISS's
+/// logs of real units), a quote inside doubled (SCPI).
+std::string quote_string(std::string_view s)
+{
+    std::string out = "\"";
+    for (const char c : s) {
+        out += c;
+        if (c == '"')
+            out += '"';
+    }
+    out += '"';
+    return out;
+}
+
+/// An I32 property reads as a signed 32-bit number (Hold Time's 0xffffffff reads -1).
+std::string number(const Property& p, std::int64_t v)
+{
+    if (p.type == Type::I32)
+        return std::to_string(static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v))));
+    return std::to_string(v);
+}
+
+bool readable(Access a)
+{
+    return a != Access::W;
+}
+
+bool writable(Access a)
+{
+    return a != Access::R;
+}
+
+bool later_only(Id id)
+{
+    return id == Id::SensorModeAlias || id == Id::SensorDelayAlias || id == Id::ModuleStateAlias ||
+           id == Id::FollowingError;
+}
+
+constexpr std::size_t kTuningFirst = static_cast<std::size_t>(Id::TunMovementType);
+
+} // namespace
+
+// ---- error queue ----
+
+void ErrorQueue::push(std::int32_t code, std::string_view text)
+{
+    if (entries_.size() >= kDepth) {
+        entries_.back() = Entry{static_cast<std::int32_t>(ScpiError::QueueOverflow),
+                                std::string(scpi_error_text(ScpiError::QueueOverflow))};
+        return;
+    }
+    entries_.push_back(Entry{code, std::string(text)});
+}
+
+ErrorQueue::Entry ErrorQueue::next()
+{
+    if (entries_.empty())
+        return Entry{0, "No Error"};
+    auto e = std::move(entries_.front());
+    entries_.pop_front();
+    return e;
+}
+
+// ---- controller ----
+
+Controller::Controller(const Config& config, models::World& world, const std::string& name)
+    : config_(config), clock_(world.clock())
+{
+    for (std::size_t i = 0; i < config_.channels.size(); ++i)
+        channels_.push_back(
+            std::make_unique<Channel>(static_cast<int>(i), config_.channels[i], world, name + "/" + std::to_string(i)));
+    channel_store_.assign(channels_.size(), std::vector<std::int64_t>(table().size(), 0));
+    device_store_.assign(table().size(), 0);
+    module_power_.assign(module_count(), true);
+    started_by_.assign(channels_.size(), nullptr);
+    restore_defaults();
+}
+
+Controller::~Controller() = default;
+
+void Controller::restore_defaults()
+{
+    for (auto& c : channels_)
+        c->restore_defaults();
+    for (const auto& p : table()) {
+        if (p.kind != Kind::Stored)
+            continue;
+        const auto row = static_cast<std::size_t>(p.id);
+        if (p.scope == Scope::Channel)
+            for (auto& store : channel_store_)
+                store[row] = p.initial;
+        else
+            device_store_[row] = p.initial;
+    }
+    device_name_ = config_.serial_number;   // "default = the serial number string" (4.2.5)
+    power_up();
+}
+
+void Controller::power_up()
+{
+    for (auto& c : channels_)
+        c->power_up();
+    for (const auto& p : table()) {   // volatile stored properties back to their power-up values
+        if (p.kind != Kind::Stored || p.nonvolatile)
+            continue;
+        const auto row = static_cast<std::size_t>(p.id);
+        if (p.scope == Scope::Channel)
+            for (auto& store : channel_store_)
+                store[row] = p.initial;
+        else
+            device_store_[row] = p.initial;
+    }
+    std::fill(module_power_.begin(), module_power_.end(), true);
+    estop_mode_ = 0;
+    group_owner_ = nullptr;
+    group_.clear();
+    group_finished_ = false;
+    group_values_.clear();
+}
+
+std::uint32_t Controller::device_state() const
+{
+    return 0;   // no hand control module, never locked (no I/O module to trigger an emergency stop)
+}
+
+std::uint32_t Controller::module_state(std::size_t module) const
+{
+    (void)module;
+    return 0x0001;   // SM_PRESENT: each driver module has its sensor module
+}
+
+std::uint32_t Controller::channel_state(std::size_t i) const
+{
+    auto s = channels_[i]->state_word();
+    if (config_.firmware == Firmware::Current && channels_[i]->amplifier())
+        s |= 1u << 18;   // AMPLIFIER_ENABLED (later firmware; EPICS motorSmarAct reads it as "power on")
+    return s;
+}
+
+void Controller::forget(const SessionState& session)
+{
+    if (group_owner_ == &session) {
+        group_owner_ = nullptr;
+        group_.clear();
+    }
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+        if (started_by_[i] != &session)
+            continue;
+        started_by_[i] = nullptr;
+        if (channels_[i]->moving())
+            channels_[i]->stop();
+    }
+}
+
+Controller::Result Controller::execute(std::string_view message, SessionState& s)
+{
+    Result r;
+    std::vector<std::string> answers;
+    CommandTree::Level level;
+    const auto& tree = command_tree();
+    for (const auto& c : parse_message(message)) {
+        if (c.error != ScpiError::None) {
+            s.errors.push(static_cast<std::int32_t>(c.error), scpi_error_text(c.error));
+            ++r.errors;
+            continue;
+        }
+        const auto found = tree.resolve(c, level);
+        const Property* p = found ? node_property(found->node) : nullptr;
+        if (p && later_only(p->id) && config_.firmware != Firmware::Current)
+            p = nullptr;
+        if (!p) {
+            s.errors.push(static_cast<std::int32_t>(ScpiError::UndefinedHeader),
+                          scpi_error_text(ScpiError::UndefinedHeader));
+            ++r.errors;
+            continue;
+        }
+        run(*p, found->indices, c, s, answers, r);
+        if (r.reset)
+            break;
+    }
+    if (!answers.empty()) {
+        r.answered = true;
+        for (std::size_t i = 0; i < answers.size(); ++i) {
+            if (i)
+                r.answer += "; ";   // the guide's examples: `300; 2` (6.2.4)
+            r.answer += answers[i];
+        }
+    }
+    return r;
+}
+
+void Controller::run(const Property& p, const std::vector<std::int64_t>& indices, const Command& c, SessionState& s,
+                     std::vector<std::string>& answers, Result& r)
+{
+    const auto error = [&](std::int32_t code, std::string_view text) {
+        s.errors.push(code, text);
+        ++r.errors;
+    };
+    const auto scpi = [&](ScpiError e) { error(static_cast<std::int32_t>(e), scpi_error_text(e)); };
+    // Access: a query of a command without one, a setting of a query-only property.
+    if (c.query ? !readable(p.access) : !writable(p.access))
+        return scpi(ScpiError::UndefinedHeader);
+    if (c.query && !c.params.empty())
+        return scpi(ScpiError::ParameterNotAllowed);
+    if (!c.query) {
+        if (p.type == Type::None && !c.params.empty())
+            return scpi(ScpiError::ParameterNotAllowed);
+        if (p.type != Type::None && c.params.empty())
+            return scpi(ScpiError::MissingParameter);
+        if (p.type != Type::None && p.id != Id::StrFrame && c.params.size() > 1)
+            return scpi(ScpiError::ParameterNotAllowed);
+        if ((p.type == Type::I32 || p.type == Type::I64))
+            for (const auto& param : c.params)
+                if (param.kind != Param::Kind::Integer)
+                    return scpi(ScpiError::DataTypeError);
+        if (p.type == Type::String && c.params[0].kind != Param::Kind::String)
+            return scpi(ScpiError::DataTypeError);
+    }
+    // Indices.
+    if ((p.scope == Scope::Channel || p.scope == Scope::Command) &&
+        (indices.empty() || indices[0] < 0 || static_cast<std::size_t>(indices[0]) >= channels_.size()))
+        return error(static_cast<std::int32_t>(Error::InvalidChannelIndex), error_text(0x0022));
+    if (p.scope == Scope::Module &&
+        (indices.empty() || indices[0] < 0 || static_cast<std::size_t>(indices[0]) >= module_count()))
+        return error(static_cast<std::int32_t>(Error::InvalidModuleIndex), error_text(0x0021));
+    if (indices.size() > 1 && (indices[1] < 0 || indices[1] > 1))   // AOUT value 0/1, INPut value 0/1
+        return error(static_cast<std::int32_t>(Error::InvalidParameter), error_text(0x0013));
+
+    // A command group holds this session's commands until it is closed (6.4).
+    if (group_owner_ == &s && p.scope != Scope::Group && p.scope != Scope::System && p.scope != Scope::Common) {
+        if (!p.groupable)
+            return error(static_cast<std::int32_t>(Error::CommandNotGroupable), error_text(0x0024));
+        if (group_.size() >= kMaxGroupCommands)
+            return error(static_cast<std::int32_t>(Error::BufferOverflow), error_text(0x000d));
+        group_.push_back(Grouped{&p, indices, c});
+        return;
+    }
+
+    if (c.query) {
+        std::string out;
+        if (const auto e = read(p, indices, out); e)
+            return error(static_cast<std::int32_t>(*e), error_text(static_cast<std::int32_t>(*e)));
+        if (p.id == Id::ErrNext) {
+            const auto entry = s.errors.next();
+            out = std::to_string(entry.code) + "," + quote_string(entry.text);
+        } else if (p.id == Id::ErrCount) {
+            out = std::to_string(s.errors.count());
+        } else if (p.id == Id::Ese) {
+            out = std::to_string(s.ese);
+        } else if (p.id == Id::Sre) {
+            out = std::to_string(s.sre);
+        } else if (p.id == Id::Stb) {
+            out = std::to_string(s.errors.count() ? 0x04 : 0);   // SCPI's error/event queue bit
+        }
+        answers.push_back(std::move(out));
+        return;
+    }
+    if (const auto e = write(p, indices, c, s, r); e)
+        return error(static_cast<std::int32_t>(*e), error_text(static_cast<std::int32_t>(*e)));
+}
+
+std::optional<Error> Controller::read(const Property& p, const std::vector<std::int64_t>& indices, std::string& out)
+{
+    switch (p.id) {
+    case Id::Esr:
+    case Id::Tst:
+        out = "0";   // "no effect" (Table 6.1): no event, the self-test passes
+        return std::nullopt;
+    case Id::Opc:
+        out = "1";   // "always returns 1"
+        return std::nullopt;
+    case Id::Idn:
+        out = "SmarAct GmbH,MCS2," + config_.serial_number + "," +
+              (config_.firmware == Firmware::Current ? "current" : "1.0.6");
+        return std::nullopt;
+    case Id::ErrCount:
+    case Id::ErrNext:
+    case Id::Ese:
+    case Id::Sre:
+    case Id::Stb:
+        return std::nullopt;   // the session's: run() fills them in
+    case Id::CgrFinished:
+        out = group_finished_ || (!group_owner_ && group_.empty()) ? "1" : "0";
+        return std::nullopt;
+    case Id::CgrValues:
+        for (std::size_t i = 0; i < group_values_.size(); ++i)
+            out += (i ? "; " : "") + group_values_[i];
+        return std::nullopt;
+    case Id::StrFree:
+        return Error::InvalidStreamHandle;
+    case Id::DevChannels:
+        out = std::to_string(channels_.size());
+        return std::nullopt;
+    case Id::DevModules:
+        out = std::to_string(module_count());
+        return std::nullopt;
+    case Id::DevState:
+        out = std::to_string(device_state());
+        return std::nullopt;
+    case Id::DevSerial:
+        out = quote_string(config_.serial_number);
+        return std::nullopt;
+    case Id::DevName:
+        out = quote_string(device_name_);
+        return std::nullopt;
+    case Id::DevEstopMode:
+        out = std::to_string(estop_mode_);
+        return std::nullopt;
+    case Id::DevHmLock:
+    case Id::DevHmLockDefault:
+        return Error::NoHmPresent;
+    case Id::DevTriggerMode:
+    case Id::DevTriggerCondition:
+    case Id::ModIoOptions:
+    case Id::ModIoVoltage:
+    case Id::ModAinRange:
+    case Id::ModDin:
+    case Id::ModDout:
+    case Id::ModAout:
+        return Error::NoIomPresent;
+    case Id::ModPower:
+        out = module_power_[static_cast<std::size_t>(indices[0])] ? "1" : "0";
+        return std::nullopt;
+    case Id::ModState:
+        out = std::to_string(module_state(static_cast<std::size_t>(indices[0])));
+        return std::nullopt;
+    case Id::ModuleStateAlias:
+        out = std::to_string(module_state(0));
+        return std::nullopt;
+    case Id::ModChannels: {
+        const auto m = static_cast<std::size_t>(indices[0]);
+        out = std::to_string(std::min<std::size_t>(3, channels_.size() - 3 * m));
+        return std::nullopt;
+    }
+    case Id::ModTemperature:
+        out = std::to_string(config_.channels[3 * static_cast<std::size_t>(indices[0])].temperature_c);
+        return std::nullopt;
+    default:
+        break;
+    }
+    if (p.scope == Scope::Channel)
+        return read_channel(p, static_cast<std::size_t>(indices[0]), out);
+    if (p.kind == Kind::Stored) {
+        out = number(p, device_store_[static_cast<std::size_t>(p.id)]);
+        return std::nullopt;
+    }
+    return Error::InvalidParameter;
+}
+
+std::int64_t* Controller::setting(Channel& ch, Id id)
+{
+    auto& s = ch.settings();
+    switch (id) {
+    case Id::ControlOptions:
+        return &s.control_options;
+    case Id::MaxFrequency:
+        return &s.max_frequency;
+    case Id::StepFrequency:
+        return &s.step_frequency;
+    case Id::StepAmplitude:
+        return &s.step_amplitude;
+    case Id::ScanVelocity:
+        return &s.scan_velocity;
+    case Id::ReferencingOptions:
+        return &s.referencing_options;
+    case Id::SafeDirection:
+        return &s.safe_direction;
+    case Id::RangeMin:
+        return &s.range_min;
+    case Id::RangeMax:
+        return &s.range_max;
+    default:
+        return nullptr;
+    }
+}
+
+std::int64_t& Controller::stored_channel(std::size_t channel, Id id)
+{
+    return channel_store_[channel][static_cast<std::size_t>(id)];
+}
+
+std::optional<Error> Controller::read_channel(const Property& p, std::size_t index, std::string& out)
+{
+    Channel& ch = *channels_[index];
+    const auto put = [&](std::int64_t v) {
+        out = number(p, v);
+        return std::nullopt;
+    };
+    if (p.id >= Id::TunMovementType && p.id <= Id::TunTargetHold) {
+        const auto i = static_cast<std::size_t>(p.id) - kTuningFirst;
+        if (p.id == Id::TunCustom)
+            return put((ch.type_code() >= 250 && ch.type_code() <= 253) || ch.type_code() == 0 ? 1 : 0);
+        return put(ch.tuning()[i]);
+    }
+    switch (p.id) {
+    case Id::Amplifier:
+        return put(ch.amplifier() ? 1 : 0);
+    case Id::ActuatorMode:
+        return put(ch.actuator_mode());
+    case Id::LoopInput:
+        return put(ch.loop_input());
+    case Id::SensorInputSelect:
+        return put(stored_channel(index, Id::SensorInputSelect));
+    case Id::SensorValue: {
+        std::int64_t v = 0;
+        if (const auto e = ch.sensor_value(v))
+            return e;
+        return put(v);
+    }
+    case Id::AuxValue:
+    case Id::AuxInputValue:
+    case Id::TriggerMode:
+        return Error::NoIomPresent;
+    case Id::PositionerType:
+        return put(ch.type_code());
+    case Id::PositionerTypeName:
+        out = quote_string(ch.type_name());
+        return std::nullopt;
+    case Id::AuxPositionerTypeName:
+        out = quote_string("CUSTOM" + std::to_string(stored_channel(index, Id::AuxPositionerType) - 250));
+        return std::nullopt;
+    case Id::State:
+        return put(channel_state(index));
+    case Id::Position:
+        if (ch.sensor_failed())
+            return Error::NoSensorPresent;
+        return put(ch.position());
+    case Id::TargetPosition:
+        return put(ch.target());
+    case Id::ScanPosition:
+        return put(ch.scan_position());
+    case Id::FollowingError:
+        return put(ch.moving() ? ch.target() - ch.position() : 0);
+    case Id::HoldTime:
+        return put(ch.settings().hold_ms);
+    case Id::Velocity:
+        return put(ch.settings().velocity);
+    case Id::Acceleration:
+        return put(ch.settings().acceleration);
+    case Id::SensorPowerMode:
+    case Id::SensorModeAlias:
+        return put(static_cast<std::int64_t>(ch.sensor_power()));
+    case Id::SensorDelayAlias:
+        return put(stored_channel(index, Id::PowerSaveDelay));
+    case Id::ScaleOffset:
+        return put(ch.scale_offset());
+    case Id::ScaleInversion:
+        return put(ch.scale_inverted() ? 1 : 0);
+    case Id::CalibrationOptions:
+        return put(ch.settings().calibration_options);
+    case Id::CorrectionOptions:
+        return put(stored_channel(index, Id::CorrectionOptions) | 0x05);   // bits 0 and 2 read 1
+    case Id::DistanceToMark:
+        return put(ch.distance_to_mark());
+    case Id::ChannelError:
+        return put(ch.take_error());   // "reset to 0 (NONE) by reading it" (4.10.1)
+    case Id::ChannelTemperature:
+        return put(ch.config().temperature_c);
+    case Id::TunWriteProtection:
+        return put(ch.write_protected() ? 1 : 0);
+    default:
+        break;
+    }
+    if (auto* field = setting(ch, p.id))
+        return put(*field);
+    if (p.kind == Kind::Stored)
+        return put(stored_channel(index, p.id));
+    return Error::InvalidParameter;
+}
+
+std::optional<Error> Controller::write(const Property& p, const std::vector<std::int64_t>& indices, const Command& c,
+                                       SessionState& s, Result& r)
+{
+    const std::int64_t v = c.params.empty() ? 0 : c.params[0].integer;
+    const bool numeric = p.type == Type::I32 || p.type == Type::I64;
+    // Hold Time takes -1 for SA_CTL_INFINITE (errata); every other value is checked against its range.
+    if (numeric && p.id != Id::StrFrame && p.id != Id::Move && (v < p.min || v > p.max) && p.access != Access::Tuning)
+        return Error::InvalidParameter;
+    switch (p.id) {
+    case Id::Cls:
+        s.errors.clear();   // "clears all status data structures"
+        return std::nullopt;
+    case Id::Ese:
+        s.ese = v;
+        return std::nullopt;
+    case Id::Sre:
+        s.sre = v;
+        return std::nullopt;
+    case Id::Opc:
+    case Id::Wai:
+        return std::nullopt;   // "no effect" (Table 6.1)
+    case Id::Rst:
+        power_up();   // "resets the device (reconnect necessary!)"
+        r.reset = true;
+        return std::nullopt;
+    case Id::CgrOpen:
+        if (group_owner_ || !group_.empty())
+            return Error::InvalidConfiguration;   // "only one command group can be open at a time" (2.14)
+        if (v == 1)
+            return Error::NoIomPresent;   // an external trigger needs the I/O module's input (2.17)
+        group_owner_ = &s;
+        group_.clear();
+        group_finished_ = false;
+        group_values_.clear();
+        return std::nullopt;
+    case Id::CgrClose:
+        if (group_owner_ != &s)
+            return Error::InvalidConfiguration;
+        close_group(s);
+        return std::nullopt;
+    case Id::CgrAbort:
+        if (group_owner_ != &s)
+            return Error::InvalidConfiguration;
+        group_owner_ = nullptr;
+        group_.clear();
+        return std::nullopt;
+    case Id::StrOpen:
+    case Id::StrFrame:
+    case Id::StrClose:
+    case Id::StrAbort:
+        return Error::InvalidStreamHandle;
+    case Id::DevName: {
+        const auto& name = c.params[0].text;
+        if (name.empty() || name.size() > 63)
+            return Error::InvalidParameter;
+        device_name_ = name;
+        return std::nullopt;
+    }
+    case Id::DevEstopMode:
+        estop_mode_ = v;   // writing any valid value also releases a locked device (2.17.2)
+        for (auto& ch : channels_)
+            ch->set_locked(false);
+        return std::nullopt;
+    case Id::DevHmLock:
+    case Id::DevHmLockDefault:
+        return Error::NoHmPresent;
+    case Id::DevTriggerMode:
+    case Id::DevTriggerCondition:
+    case Id::ModIoOptions:
+    case Id::ModIoVoltage:
+    case Id::ModAinRange:
+    case Id::ModDout:
+    case Id::ModDoutSet:
+    case Id::ModDoutClear:
+    case Id::ModAout:
+        return Error::NoIomPresent;
+    case Id::ModPower: {
+        const auto m = static_cast<std::size_t>(indices[0]);
+        module_power_[m] = v != 0;
+        for (std::size_t i = 3 * m; i < std::min(channels_.size(), 3 * m + 3); ++i)
+            channels_[i]->set_power_supply(v != 0);
+        return std::nullopt;
+    }
+    default:
+        break;
+    }
+    if (p.scope == Scope::Command) {
+        auto& ch = *channels_[static_cast<std::size_t>(indices[0])];
+        const auto i = static_cast<std::size_t>(indices[0]);
+        started_by_[i] = &s;
+        switch (p.id) {
+        case Id::Move:
+            return ch.move(static_cast<MoveMode>(stored_channel(i, Id::MoveMode)), v);
+        case Id::Stop:
+            ch.stop();
+            return std::nullopt;
+        case Id::Calibrate:
+            return ch.calibrate();
+        case Id::Reference:
+            return ch.reference();
+        default:
+            return std::nullopt;
+        }
+    }
+    if (p.scope == Scope::Channel) {
+        const auto i = static_cast<std::size_t>(indices[0]);
+        if (const auto e = write_channel(p, *channels_[i], v))
+            return e;
+        if (auto* field = setting(*channels_[i], p.id))
+            *field = v;
+        else if (p.kind == Kind::Stored)
+            stored_channel(i, p.id) = v;
+        else if (p.id == Id::SensorDelayAlias)
+            stored_channel(i, Id::PowerSaveDelay) = v;
+        else if (p.id == Id::CorrectionOptions)
+            stored_channel(i, Id::CorrectionOptions) = v;
+        else if (p.id == Id::SensorInputSelect)
+            stored_channel(i, Id::SensorInputSelect) = v;
+        return std::nullopt;
+    }
+    if (p.kind == Kind::Stored) {
+        device_store_[static_cast<std::size_t>(p.id)] = v;
+        return std::nullopt;
+    }
+    return Error::InvalidParameter;
+}
+
+std::optional<Error> Controller::write_channel(const Property& p, Channel& ch, std::int64_t v)
+{
+    if (p.access == Access::Tuning) {
+        const auto i = static_cast<std::size_t>(p.id) - kTuningFirst;
+        if (ch.write_protected())
+            return Error::PermissionDenied;
+        if (v < p.min || v > p.max)
+            return Error::InvalidParameter;
+        return ch.set_tuning(i, v);
+    }
+    switch (p.id) {
+    case Id::Amplifier:
+        ch.set_amplifier(v != 0);
+        return std::nullopt;
+    case Id::ActuatorMode:
+        return ch.set_actuator_mode(v);
+    case Id::LoopInput:
+        return ch.set_loop_input(v);
+    case Id::SensorInputSelect:
+        return v == 1 && ch.type().sensor != 'P' ? std::optional<Error>(Error::InvalidParameter) : std::nullopt;
+    case Id::PositionerType:
+        return ch.set_type(v);
+    case Id::Position:
+        return ch.set_position(v);
+    case Id::HoldTime:
+        return ch.set_hold_time(v);
+    case Id::Velocity:
+        return ch.set_velocity(v);
+    case Id::Acceleration:
+        return ch.set_acceleration(v);
+    case Id::SensorPowerMode:
+    case Id::SensorModeAlias:
+        return ch.set_sensor_power(v);
+    case Id::ScaleOffset:
+        ch.set_scale_offset(v);
+        return std::nullopt;
+    case Id::ScaleInversion:
+        ch.set_scale_inverted(v != 0);
+        return std::nullopt;
+    case Id::CalibrationOptions:
+        if (v & ~0x107LL)
+            return Error::InvalidParameter;   // bits 3-7 and 9-31 are reserved (4.6.1)
+        ch.settings().calibration_options = v;
+        return std::nullopt;
+    case Id::CorrectionOptions:
+        if (v & 0x10)
+            return Error::PermissionDenied;   // advanced sensor correction: a feature permission (2.19)
+        return std::nullopt;
+    case Id::TriggerMode:
+        return Error::NoIomPresent;   // "no I/O module -> NO_IOM_PRESENT" (4.14.1)
+    case Id::TunSave:
+        return ch.save_tuning(v);
+    case Id::TunWriteProtection:
+        ch.set_write_protection(v);
+        return std::nullopt;
+    case Id::MoveMode:
+    case Id::ControlOptions:
+    case Id::MaxFrequency:
+    case Id::StepFrequency:
+    case Id::StepAmplitude:
+    case Id::ScanVelocity:
+    case Id::ReferencingOptions:
+    case Id::SafeDirection:
+    case Id::RangeMin:
+    case Id::RangeMax:
+        if (ch.moving() && (p.id == Id::MoveMode || p.id == Id::SafeDirection))
+            return Error::BusyMoving;
+        return std::nullopt;
+    default:
+        return std::nullopt;
+    }
+}
+
+void Controller::close_group(SessionState& s)
+{
+    // Direct trigger: every command of the group now, in order (6.4.1).
+    group_owner_ = nullptr;
+    std::vector<std::string> values;
+    Result r;
+    auto grouped = std::move(group_);
+    group_.clear();
+    for (const auto& g : grouped)
+        run(*g.property, g.indices, g.command, s, values, r);
+    group_values_ = std::move(values);
+    group_finished_ = true;
+}
+
+void Controller::broadcast_stop(std::size_t from)
+{
+    for (std::size_t i = 0; i < channels_.size(); ++i)
+        if (i != from && channels_[i]->moving())
+            channels_[i]->stop();
+}
+
+Ticks Controller::next_change(Ticks now) const
+{
+    Ticks next = kNever;
+    for (const auto& c : channels_)
+        next = std::min(next, c->next_change(now));
+    return next;
+}
+
+void Controller::tick(Ticks now)
+{
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+        auto& c = *channels_[i];
+        c.tick(now);
+        // Broadcast stop (10.9): a channel that met an end stop stops the others (bit 0).
+        if (c.take_end_stop_event() &&
+            (channel_store_[i][static_cast<std::size_t>(Id::BroadcastStop)] & 0x01))
+            broadcast_stop(i);
+    }
+}
+
+} // namespace rigsim::mcs2
