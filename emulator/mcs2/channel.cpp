@@ -412,6 +412,8 @@ std::uint32_t Channel::state_word() const
         s |= state::kSensorPresent;
     if (calibrated_)
         s |= state::kIsCalibrated;
+    if (streaming_)
+        s |= state::kIsStreaming;
     if (referenced_)
         s |= state::kIsReferenced;
     if (has_sensor() && sensor_power_ != SensorPower::Disabled && type_->reference != Reference::EndStop) {
@@ -487,6 +489,10 @@ void Channel::begin(Activity motion, std::function<void()> start)
 
 std::optional<Error> Channel::move(MoveMode mode, std::int64_t value)
 {
+    if (streaming_) {
+        fail(Error::BusyStreaming);
+        return Error::BusyStreaming;
+    }
     const bool closed = mode == MoveMode::ClAbsolute || mode == MoveMode::ClRelative;
     if (const auto e = movement_refused(closed)) {
         fail(*e);
@@ -621,6 +627,12 @@ void Channel::arrive(Ticks now)
         return;
     }
     outcome_ = "completed";
+    if (streaming_) {   // between frames: the target is held until the next frame
+        motion_ = Activity::Holding;
+        body_.set_closed_loop_hold(true);
+        hold_until_ = kNever;
+        return;
+    }
     // "The closed-loop movement is considered finished as soon as the target position is reached"
     // (2.6.4); then the channel holds it for the hold time.
     if (settings_.hold_ms == 0) {
@@ -647,6 +659,8 @@ void Channel::finish(Error result, const char* outcome)
 
 void Channel::stop()
 {
+    if (streaming_)   // the stream moves it (the controller refuses :STOP# with BUSY_STREAMING)
+        return;
     if (motion_ == Activity::Idle) {
         sticky_ &= ~(state::kEndStopReached | state::kRangeLimitReached | state::kFollowingLimitReached);
         return;
@@ -671,8 +685,48 @@ void Channel::stop()
     target_ = position();
 }
 
+void Channel::set_streaming(bool on)
+{
+    streaming_ = on;
+    if (!on && motion_ != Activity::Idle) {
+        body_.halt();
+        body_.set_closed_loop_hold(false);
+        motion_ = Activity::Idle;
+        target_ = position();
+    }
+}
+
+void Channel::stream_to(double target, Ticks duration, bool interpolate)
+{
+    sticky_ = 0;
+    arrival_error_.reset();
+    braking_ = false;
+    motion_ = Activity::Targeting;
+    target_ = std::llround(target);
+    const double here = physical_now();
+    double physical = std::clamp(physical_from_logical(target), body_.stop_min_nm() * 1000.0, body_.stop_max_nm() * 1000.0);
+    const double seconds = clock_.seconds(std::max<Ticks>(duration, 1));
+    const double speed = interpolate ? std::abs(physical - here) / seconds : top_speed();
+    if (speed <= 0 || body_.move_to(physical / 1000.0, speed / 1000.0, 0.0) <= clock_.now()) {
+        motion_ = Activity::Holding;   // at the frame's target already
+        body_.set_closed_loop_hold(true);
+        hold_until_ = kNever;
+    }
+}
+
+void Channel::stream_failed(Error e)
+{
+    set_streaming(false);
+    error_ = static_cast<std::int32_t>(e);
+    outcome_ = "stopped";
+}
+
 std::optional<Error> Channel::calibrate()
 {
+    if (streaming_) {
+        fail(Error::BusyStreaming);
+        return Error::BusyStreaming;
+    }
     if (const auto e = movement_refused(true)) {
         fail(*e);
         return e;
@@ -695,6 +749,10 @@ std::optional<Error> Channel::calibrate()
 
 std::optional<Error> Channel::reference()
 {
+    if (streaming_) {
+        fail(Error::BusyStreaming);
+        return Error::BusyStreaming;
+    }
     if (const auto e = movement_refused(true)) {
         fail(*e);
         return e;

@@ -149,6 +149,15 @@ public:
     std::optional<Error> reference();
     /// :STOP#: stops any movement and the holding; the movement's result is ABORTED.
     void stop();
+    /// Trajectory streaming (2.15): the channel takes part (IS_STREAMING) and refuses movement
+    /// commands meanwhile (BUSY_STREAMING); `false` ends its part, at rest where it is.
+    void set_streaming(bool on);
+    bool streaming() const { return streaming_; }
+    /// One frame's target (logical, unit), reached in `duration` ticks at constant speed (linear
+    /// interpolation), or as fast as the stage goes (`interpolate` false).
+    void stream_to(double target, Ticks duration, bool interpolate);
+    /// The stream ended the channel's part with `e` (a buffer underflow, an abort).
+    void stream_failed(Error e);
     /// Why a movement cannot start now, if it cannot (locked device, power, amplifier, sensor).
     std::optional<Error> movement_refused(bool closed_loop) const;
     void set_locked(bool locked) { locked_ = locked; }
@@ -239,7 +248,8 @@ private:
     double reference_point_ = 0;
     double reference_start_ = 0;
     bool end_stop_event_ = false;
-    bool braking_ = false;           ///< a first stop brakes the closed-loop move under way
+    bool braking_ = false;
+    bool streaming_ = false;           ///< a first stop brakes the closed-loop move under way
     const char* outcome_ = "";
 };
 

@@ -130,11 +130,13 @@ void Controller::power_up()
     group_.clear();
     group_finished_ = false;
     group_values_.clear();
+    stream_ = Stream{};
 }
 
 std::uint32_t Controller::device_state() const
 {
-    return 0;   // no hand control module, never locked (no I/O module to trigger an emergency stop)
+    // No hand control module, never locked (no I/O module to trigger an emergency stop).
+    return stream_.running ? 0x1000u : 0u;   // IS_STREAMING (2.8.1)
 }
 
 std::uint32_t Controller::module_state(std::size_t module) const
@@ -157,6 +159,8 @@ void Controller::forget(const SessionState& session)
         group_owner_ = nullptr;
         group_.clear();
     }
+    if (stream_.open && stream_.owner == &session)
+        stream_abort(Error::Aborted);
     for (std::size_t i = 0; i < channels_.size(); ++i) {
         if (started_by_[i] != &session)
             continue;
@@ -300,8 +304,15 @@ std::optional<Error> Controller::read(const Property& p, const std::vector<std::
         for (std::size_t i = 0; i < group_values_.size(); ++i)
             out += (i ? "; " : "") + group_values_[i];
         return std::nullopt;
-    case Id::StrFree:
-        return Error::InvalidStreamHandle;
+    case Id::StrFree: {
+        if (!stream_.open)
+            return Error::InvalidStreamHandle;
+        std::size_t used = 0;
+        for (const auto& f : stream_.frames)
+            used += f.size();
+        out = std::to_string(kStreamBuffer - used);   // in positions, not frames (6.5.1)
+        return std::nullopt;
+    }
     case Id::DevChannels:
         out = std::to_string(channels_.size());
         return std::nullopt;
@@ -529,10 +540,16 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
         group_.clear();
         return std::nullopt;
     case Id::StrOpen:
+        return stream_open(v, s);
     case Id::StrFrame:
+        return stream_frame(c);
     case Id::StrClose:
+        return stream_close();
     case Id::StrAbort:
-        return Error::InvalidStreamHandle;
+        if (!stream_.open)
+            return Error::InvalidStreamHandle;
+        stream_abort(Error::Aborted);
+        return std::nullopt;
     case Id::DevName: {
         const auto& name = c.params[0].text;
         if (name.empty() || name.size() > 63)
@@ -576,6 +593,8 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
         case Id::Move:
             return ch.move(static_cast<MoveMode>(stored_channel(i, Id::MoveMode)), v);
         case Id::Stop:
+            if (ch.streaming())
+                return Error::BusyStreaming;
             ch.stop();
             return std::nullopt;
         case Id::Calibrate:
@@ -708,6 +727,8 @@ Ticks Controller::next_change(Ticks now) const
     Ticks next = kNever;
     for (const auto& c : channels_)
         next = std::min(next, c->next_change(now));
+    if (stream_.running)
+        next = std::min(next, std::max(frame_tick(stream_.next), now + 1));
     return next;
 }
 
@@ -720,6 +741,135 @@ void Controller::tick(Ticks now)
         if (c.take_end_stop_event() &&
             (channel_store_[i][static_cast<std::size_t>(Id::BroadcastStop)] & 0x01))
             broadcast_stop(i);
+    }
+    if (stream_.running)
+        stream_tick(now);
+}
+
+// ---- trajectory streaming (2.15, 6.5) ----
+
+std::optional<Error> Controller::stream_open(std::int64_t mode, const SessionState& s)
+{
+    if (stream_.open)
+        return Error::BusyStreaming;   // one stream at a time (2.15)
+    if (mode != 0)
+        return Error::NoIomPresent;   // external triggers come through the I/O module's input (2.17)
+    stream_ = Stream{};
+    stream_.open = true;
+    stream_.owner = &s;
+    stream_.rate = device_store_[static_cast<std::size_t>(Id::DevStreamBaseRate)];
+    stream_.interpolate = (device_store_[static_cast<std::size_t>(Id::DevStreamOptions)] & 0x01) == 0;
+    return std::nullopt;
+}
+
+std::optional<Error> Controller::stream_frame(const Command& c)
+{
+    if (!stream_.open || stream_.closed)
+        return Error::InvalidStreamHandle;
+    if (c.params.size() % 2 != 0)
+        return Error::InvalidArraySize;
+    std::vector<std::size_t> chans;
+    std::vector<std::int64_t> positions;
+    for (std::size_t i = 0; i < c.params.size(); i += 2) {
+        const auto ch = c.params[i].integer;
+        const auto pos = c.params[i + 1].integer;
+        if (ch < 0 || static_cast<std::size_t>(ch) >= channels_.size())
+            return Error::InvalidChannelIndex;
+        if (std::find(chans.begin(), chans.end(), static_cast<std::size_t>(ch)) != chans.end())
+            return Error::InvalidParameter;
+        if (pos < -100'000'000'000'000 || pos > 100'000'000'000'000)
+            return Error::InvalidParameter;
+        chans.push_back(static_cast<std::size_t>(ch));
+        positions.push_back(pos);
+    }
+    if (stream_.total == 0) {
+        // The first frame names the channels (2.15.1); each must be able to move closed-loop with
+        // its sensor on (not in power save).
+        for (const auto ch : chans) {
+            auto& channel = *channels_[ch];
+            if (const auto e = channel.movement_refused(true))
+                return e;
+            if (channel.sensor_power() == SensorPower::PowerSave)
+                return Error::InvalidSensorMode;
+            if (channel.moving())
+                return Error::BusyMoving;
+        }
+        stream_.channels = chans;
+        for (const auto ch : chans) {
+            channels_[ch]->stop();
+            channels_[ch]->set_streaming(true);
+        }
+    } else if (chans != stream_.channels) {
+        return Error::InvalidParameter;   // every frame: the same channels in the same order
+    }
+    std::size_t used = positions.size();
+    for (const auto& f : stream_.frames)
+        used += f.size();
+    if (used > kStreamBuffer)
+        return Error::BufferOverflow;
+    stream_.frames.push_back(std::move(positions));
+    ++stream_.total;
+    // Direct mode starts once the buffer is half full ("stream ready", 2.15.1).
+    if (!stream_.running && used * 2 >= kStreamBuffer)
+        stream_start(clock_.now());
+    return std::nullopt;
+}
+
+std::optional<Error> Controller::stream_close()
+{
+    if (!stream_.open || stream_.closed)
+        return Error::InvalidStreamHandle;
+    stream_.closed = true;
+    if (!stream_.running) {
+        if (stream_.total < 2) {   // "a stream must consist of at least two frames"
+            stream_abort(Error::InsufficientFrames);
+            return Error::InsufficientFrames;
+        }
+        stream_start(clock_.now());   // a short stream is ready when closed
+    }
+    return std::nullopt;
+}
+
+void Controller::stream_abort(Error e)
+{
+    for (const auto ch : stream_.channels)
+        channels_[ch]->stream_failed(e);
+    stream_ = Stream{};
+}
+
+Ticks Controller::frame_tick(std::int64_t k) const
+{
+    // Frame k runs k base periods after the start; tick-exact for rates that divide the tick rate.
+    return stream_.start + (k * static_cast<std::int64_t>(clock_.tick_hz()) + stream_.rate - 1) / stream_.rate;
+}
+
+void Controller::stream_start(Ticks now)
+{
+    stream_.running = true;
+    stream_.start = now;
+    stream_.next = 0;
+    stream_tick(now);
+}
+
+void Controller::stream_tick(Ticks now)
+{
+    while (stream_.running && frame_tick(stream_.next) <= now) {
+        if (stream_.frames.empty()) {
+            if (stream_.closed) {   // every frame ran: the stream is finished, the channels rest at its end
+                for (const auto ch : stream_.channels)
+                    channels_[ch]->set_streaming(false);
+                stream_ = Stream{};
+            } else {   // not closed and nothing left: a buffer underflow ends it (2.15.1)
+                stream_abort(Error::BufferUnderflow);
+            }
+            return;
+        }
+        const auto frame = std::move(stream_.frames.front());
+        stream_.frames.pop_front();
+        const Ticks duration = frame_tick(stream_.next + 1) - frame_tick(stream_.next);
+        for (std::size_t i = 0; i < frame.size(); ++i)
+            channels_[stream_.channels[i]]->stream_to(static_cast<double>(frame[i]), duration, stream_.interpolate);
+        ++stream_.next;
     }
 }
 

@@ -111,6 +111,15 @@ private:
     std::int64_t& stored_channel(std::size_t channel, Id id);
     void broadcast_stop(std::size_t from);
     void close_group(SessionState& s);
+    // Trajectory streaming (2.15, 6.5).
+    std::optional<Error> stream_open(std::int64_t mode, const SessionState& s);
+    std::optional<Error> stream_frame(const Command& c);
+    std::optional<Error> stream_close();
+    void stream_abort(Error e);
+    void stream_start(Ticks now);
+    /// The tick frame `k` of the running stream is due at.
+    Ticks frame_tick(std::int64_t k) const;
+    void stream_tick(Ticks now);
 
     Config config_;
     const Clock& clock_;
@@ -126,7 +135,25 @@ private:
     std::vector<Grouped> group_;
     bool group_finished_ = false;
     std::vector<std::string> group_values_;
+    /// The trajectory stream: open, its channels (from the first frame), the frames not yet run.
+    struct Stream {
+        bool open = false;
+        bool closed = false;
+        bool running = false;
+        const SessionState* owner = nullptr;
+        std::vector<std::size_t> channels;
+        std::deque<std::vector<std::int64_t>> frames;   ///< positions, in channel order
+        std::int64_t rate = 1000;     ///< frames per second (Stream Base Rate at open)
+        bool interpolate = true;      ///< Stream Options bit 0 clear
+        Ticks start = 0;
+        std::int64_t next = 0;        ///< the index of the next frame to run
+        std::size_t total = 0;        ///< frames received
+    };
+    Stream stream_;
 };
+
+/// The stream buffer, in (channel, position) tuples (2.15.1).
+inline constexpr std::size_t kStreamBuffer = 1024;
 
 /// The most commands a command group holds (the guide: "limited in size", no figure).
 inline constexpr std::size_t kMaxGroupCommands = 256;

@@ -194,6 +194,8 @@ class Corpus:
 
 
 MCS_PROBE = b":GNC\n:GSI\n:GCM\n:MPA0,1000000,0\n" + advance(1000) + b":GP0\n:GS0\n"
+MCS2_PROBE = (b":DEV:NOCH?\r\n:CHAN0:STAT?\r\n:CHAN0:MMOD 0;VEL 1000000000\r\n:MOVE0 1000000000\r\n" + advance(1000) +
+              b":CHAN0:POS?;STAT?\r\n:SYST:ERR:COUN?\r\n")
 APT_PROBE = bytes.fromhex("050000005001 430401005001") + advance(3000) + bytes.fromhex("900401005001 050000002101")
 
 
@@ -255,8 +257,14 @@ def rig_seeds(src, corpus):
         # The rig under each session target, every device probed in its protocol.
         stream = b""
         for d, device in enumerate(devices):
-            stream += select(d) + escaped(MCS_PROBE if device.get("protocol") == "mcs" else APT_PROBE)
-        target = "mcs_session" if any(d.get("protocol") == "mcs" for d in devices) else "apt_session"
+            probe = {"mcs": MCS_PROBE, "mcs2": MCS2_PROBE}.get(device.get("protocol"), APT_PROBE)
+            stream += select(d) + escaped(probe)
+        if any(d.get("protocol") == "mcs2" for d in devices):
+            target = "mcs2_session"
+        elif any(d.get("protocol") == "mcs" for d in devices):
+            target = "mcs_session"
+        else:
+            target = "apt_session"
         corpus.add(target, minified(rig).encode() + b"\n" + stream)
 
 
@@ -334,9 +342,28 @@ def mcs2_seeds(src, corpus):
     corpus.add("mcs2_message", b"\x07" + b"\r\n".join(messages) + b"\n")
 
 
+MCS2_CALL = re.compile(r'(?:send|ask|number)\("((?:[^"\\]|\\.)*)"\)|advance_ms\(([0-9\']+)\)')
+
+
+def mcs2_session_seeds(src, corpus):
+    """Each MCS2 device test case as a session stream on the fuzz target's default rig (an empty
+    header line): its messages in order, CR LF terminated, and its clock advances."""
+    for path in sorted((src / "tests/device/mcs2").glob("test_*.cpp")):
+        for case in re.split(r"\nTEST_CASE\(", path.read_text())[1:]:
+            stream = b""
+            for m in MCS2_CALL.finditer(case):
+                if m.group(2):
+                    stream += advance(min(int(m.group(2).replace("'", "")), 60000))
+                else:
+                    stream += escaped(m.group(1).encode().decode("unicode_escape").encode("latin-1") + b"\r\n")
+            if stream:
+                corpus.add("mcs2_session", b"\n" + stream)
+
+
 def write_corpus(src, out):
     corpus = Corpus(out)
     mcs2_seeds(src, corpus)
+    mcs2_session_seeds(src, corpus)
     mcs_seeds(src, corpus)
     apt_seeds(src, corpus)
     rig_seeds(src, corpus)
@@ -401,11 +428,41 @@ def http_dict(src):
     return lines
 
 
-DICTS = {"mcs.dict": mcs_dict, "apt.dict": apt_dict, "json.dict": json_dict, "http.dict": http_dict}
+def mcs2_keywords(src):
+    """Every keyword of emulator/mcs2/properties.cpp's paths, as (long form, short form, indexed)."""
+    text = (src / "emulator/mcs2/properties.cpp").read_text()
+    out = []
+    for path in re.findall(r'Property\{Id::\w+, "([^"]+)"', text):
+        for word in re.findall(r"[*:]?([A-Za-z]+#?)", path.replace("[", "").replace("]", "")):
+            indexed = word.endswith("#")
+            word = word.rstrip("#")
+            entry = (word.upper(), "".join(c for c in word if c.isupper()) or word.upper(), indexed)
+            if entry not in out:
+                out.append(entry)
+    return out
+
+
+def mcs2_dict(src):
+    lines = ["# MCS2 keywords of emulator/mcs2/properties.cpp, long and short forms (make_corpus.py --dicts)"]
+    for long_form, short_form, indexed in mcs2_keywords(src):
+        suffix = "0" if indexed else ""
+        lines.append(dict_line("kw_" + long_form.lower(), (":" + long_form + suffix).encode()))
+        if short_form != long_form:
+            lines.append(dict_line("kw_" + long_form.lower() + "_short", (":" + short_form + suffix).encode()))
+    lines += [dict_line("sep_" + n, v) for n, v in
+              [("semicolon", b";"), ("query", b"?"), ("comma", b","), ("quote", b'"'), ("crlf", b"\r\n"),
+               ("star", b"*"), ("space", b" "), ("minus_one", b"-1"), ("infinite", b"4294967295"),
+               ("fraction", b".000000"), ("int64_max", b"9223372036854775807")]]
+    return lines
+
+
+DICTS = {"mcs.dict": mcs_dict, "apt.dict": apt_dict, "json.dict": json_dict, "http.dict": http_dict,
+         "mcs2.dict": mcs2_dict}
 
 
 def check_dicts(src):
-    """mcs.dict holds every mnemonic of the codec's table; apt.dict every ID of messages.def."""
+    """mcs.dict holds every mnemonic of the codec's table; apt.dict every ID of messages.def; mcs2.dict
+    every keyword of the MCS2 property table."""
     def values(name):
         out = set()
         for line in (FUZZ_DIR / name).read_text().splitlines():
@@ -416,14 +473,18 @@ def check_dicts(src):
     missing = ["mcs.dict: " + m for m in mcs_mnemonics(src) if m.encode() not in values("mcs.dict")]
     apt = values("apt.dict")
     missing += ["apt.dict: %s (0x%04X)" % (n, i) for n, i in apt_messages(src) if bytes([i & 0xFF, i >> 8]) not in apt]
-    if len(mcs_mnemonics(src)) < 60 or len(apt_messages(src)) < 100:
+    mcs2 = values("mcs2.dict")
+    missing += ["mcs2.dict: " + k for k, _, indexed in mcs2_keywords(src)
+                if (":" + k + ("0" if indexed else "")).encode() not in mcs2]
+    if len(mcs_mnemonics(src)) < 60 or len(apt_messages(src)) < 100 or len(mcs2_keywords(src)) < 100:
         missing.append("the tables were not found where make_corpus.py reads them")
     for m in missing:
         print("missing from " + m, file=sys.stderr)
     if missing:
         print("run tests/fuzz/make_corpus.py --dicts", file=sys.stderr)
         return 1
-    print("mcs.dict: %d commands, apt.dict: %d messages: complete" % (len(mcs_mnemonics(src)), len(apt_messages(src))))
+    print("mcs.dict: %d commands, apt.dict: %d messages, mcs2.dict: %d keywords: complete"
+          % (len(mcs_mnemonics(src)), len(apt_messages(src)), len(mcs2_keywords(src))))
     return 0
 
 

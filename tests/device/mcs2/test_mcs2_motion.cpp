@@ -320,3 +320,61 @@ TEST_CASE("MCS2 command group: its commands wait for CLOSe, queries give their v
     h.send(":CGR:OPEN 0;:CHAN0:PTYP:NAME?;:CGR:ABOR");   // not groupable (column CG)
     CHECK(h.errors() == std::vector<std::string>{"257,\"No IO module present\"", "36,\"Command not groupable\""});
 }
+
+TEST_CASE("MCS2 trajectory stream: frames at the base rate, linearly interpolated, channels busy meanwhile",
+          "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":STR:BFRE?");
+    CHECK(h.errors() == std::vector<std::string>{"768,\"Invalid stream handle\""});
+    h.send(":DEV:STR:BAS 100;OPT 0");   // the guide's example (6.5.2)
+    h.send(":STR:OPEN 0");
+    CHECK(h.ask(":STR:BFRE?") == "1024");
+    h.send("STR:FRAM 0,1000000,1,100000");
+    h.send("STR:FRAM 0,2000000,1,150000");
+    h.send("STR:FRAM 0,3000000,1,200000");
+    CHECK(h.ask(":STR:BFRE?") == "1018");   // two positions a frame
+    CHECK((state(h, 0) & 0x1000) != 0);     // IS_STREAMING
+    h.send(":MOVE0 5;:STOP1");
+    CHECK(h.errors() == std::vector<std::string>{"771,\"Busy streaming\"", "771,\"Busy streaming\""});
+    CHECK(h.number(":DEV:STAT?") == 0);   // ready, not running: a short stream starts when closed
+    h.send(":STR:CLOS");
+    CHECK(h.number(":DEV:STAT?") == 0x1000);
+    h.advance_ms(5);
+    CHECK(h.number(":CHAN0:POS?") == 500'000);   // half way to the first frame
+    h.advance_ms(10);
+    CHECK(h.number(":CHAN0:POS?") == 1'500'000);
+    CHECK(h.number(":CHAN1:POS?") == 125'000);
+    h.advance_ms(16);
+    CHECK(h.number(":CHAN0:POS?") == 3'000'000);
+    CHECK(h.number(":CHAN1:POS?") == 200'000);
+    CHECK(h.number(":DEV:STAT?") == 0);
+    CHECK((state(h, 0) & (0x1000 | 0x1)) == 0);
+    CHECK(h.errors().empty());
+}
+
+TEST_CASE("MCS2 trajectory stream: starts half full, underflows if not closed, and is bounded", "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":STR:OPEN 0");
+    for (int k = 1; k <= 511; ++k)
+        h.send(":STR:FRAM 0," + std::to_string(k * 1000));
+    CHECK(h.number(":DEV:STAT?") == 0);
+    h.send(":STR:FRAM 0,512000");   // 512 of 1024 positions: stream ready, direct mode runs
+    CHECK(h.number(":DEV:STAT?") == 0x1000);
+    for (int k = 513; k <= 1024; ++k)
+        h.send(":STR:FRAM 0," + std::to_string(k * 1000));
+    h.send(":STR:FRAM 0,0");   // the frame run at the start has freed one place
+    h.send(":STR:FRAM 0,0");
+    CHECK(h.errors() == std::vector<std::string>{"13,\"Buffer overflow\""});
+    h.advance_ms(1'030);
+    CHECK(h.number(":DEV:STAT?") == 0);
+    CHECK(h.ask(":CHAN0:ERR?") == "12");   // not closed: a buffer underflow after the last frame
+    CHECK((state(h, 0) & 0x1000) == 0);
+    h.send(":STR:OPEN 0;:STR:FRAM 0,5;:STR:CLOS");   // one frame is not a stream
+    CHECK(h.errors() == std::vector<std::string>{"770,\"Insufficient frames\""});
+    h.send(":CHAN0:SENS:PMOD 2;:STR:OPEN 0;:STR:FRAM 0,5");
+    CHECK(h.errors() == std::vector<std::string>{"263,\"Invalid sensor mode\""});
+    h.send(":STR:ABOR;:STR:OPEN 1");
+    CHECK(h.errors() == std::vector<std::string>{"257,\"No IO module present\""});
+}
