@@ -66,7 +66,17 @@ public:
           peer_(peer)
     {
         link_.sessions_.push_back(this);
-        inner_ = link_.inner_.open_session([this](std::string_view bytes) { out(bytes); }, std::move(peer));
+        // The device may end the connection itself (an MCS2's *RST): it goes through to the
+        // transport; the other parts of the connection are the transport's as they are.
+        Connection inner;
+        if (conn_.hangup)
+            inner.hangup = [this](Hangup how) { conn_.hangup(how); };
+        inner.queued_bytes = conn_.queued_bytes;
+        inner.max_queued_bytes = conn_.max_queued_bytes;
+        inner.frame_overhead = conn_.frame_overhead;
+        inner.client_baud = conn_.client_baud;
+        inner_ = link_.inner_.open_connection([this](std::string_view bytes) { out(bytes); }, std::move(inner),
+                                              std::move(peer));
     }
     ~LinkSession() override
     {
