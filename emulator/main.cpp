@@ -65,8 +65,8 @@ private:
 };
 
 constexpr std::string_view kUsage = R"(Usage: rigsimd [OPTION]...
-Emulate SmarAct MCS and Thorlabs APT motion controllers on pseudo-terminals and TCP
-sockets. Without --config, runs the built-in default rig (config/default.json), with
+Emulate SmarAct MCS and MCS2 and Thorlabs APT motion controllers on pseudo-terminals and
+TCP sockets. Without --config, runs the built-in default rig (config/default.json), with
 its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
 
   --config FILE          run the rig described in FILE (JSON, see docs/config.md)

@@ -124,6 +124,9 @@ void Controller::power_up()
         else
             device_store_[row] = p.initial;
     }
+    // The Max Closed Loop Frequency starts at its stored default (4.4.17-4.4.18).
+    for (std::size_t i = 0; i < channels_.size(); ++i)
+        channels_[i]->settings().max_frequency = stored_channel(i, Id::MaxFrequencyDefault);
     std::fill(module_power_.begin(), module_power_.end(), true);
     estop_mode_ = 0;
     group_owner_ = nullptr;

@@ -19,7 +19,7 @@ def python_blocks():
 def run_snippet(code, rig):
     """Runs `code` with the default rig's fixed ports (40100.. in the README) replaced by the
     test daemon's; returns what it printed."""
-    fixed = {40100: "mcs0", 40102: "kdc101"}
+    fixed = {40100: "mcs0", 40102: "kdc101", 55551: "mcs2"}
     for port, name in fixed.items():
         code = code.replace(f'("127.0.0.1", {port})', repr(rig.endpoint(name).address))
     out = io.StringIO()
@@ -28,10 +28,10 @@ def run_snippet(code, rig):
     return out.getvalue().splitlines()
 
 
-def test_the_readme_has_an_mcs_and_an_apt_snippet():
+def test_the_readme_has_an_mcs_an_apt_and_an_mcs2_snippet():
     blocks = python_blocks()
-    assert len(blocks) == 2
-    assert "40100" in blocks[0] and "40102" in blocks[1]
+    assert len(blocks) == 3
+    assert "40100" in blocks[0] and "40102" in blocks[1] and "55551" in blocks[2]
 
 
 def test_the_mcs_snippet_prints_what_its_comments_say(rigsim):
@@ -44,3 +44,8 @@ def test_the_mcs_snippet_prints_what_its_comments_say(rigsim):
 def test_the_apt_snippet_prints_what_its_comment_says(rigsim):
     rig = rigsim()
     assert run_snippet(python_blocks()[1], rig) == ["0x6 27000001 KDC101"]
+
+
+def test_the_mcs2_snippet_prints_what_its_comments_say(rigsim):
+    rig = rigsim()
+    assert run_snippet(python_blocks()[2], rig) == ['"MCS2-00000001"; 3', '262243 0,"No Error"']

@@ -1,6 +1,7 @@
 #include "emulator/apt/config.hpp"
 #include "emulator/daemon/rig_families.hpp"
 #include "emulator/mcs/config.hpp"
+#include "emulator/mcs2/device.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -125,14 +126,19 @@ TEST_CASE("rig config: every key is read", "[unit][config]")
     CHECK(c1.max_speed_nm_per_s == 1);
 }
 
-TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100, control on 40200", "[unit][config]")
+TEST_CASE("rig config: config/default.json is the showroom on fixed ports from 40100 and the MCS2 on 55551, control on 40200", "[unit][config]")
 {
     const auto rig = rigsim::load_rig_config(RIGSIM_SOURCE_DIR "/config/default.json");
     // The control API on loopback at the port rigsimctl and the Python client ask by default
     // (python/rigsim/control.py DEFAULT_CONTROL), so the README's rig can be steered at once.
     REQUIRE(rig.control);
     CHECK(rig.control->port == 40200);
-    REQUIRE(rig.devices.size() == 14);
+    REQUIRE(rig.devices.size() == 15);
+    // The MCS2 on the unit's own port, 55551 (its drivers often have it fixed), three channels.
+    CHECK(rig.devices[14].name == "mcs2");
+    CHECK(rig.devices[14].protocol == "mcs2");
+    CHECK(rig.devices[14].tcp_port == 55551);
+    CHECK(rigsim::mcs2::config_of(rig.devices[14]).channels.size() == 3);
     const auto& d = rig.devices[0];
     CHECK(d.name == "mcs0");
     CHECK(d.protocol == "mcs");
