@@ -17,7 +17,7 @@ import sys
 BEGIN = "<!-- mcs2_coverage.py: begin -->"
 END = "<!-- mcs2_coverage.py: end -->"
 
-NO_IOM = "answered as a unit without an I/O module: 257 NO_IOM_PRESENT"
+NO_IOM = "with the I/O module (rig key `io_module`): stored and read back; without it 257 NO_IOM_PRESENT, as such a unit answers"
 # How rigsim answers the rows that are not simply read and written by the table or acted on.
 STATUS = {
     "*CLS": "implemented: empties the connection's error queue",
@@ -30,24 +30,25 @@ STATUS = {
     "*STB": "implemented: 4 while the connection's error queue holds errors, else 0",
     "*TST": "implemented: 0",
     "*WAI": "implemented: no effect",
-    ":CGRoup:OPEN": "implemented: direct (0); external (1) needs the I/O module's input: 257",
-    ":STReam:OPEN": "implemented: direct (0); external modes (1, 2) need the I/O module: 257",
+    ":CGRoup:OPEN": "implemented: direct (0); external (1): armed by CLOSe, run at the trigger input's edge (input mode 3, else 265; without the I/O module 257)",
+    ":STReam:OPEN": "implemented: direct (0); external (1, 2): started at the trigger input's edge once ready (input mode 2, else 265; without the I/O module 257); 2's sync clock is taken to be in step with the base rate",
     "[:PROPerty]:DEVice:HMODule:LOPTions[:CURRent]": "answered as a unit without a hand control module: 256 NO_HM_PRESENT",
     "[:PROPerty]:DEVice:HMODule:LOPTions:DEFault": "answered as a unit without a hand control module: 256 NO_HM_PRESENT",
-    "[:PROPerty]:DEVice:TRIGger:INPut:MODE": NO_IOM + " (4.13.1)",
-    "[:PROPerty]:DEVice:TRIGger:INPut:CONDition": NO_IOM,
+    "[:PROPerty]:DEVice:TRIGger:INPut:MODE": "with the I/O module: the control API's `trig_in` drives the input; 1 emergency stop, 2 stream, 3 command group, 4 event (the library's, nothing on the ASCII wire); without it 257 (4.13.1)",
+    "[:PROPerty]:DEVice:TRIGger:INPut:CONDition": "with the I/O module: the edge that acts; without it 257",
+    "[:PROPerty]:DEVice:ESTop:MODE": "implemented: 0 stops, 1 also locks until written, 2 also until the input's inverse edge (2.17.2)",
     "[:PROPerty]:MODule#:IOModule:OPTions": NO_IOM,
     "[:PROPerty]:MODule#:IOModule:VOLTage": NO_IOM,
     "[:PROPerty]:MODule#:IOModule:AINPut:RANGe": NO_IOM,
-    "[:PROPerty]:MODule#:AUXiliary:DINPut[:VALue]": NO_IOM,
+    "[:PROPerty]:MODule#:AUXiliary:DINPut[:VALue]": "with the I/O module: 0 (nothing wired to GP-DIN); without it 257",
     "[:PROPerty]:MODule#:AUXiliary:DOUTput[:VALue]": NO_IOM,
-    "[:PROPerty]:MODule#:AUXiliary:DOUTput:SET": NO_IOM,
-    "[:PROPerty]:MODule#:AUXiliary:DOUTput:CLEar": NO_IOM,
+    "[:PROPerty]:MODule#:AUXiliary:DOUTput:SET": "with the I/O module: sets the given bits of the outputs' value; without it 257",
+    "[:PROPerty]:MODule#:AUXiliary:DOUTput:CLEar": "with the I/O module: clears the given bits; without it 257",
     "[:PROPerty]:MODule#:AUXiliary:AOUTput:VALue#": NO_IOM,
-    "[:PROPerty]:CHANnel#:CLINput:AUXiliary[:VALue]": NO_IOM,
-    "[:PROPerty]:CHANnel#:AUXiliary:IOModule:INPut:VALue#": NO_IOM,
-    "[:PROPerty]:CHANnel#:TRIGger:OUTPut:MODE": NO_IOM + " (4.14.1)",
-    "[:PROPerty]:CHANnel#:CLINput[:SELect]": "implemented: 0 and 1; 2 (AUX_IN) needs an aux input: 257",
+    "[:PROPerty]:CHANnel#:CLINput:AUXiliary[:VALue]": "0 (nothing wired to the aux input); 257 when Aux Input Select names the absent I/O module",
+    "[:PROPerty]:CHANnel#:AUXiliary:IOModule:INPut:VALue#": "with the I/O module: 0 (nothing wired to AIN); without it 257",
+    "[:PROPerty]:CHANnel#:TRIGger:OUTPut:MODE": "with the I/O module: stored (no output line to watch), 41 for position compare with LMAX < LMIN; without it 257 (4.14.1)",
+    "[:PROPerty]:CHANnel#:CLINput[:SELect]": "implemented: 0 and 1; 2 (AUX_IN): the aux feedback is not modelled: 32765 FEATURE_NOT_SUPPORTED with the I/O module, 257 without",
     "[:PROPerty]:CHANnel#:ACTuator:MODE": "implemented: 0, 1; 2 (low vibration) needs a feature permission: 35",
     "[:PROPerty]:CHANnel#:SCORrection:OPTions": "implemented: bits 0 and 2 read 1; bit 4 (ASC) needs a feature permission: 35",
     "[:PROPerty]:CHANnel#:CALibration:OPTions": "implemented: bit 2 (ASC) at `:CAL#` needs a feature permission: 35",

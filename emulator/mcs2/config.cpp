@@ -19,7 +19,7 @@ using nlohmann::json;
 constexpr std::size_t kMaxChannels = 24;
 constexpr std::int64_t kTravel = 1'000'000'000'000'000;   // 1 m (pm) or 1000° (n°): far past any stage
 
-constexpr std::array<std::string_view, 2> kKeys{"serial_number", "channels"};
+constexpr std::array<std::string_view, 3> kKeys{"serial_number", "io_module", "channels"};
 constexpr std::array<std::string_view, 13> kChannelKeys{
     "positioner_type", "travel", "start_position", "reference_position", "coded_mark_spacing", "max_speed",
     "step_width", "step_jitter_percent", "scan_range", "calibration_ms", "drift", "temperature_c", "sensor"};
@@ -108,6 +108,11 @@ void load_device_section(const ConfigReader& reader, const json& device, const s
             if (ch < 0x20 || ch > 0x7e || ch == '"')
                 reader.fail(p, "expected printable ASCII without quotes, got " + s->dump());
         out.serial_number = s->get<std::string>();
+    }
+    if (const auto* io = reader.find(v, "io_module")) {
+        if (!io->is_boolean())
+            reader.fail(pointer_to(section_pointer, "io_module"), "expected true or false, got " + describe(*io));
+        out.io_module = io->get<bool>();
     }
     const auto channels_pointer = pointer_to(section_pointer, "channels");
     const auto& channels = reader.require(v, section_pointer, "channels");

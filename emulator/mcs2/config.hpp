@@ -44,6 +44,10 @@ enum class Firmware {
 struct Config {
     Firmware firmware = Firmware::Current;
     std::string serial_number = "MCS2-00001234";   ///< :DEV:SNUM? (4.2.4)
+    /// The unit has the optional I/O module (User Manual 2): the device's trigger input (emergency
+    /// stop, external stream and command-group triggers), the modules' digital and analog I/O and the
+    /// channels' output triggers. Without it their properties answer 257 NO_IOM_PRESENT.
+    bool io_module = false;
     std::vector<ChannelConfig> channels;           ///< 1..12 (3 per driver module)
 };
 

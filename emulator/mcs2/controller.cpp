@@ -87,6 +87,7 @@ Controller::Controller(const Config& config, models::World& world, const std::st
     device_store_.assign(table().size(), 0);
     module_power_.assign(module_count(), true);
     started_by_.assign(channels_.size(), nullptr);
+    io_.assign(module_count(), IoModule{});
     restore_defaults();
 }
 
@@ -133,19 +134,26 @@ void Controller::power_up()
     group_.clear();
     group_finished_ = false;
     group_values_.clear();
+    group_external_ = false;
+    group_armed_ = nullptr;
     stream_ = Stream{};
+    trigger_mode_ = 0;
+    trigger_condition_ = 0;
+    set_locked(false);
+    std::fill(io_.begin(), io_.end(), IoModule{});
 }
 
 std::uint32_t Controller::device_state() const
 {
-    // No hand control module, never locked (no I/O module to trigger an emergency stop).
-    return stream_.running ? 0x1000u : 0u;   // IS_STREAMING (2.8.1)
+    // No hand control module; MOVEMENT_LOCKED after an emergency stop (with an I/O module).
+    return (locked_ ? 0x0002u : 0u) | (stream_.running ? 0x1000u : 0u);   // IS_STREAMING (2.8.1)
 }
 
 std::uint32_t Controller::module_state(std::size_t module) const
 {
     (void)module;
-    return 0x0001;   // SM_PRESENT: each driver module has its sensor module
+    // SM_PRESENT: each driver module has its sensor module; IOM_PRESENT with the I/O module.
+    return 0x0001u | (config_.io_module ? 0x0008u : 0u);
 }
 
 std::uint32_t Controller::channel_state(std::size_t i) const
@@ -158,8 +166,9 @@ std::uint32_t Controller::channel_state(std::size_t i) const
 
 void Controller::forget(const SessionState& session)
 {
-    if (group_owner_ == &session) {
+    if (group_owner_ == &session || group_armed_ == &session) {
         group_owner_ = nullptr;
+        group_armed_ = nullptr;
         group_.clear();
     }
     if (stream_.open && stream_.owner == &session)
@@ -254,6 +263,7 @@ void Controller::run(const Property& p, const std::vector<std::int64_t>& indices
         if (group_.size() >= kMaxGroupCommands)
             return error(static_cast<std::int32_t>(Error::BufferOverflow), error_text(0x000d));
         group_.push_back(Grouped{&p, indices, c});
+        group_.back().command.text = {};   // the message it points into is gone when the group runs
         return;
     }
 
@@ -301,7 +311,7 @@ std::optional<Error> Controller::read(const Property& p, const std::vector<std::
     case Id::Stb:
         return std::nullopt;   // the session's: run() fills them in
     case Id::CgrFinished:
-        out = group_finished_ || (!group_owner_ && group_.empty()) ? "1" : "0";
+        out = group_finished_ || (!group_owner_ && !group_armed_ && group_.empty()) ? "1" : "0";
         return std::nullopt;
     case Id::CgrValues:
         for (std::size_t i = 0; i < group_values_.size(); ++i)
@@ -344,8 +354,23 @@ std::optional<Error> Controller::read(const Property& p, const std::vector<std::
     case Id::ModAinRange:
     case Id::ModDin:
     case Id::ModDout:
-    case Id::ModAout:
-        return Error::NoIomPresent;
+    case Id::ModAout: {
+        if (!config_.io_module)
+            return Error::NoIomPresent;
+        if (p.id == Id::DevTriggerMode || p.id == Id::DevTriggerCondition) {
+            out = std::to_string(p.id == Id::DevTriggerMode ? trigger_mode_ : trigger_condition_);
+            return std::nullopt;
+        }
+        const auto& io = io_[static_cast<std::size_t>(indices[0])];
+        const std::int64_t v = p.id == Id::ModIoOptions ? io.options
+                               : p.id == Id::ModIoVoltage ? io.voltage
+                               : p.id == Id::ModAinRange ? io.ain_range
+                               : p.id == Id::ModDout ? io.dout
+                               : p.id == Id::ModAout ? io.aout[static_cast<std::size_t>(indices[1])]
+                                                     : 0;   // GP-DIN: nothing is wired to the inputs
+        out = std::to_string(v);
+        return std::nullopt;
+    }
     case Id::ModPower:
         out = module_power_[static_cast<std::size_t>(indices[0])] ? "1" : "0";
         return std::nullopt;
@@ -436,9 +461,19 @@ std::optional<Error> Controller::read_channel(const Property& p, std::size_t ind
         return put(v);
     }
     case Id::AuxValue:
+        // The aux input: the I/O module's analog input or the sensor module's (Aux Input Select,
+        // 4.11.3); nothing is wired to either: 0.
+        if (!config_.io_module && stored_channel(index, Id::AuxInputSelect) == 0)
+            return Error::NoIomPresent;
+        return put(0);
     case Id::AuxInputValue:
+        if (!config_.io_module)
+            return Error::NoIomPresent;
+        return put(0);
     case Id::TriggerMode:
-        return Error::NoIomPresent;
+        if (!config_.io_module)
+            return Error::NoIomPresent;
+        return put(stored_channel(index, Id::TriggerMode));
     case Id::PositionerType:
         return put(ch.type_code());
     case Id::PositionerTypeName:
@@ -524,12 +559,19 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
     case Id::CgrOpen:
         if (group_owner_ || !group_.empty())
             return Error::InvalidConfiguration;   // "only one command group can be open at a time" (2.14)
-        if (v == 1)
-            return Error::NoIomPresent;   // an external trigger needs the I/O module's input (2.17)
+        if (group_armed_)
+            return Error::InvalidConfiguration;
+        if (v == 1) {   // the external trigger: the I/O module's input, in mode CMD_GROUP (2.14, 2.17)
+            if (!config_.io_module)
+                return Error::NoIomPresent;
+            if (trigger_mode_ != 3)
+                return Error::InvalidInputTrigMode;
+        }
         group_owner_ = &s;
         group_.clear();
         group_finished_ = false;
         group_values_.clear();
+        group_external_ = v == 1;
         return std::nullopt;
     case Id::CgrClose:
         if (group_owner_ != &s)
@@ -537,9 +579,10 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
         close_group(s);
         return std::nullopt;
     case Id::CgrAbort:
-        if (group_owner_ != &s)
+        if (group_owner_ != &s && group_armed_ != &s)
             return Error::InvalidConfiguration;
         group_owner_ = nullptr;
+        group_armed_ = nullptr;
         group_.clear();
         return std::nullopt;
     case Id::StrOpen:
@@ -562,8 +605,7 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
     }
     case Id::DevEstopMode:
         estop_mode_ = v;   // writing any valid value also releases a locked device (2.17.2)
-        for (auto& ch : channels_)
-            ch->set_locked(false);
+        set_locked(false);
         return std::nullopt;
     case Id::DevHmLock:
     case Id::DevHmLockDefault:
@@ -576,8 +618,43 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
     case Id::ModDout:
     case Id::ModDoutSet:
     case Id::ModDoutClear:
-    case Id::ModAout:
-        return Error::NoIomPresent;
+    case Id::ModAout: {
+        if (!config_.io_module)
+            return Error::NoIomPresent;
+        if (p.id == Id::DevTriggerMode) {
+            trigger_mode_ = v;
+            return std::nullopt;
+        }
+        if (p.id == Id::DevTriggerCondition) {
+            trigger_condition_ = v;
+            return std::nullopt;
+        }
+        auto& io = io_[static_cast<std::size_t>(indices[0])];
+        switch (p.id) {
+        case Id::ModIoOptions:
+            io.options = v;
+            break;
+        case Id::ModIoVoltage:
+            io.voltage = v;
+            break;
+        case Id::ModAinRange:
+            io.ain_range = v;
+            break;
+        case Id::ModDout:
+            io.dout = v;
+            break;
+        case Id::ModDoutSet:
+            io.dout |= v;   // the given bits only (4.11.8)
+            break;
+        case Id::ModDoutClear:
+            io.dout &= ~v;
+            break;
+        default:
+            io.aout[static_cast<std::size_t>(indices[1])] = v;
+            break;
+        }
+        return std::nullopt;
+    }
     case Id::ModPower: {
         const auto m = static_cast<std::size_t>(indices[0]);
         module_power_[m] = v != 0;
@@ -612,6 +689,13 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
         const auto i = static_cast<std::size_t>(indices[0]);
         if (const auto e = write_channel(p, *channels_[i], v))
             return e;
+        if (p.id == Id::TriggerMode) {
+            // Position compare with its limits the wrong way round (4.14.1).
+            if (v == 1 && stored_channel(i, Id::CompareLimitMax) < stored_channel(i, Id::CompareLimitMin))
+                return Error::InvalidConfiguration;
+            stored_channel(i, Id::TriggerMode) = v;
+            return std::nullopt;
+        }
         if (auto* field = setting(*channels_[i], p.id))
             *field = v;
         else if (p.kind == Kind::Stored)
@@ -648,6 +732,8 @@ std::optional<Error> Controller::write_channel(const Property& p, Channel& ch, s
     case Id::ActuatorMode:
         return ch.set_actuator_mode(v);
     case Id::LoopInput:
+        if (v == 2)   // AUX_IN: the aux input as feedback is not modelled (an I/O module's unit has it)
+            return config_.io_module ? Error::FeatureNotSupported : Error::NoIomPresent;
         return ch.set_loop_input(v);
     case Id::SensorInputSelect:
         return v == 1 && ch.type().sensor != 'P' ? std::optional<Error>(Error::InvalidParameter) : std::nullopt;
@@ -680,7 +766,9 @@ std::optional<Error> Controller::write_channel(const Property& p, Channel& ch, s
             return Error::PermissionDenied;   // advanced sensor correction: a feature permission (2.19)
         return std::nullopt;
     case Id::TriggerMode:
-        return Error::NoIomPresent;   // "no I/O module -> NO_IOM_PRESENT" (4.14.1)
+        if (!config_.io_module)
+            return Error::NoIomPresent;   // "no I/O module -> NO_IOM_PRESENT" (4.14.1)
+        return std::nullopt;
     case Id::TunSave:
         return ch.save_tuning(v);
     case Id::TunWriteProtection:
@@ -706,16 +794,77 @@ std::optional<Error> Controller::write_channel(const Property& p, Channel& ch, s
 
 void Controller::close_group(SessionState& s)
 {
-    // Direct trigger: every command of the group now, in order (6.4.1).
     group_owner_ = nullptr;
+    if (group_external_) {   // armed: the input trigger runs it (6.4.1)
+        group_armed_ = &s;
+        return;
+    }
+    run_group(s);   // direct trigger: every command of the group now, in order
+}
+
+void Controller::run_group(SessionState& s)
+{
     std::vector<std::string> values;
     Result r;
     auto grouped = std::move(group_);
     group_.clear();
+    group_armed_ = nullptr;
     for (const auto& g : grouped)
         run(*g.property, g.indices, g.command, s, values, r);
     group_values_ = std::move(values);
     group_finished_ = true;
+}
+
+void Controller::set_locked(bool locked)
+{
+    locked_ = locked;
+    for (auto& ch : channels_)
+        ch->set_locked(locked);
+}
+
+void Controller::emergency_stop()
+{
+    if (stream_.open)
+        stream_abort(Error::Aborted);
+    group_owner_ = nullptr;
+    group_armed_ = nullptr;
+    group_.clear();
+    for (auto& ch : channels_) {
+        ch->stop();   // a hard stop, also under acceleration control: the second stop (2.6.5)
+        if (ch->moving())
+            ch->stop();
+    }
+    if (estop_mode_ == 1 || estop_mode_ == 2)   // RESTRICTED, AUTO_RELEASE: locked (2.17.2)
+        set_locked(true);
+}
+
+void Controller::set_trigger_input(bool high)
+{
+    if (high == input_high_)
+        return;
+    input_high_ = high;
+    const bool active = trigger_condition_ == 0 ? high : !high;   // RISING or FALLING (4.13.2)
+    if (!active) {
+        // AUTO_RELEASE: the lock ends when the trigger line is released (the inverse edge).
+        if (trigger_mode_ == 1 && locked_ && estop_mode_ == 2)
+            set_locked(false);
+        return;
+    }
+    switch (trigger_mode_) {
+    case 1:
+        emergency_stop();
+        break;
+    case 2:   // a stream armed for its trigger starts; later edges are ignored (EXTERNAL_ONCE)
+        if (stream_.open && stream_.mode != 0 && stream_.ready && !stream_.running)
+            stream_start(clock_.now());
+        break;
+    case 3:
+        if (group_armed_)
+            run_group(*group_armed_);
+        break;
+    default:   // DISABLED; EVENT notifies the SmarActCTL library, which the ASCII interface has not
+        break;
+    }
 }
 
 void Controller::broadcast_stop(std::size_t from)
@@ -755,9 +904,14 @@ std::optional<Error> Controller::stream_open(std::int64_t mode, const SessionSta
 {
     if (stream_.open)
         return Error::BusyStreaming;   // one stream at a time (2.15)
-    if (mode != 0)
-        return Error::NoIomPresent;   // external triggers come through the I/O module's input (2.17)
+    if (mode != 0) {   // external triggers come through the I/O module's input in mode STREAM (2.17)
+        if (!config_.io_module)
+            return Error::NoIomPresent;
+        if (trigger_mode_ != 2)
+            return Error::InvalidInputTrigMode;
+    }
     stream_ = Stream{};
+    stream_.mode = mode;
     stream_.open = true;
     stream_.owner = &s;
     stream_.rate = device_store_[static_cast<std::size_t>(Id::DevStreamBaseRate)];
@@ -812,9 +966,14 @@ std::optional<Error> Controller::stream_frame(const Command& c)
         return Error::BufferOverflow;
     stream_.frames.push_back(std::move(positions));
     ++stream_.total;
-    // Direct mode starts once the buffer is half full ("stream ready", 2.15.1).
-    if (!stream_.running && used * 2 >= kStreamBuffer)
-        stream_start(clock_.now());
+    // Direct mode starts once the buffer is half full ("stream ready", 2.15.1); an external one
+    // is armed then, and starts at its trigger.
+    if (!stream_.running && used * 2 >= kStreamBuffer) {
+        if (stream_.mode == 0)
+            stream_start(clock_.now());
+        else
+            stream_.ready = true;
+    }
     return std::nullopt;
 }
 
@@ -828,7 +987,10 @@ std::optional<Error> Controller::stream_close()
             stream_abort(Error::InsufficientFrames);
             return Error::InsufficientFrames;
         }
-        stream_start(clock_.now());   // a short stream is ready when closed
+        if (stream_.mode == 0)
+            stream_start(clock_.now());   // a short stream is ready when closed
+        else
+            stream_.ready = true;
     }
     return std::nullopt;
 }

@@ -16,6 +16,7 @@
 #include "models/world.hpp"
 
 #include <cstdint>
+#include <array>
 #include <deque>
 #include <memory>
 #include <string>
@@ -88,6 +89,13 @@ public:
     /// Non-volatile settings back to the rig's, then power_up().
     void restore_defaults();
 
+    /// The device's trigger input line (DIN-1, 2.17), driven from outside (the control API): an
+    /// edge of its Input Trigger Condition acts by its Input Trigger Mode. Only with an I/O module.
+    void set_trigger_input(bool high);
+    bool trigger_input() const { return input_high_; }
+    /// Locked by an emergency stop (device state bit 1, 2.17.2).
+    bool locked() const { return locked_; }
+
     Ticks next_change(Ticks now) const;
     void tick(Ticks now);
 
@@ -111,6 +119,12 @@ private:
     std::int64_t& stored_channel(std::size_t channel, Id id);
     void broadcast_stop(std::size_t from);
     void close_group(SessionState& s);
+    /// Run the group's commands now; their errors and values go to `s`.
+    void run_group(SessionState& s);
+    /// Input trigger mode EMERGENCY_STOP (2.17.2): every channel stopped hard, stream and group
+    /// aborted, and with Emergency Stop Mode 1 or 2 movements locked until released.
+    void emergency_stop();
+    void set_locked(bool locked);
     // Trajectory streaming (2.15, 6.5).
     std::optional<Error> stream_open(std::int64_t mode, const SessionState& s);
     std::optional<Error> stream_frame(const Command& c);
@@ -135,6 +149,18 @@ private:
     std::vector<Grouped> group_;
     bool group_finished_ = false;
     std::vector<std::string> group_values_;
+    bool group_external_ = false;            ///< opened with trigger mode 1: CLOSe arms it
+    SessionState* group_armed_ = nullptr;    ///< closed, waiting for the input trigger, for this session
+    // The I/O module (config io_module): the trigger input and each module's I/O values.
+    std::int64_t trigger_mode_ = 0;
+    std::int64_t trigger_condition_ = 0;
+    bool input_high_ = false;
+    bool locked_ = false;
+    struct IoModule {
+        std::int64_t options = 0, voltage = 0, ain_range = 0, dout = 0;
+        std::array<std::int64_t, 2> aout{};
+    };
+    std::vector<IoModule> io_;
     /// The trajectory stream: open, its channels (from the first frame), the frames not yet run.
     struct Stream {
         bool open = false;
@@ -145,6 +171,8 @@ private:
         std::deque<std::vector<std::int64_t>> frames;   ///< positions, in channel order
         std::int64_t rate = 1000;     ///< frames per second (Stream Base Rate at open)
         bool interpolate = true;      ///< Stream Options bit 0 clear
+        std::int64_t mode = 0;        ///< 0 direct, 1 external once, 2 external sync
+        bool ready = false;           ///< an external stream waiting for its trigger
         Ticks start = 0;
         std::int64_t next = 0;        ///< the index of the next frame to run
         std::size_t total = 0;        ///< frames received

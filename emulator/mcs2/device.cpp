@@ -238,6 +238,10 @@ void Mcs2Device::describe(nlohmann::json& out) const
     out["device_name"] = controller_.device_name();
     out["modules"] = controller_.module_count();
     out["firmware"] = controller_.config().firmware == Firmware::Current ? "current" : "1.0.6";
+    out["io_module"] = controller_.config().io_module;
+    out["trigger_input"] = controller_.config().io_module ? nlohmann::json(controller_.trigger_input() ? "high" : "low")
+                                                          : nlohmann::json(nullptr);
+    out["locked"] = controller_.locked();
 }
 
 Refused Mcs2Device::axis_body_key(std::size_t index, std::string& out) const
@@ -262,8 +266,15 @@ Refused Mcs2Device::patch_channel(std::size_t index, const nlohmann::json& body)
         if (key == "limit_switch")
             return bad("limit_switch: an MCS2 positioner has no limit switches (its end stops are mechanical; "
                        "see the stall fault)");
-        if (key != "position_si" && key != "referenced" && key != "sensor")
-            return bad(key + ": unknown key (position_si, referenced, sensor)");
+        if (key != "position_si" && key != "referenced" && key != "sensor" && key != "trig_in")
+            return bad(key + ": unknown key (position_si, referenced, sensor, trig_in)");
+        if (key == "trig_in") {
+            if (!controller_.config().io_module)
+                return bad("trig_in: the unit has no I/O module, so no trigger input (rig key mcs2.io_module)");
+            if (!value.is_string() || (value != "high" && value != "low" && value != "pulse"))
+                return bad("trig_in: \"high\", \"low\" or \"pulse\" is required");
+            continue;
+        }
         if (key == "position_si") {
             if (!value.is_number())
                 return bad("position_si: a number is required");
@@ -279,6 +290,19 @@ Refused Mcs2Device::patch_channel(std::size_t index, const nlohmann::json& body)
                 return bad("referenced: the channel's sensor has failed");
         } else if (!value.is_string() || (value != "enabled" && value != "disabled" && value != "power_save")) {
             return bad("sensor: \"enabled\", \"disabled\" or \"power_save\" is required");
+        }
+    }
+    // The trigger input is the device's (DIN-1, 2.17): any channel's PATCH drives it, moving or not.
+    if (const auto it = body.find("trig_in"); it != body.end()) {
+        if (*it == "pulse") {   // both edges in one tick
+            controller_.set_trigger_input(!controller_.trigger_input());
+            controller_.set_trigger_input(!controller_.trigger_input());
+        } else {
+            controller_.set_trigger_input(*it == "high");
+        }
+        if (body.size() == 1) {
+            publish_changes();
+            return std::nullopt;
         }
     }
     if (!idle(controller_.channel_state(index)))

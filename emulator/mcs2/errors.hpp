@@ -31,6 +31,7 @@ enum class Error : std::int32_t {
     AmplifierDisabled = 0x0106,
     InvalidSensorMode = 0x0107,
     InvalidActuatorMode = 0x0108,
+    InvalidInputTrigMode = 0x0109,
     NotCalibrated = 0x0111,
     NotReferenced = 0x0112,
     ControlLoopInputDisabled = 0x0115,
@@ -44,6 +45,7 @@ enum class Error : std::int32_t {
     InvalidStreamHandle = 0x0300,
     InsufficientFrames = 0x0302,
     BusyStreaming = 0x0303,
+    FeatureNotSupported = 0x7ffd,
 };
 
 /// Table A.1's description of `code` (a SmarActControl code), or "Unknown error".

@@ -183,7 +183,10 @@ def render_table(kind: str, answer: Any) -> str | None:
     if kind == "clock":
         return _clock_table(answer)
     if kind == "state":
-        return table(answer.get("channels", []), [
+        # An MCS2 channel has its 32-bit "state" (word and activity) where the others have "status".
+        channels = [dict(c, status=c["state"]["activity"]) if "status" not in c and isinstance(c.get("state"), dict)
+                    else c for c in answer.get("channels", [])]
+        return table(channels, [
             ("index", "ch"), ("kind", "kind"), ("position_si", "position_si"),
             ("position_protocol", "protocol"), ("moving", "moving"),
             ("referenced", "referenced"), ("status", "status")])

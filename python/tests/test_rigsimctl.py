@@ -69,6 +69,14 @@ def test_state(fake):
     assert len(text.splitlines()) == 4
 
 
+def test_state_table_shows_an_mcs2_channels_activity():
+    from rigsim.cli import render_table
+    channel = {"index": 0, "kind": "linear", "position_si": 0.001, "position_protocol": 1000000000,
+               "moving": False, "referenced": True, "state": {"word": 262240, "activity": "holding"}}
+    text = render_table("state", {"channels": [channel]})
+    assert text.splitlines()[1].split()[-1] == "holding"
+
+
 def test_set_parses_values_as_json(fake):
     channel = ctl_json(fake.url, "set", "mcs0", "2", "position_si=1e-3", "referenced=true",
                        "limit_switch=forward")

@@ -5,6 +5,7 @@
 #include "emulator/apt/apt_device.hpp"
 #include "emulator/control/frame_book.hpp"
 #include "emulator/daemon/rig.hpp"
+#include "emulator/daemon/rig_families.hpp"
 #include "models/inertial_drive.hpp"
 #include "models/piezo_actuator.hpp"
 #include "tests/support/temp_dir.hpp"
