@@ -10,6 +10,14 @@ namespace {
 
 constexpr double kTolerance_nm = 1e-6;   // a profile that ends on an obstacle may round past it
 
+/// The tick `seconds` after `now`, rounded up; a duration past 10^18 ticks (a slow move over a
+/// huge distance) is that far away, not an overflow.
+Ticks end_after(Ticks now, double seconds, std::uint32_t tick_hz)
+{
+    const double ticks = std::ceil(seconds * tick_hz - 1e-9);
+    return now + static_cast<Ticks>(std::clamp(ticks, 0.0, 1e18));
+}
+
 } // namespace
 
 StickSlipPositioner::StickSlipPositioner(const Clock& clock, const StickSlipConfig& config)
@@ -317,7 +325,7 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, target_nm, speed_nm_per_s * (1.0 - slip_),
                                    acceleration_nm_per_s2);
     profile_start_ = now;
-    profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+    profile_end_ = end_after(now, profile_.duration(), clock_.tick_hz());
     if (profile_end_ <= now)
         rest_nm_ = profile_.target();
     else
@@ -326,19 +334,34 @@ Ticks StickSlipPositioner::move_to(double target_nm, double speed_nm_per_s, doub
     return profile_end_;
 }
 
-Ticks StickSlipPositioner::decelerate(double acceleration_nm_per_s2)
+Ticks StickSlipPositioner::decelerate(double acceleration_nm_per_s2, double* rest_nm)
 {
     const Ticks now = clock_.now();
     if (motion_ != Motion::Profile || !legs_nm_.empty() || acceleration_nm_per_s2 <= 0) {
         halt();
+        if (rest_nm)
+            *rest_nm = position_nm();
         return now;
     }
     const auto state = profile_.sample(clock_.seconds(now - profile_start_));
     const double v = state.velocity;
-    const double distance = v * v / (2.0 * acceleration_nm_per_s2);
-    const double target = std::clamp(state.position + (v >= 0 ? distance : -distance), stop_min_nm(), stop_max_nm());
-    auto braking = MotionProfile::plan(state, target, std::abs(v), acceleration_nm_per_s2);
-    const Ticks end = now + static_cast<Ticks>(std::ceil(braking.duration() * clock_.tick_hz() - 1e-9));
+    // Room before the move's own target and the end stops: the braking never passes either; it
+    // brakes harder where the acceleration given would not stop it in time.
+    const double limit = v >= 0 ? std::min(profile_.target(), stop_max_nm()) : std::max(profile_.target(), stop_min_nm());
+    const double room = std::max(0.0, std::abs(limit - state.position));
+    double a = acceleration_nm_per_s2;
+    if (room > 0 && v * v / (2.0 * a) > room)
+        a = v * v / (2.0 * room);
+    const double distance = room > 0 ? std::min(room, v * v / (2.0 * a)) : 0.0;
+    const double target = state.position + (v >= 0 ? distance : -distance);
+    if (rest_nm)
+        *rest_nm = target;
+    if (distance <= 0) {
+        halt();
+        return now;
+    }
+    auto braking = MotionProfile::plan(state, target, std::abs(v), a);
+    const Ticks end = end_after(now, braking.duration(), clock_.tick_hz());
     if (end <= now) {
         halt();
         return now;
@@ -370,7 +393,7 @@ bool StickSlipPositioner::next_leg(Ticks now)
         const double to = legs_nm_[next_leg_++];
         profile_ = MotionProfile::plan(AxisState{rest_nm_, 0.0}, to, leg_speed_nm_per_s_, 0.0);
         profile_start_ = now;
-        profile_end_ = now + static_cast<Ticks>(std::ceil(profile_.duration() * clock_.tick_hz() - 1e-9));
+        profile_end_ = end_after(now, profile_.duration(), clock_.tick_hz());
         if (profile_end_ > now) {
             motion_ = Motion::Profile;
             return true;

@@ -143,9 +143,10 @@ public:
     /// 0 means unlimited. Returns the end tick; a move that ends now is done at return.
     Ticks move_to(double target_nm, double speed_nm_per_s, double acceleration_nm_per_s2);
     /// A closed-loop move under way brakes at `acceleration_nm_per_s2` (> 0) from the speed it has
-    /// now and comes to rest where that takes it (within the end stops): one event, outcome Arrived.
-    /// Returns the end tick; anything but a closed-loop move halts at once (and returns now).
-    Ticks decelerate(double acceleration_nm_per_s2);
+    /// now and comes to rest where that takes it, never past the move's own target or an end stop
+    /// (it brakes harder where it must): one event, outcome Arrived. Returns the end tick and, in
+    /// `rest_nm`, where it will rest; anything but a closed-loop move halts at once (returns now).
+    Ticks decelerate(double acceleration_nm_per_s2, double* rest_nm = nullptr);
     /// Drive through `legs_nm` in order at `speed_nm_per_s` without acceleration limit, each
     /// leg from rest where the last one ended (a reference search turning at end stops);
     /// one event per leg end, outcome Arrived after the last. Returns false if all legs

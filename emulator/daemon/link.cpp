@@ -69,8 +69,13 @@ public:
         // The device may end the connection itself (an MCS2's *RST): it goes through to the
         // transport; the other parts of the connection are the transport's as they are.
         Connection inner;
-        if (conn_.hangup)
-            inner.hangup = [this](Hangup how) { conn_.hangup(how); };
+        if (conn_.hangup)   // a close goes after what the link still holds for the client
+            inner.hangup = [this](Hangup how) {
+                if (how == Hangup::Close)
+                    begin_close();
+                else
+                    conn_.hangup(how);
+            };
         inner.queued_bytes = conn_.queued_bytes;
         inner.max_queued_bytes = conn_.max_queued_bytes;
         inner.frame_overhead = conn_.frame_overhead;

@@ -133,6 +133,9 @@ void Channel::power_up()
         tuning_ = tuning_of(*type_);
     }
     write_protected_ = true;
+    streaming_ = false;
+    braking_ = false;
+    move_acceleration_ = 0;
     const auto max_frequency = settings_.max_frequency;
     const auto control_options = settings_.control_options;
     const auto safe_direction = settings_.safe_direction;
@@ -221,7 +224,7 @@ std::optional<Error> Channel::set_sensor_power(std::int64_t mode)
     if (m == SensorPower::Disabled) {
         frozen_ = logical_from_physical(physical_now());   // the reading stops (2.9)
         if (motion_ == Activity::Targeting || motion_ == Activity::Holding || motion_ == Activity::Referencing ||
-            motion_ == Activity::Calibrating)
+            motion_ == Activity::Calibrating || motion_ == Activity::MoveDelay)
             finish(Error::SensorDisabled, "sensor_disabled");
     } else if (sensor_power_ == SensorPower::Disabled && frozen_) {
         // Moved while blind: the stage lost its position without an error; the reading goes on
@@ -256,7 +259,9 @@ std::optional<Error> Channel::set_loop_input(std::int64_t input)
         return Error::InvalidParameter;
     if (input == 2)   // the aux input is the I/O module's or the sensor module's: rigsim's MCS2 has neither
         return Error::NoIomPresent;
-    if (input == 0 && (motion_ == Activity::Targeting || motion_ == Activity::Holding))
+    if (input == 0 && (motion_ == Activity::Targeting || motion_ == Activity::Holding ||
+                       motion_ == Activity::Referencing || motion_ == Activity::Calibrating ||
+                       (motion_ == Activity::MoveDelay && pending_motion_ != Activity::Stepping)))
         finish(Error::ControlLoopInputDisabled, "stopped");
     loop_input_ = static_cast<std::int32_t>(input);
     return std::nullopt;
@@ -512,6 +517,7 @@ std::optional<Error> Channel::move(MoveMode mode, std::int64_t value)
                 return std::nullopt;
             }
             const bool accumulate = (settings_.control_options & 0x01) == 0;
+            // While a first stop brakes, the target is where the braking ends.
             const double base = accumulate && (motion_ == Activity::Targeting || motion_ == Activity::Holding ||
                                                motion_ == Activity::MoveDelay)
                                     ? static_cast<double>(target_)
@@ -533,6 +539,7 @@ std::optional<Error> Channel::move(MoveMode mode, std::int64_t value)
                 return Error::RangeLimitReached;
             }
         }
+        target_ = std::llround(target);   // at the command: a relative move during the delay adds to it
         begin(Activity::Targeting, [this, target] { start_closed_loop(target); });
         return std::nullopt;
     }
@@ -606,6 +613,7 @@ void Channel::start_closed_loop(double target_logical)
         arrival_error_ = Error::EndStopReached;
     }
     const double accel = settings_.velocity > 0 ? static_cast<double>(settings_.acceleration) : 0.0;
+    move_acceleration_ = accel;   // a first stop brakes at it (:ACC may change while the move runs)
     const Ticks end = body_.move_to(physical / 1000.0, top_speed() / 1000.0, accel / 1000.0);
     if (end <= clock_.now())
         arrive(clock_.now());
@@ -666,15 +674,28 @@ void Channel::stop()
         return;
     }
     const bool was_moving = moving();
+    // A search that runs on past its mark (Continue On Reference Found, 2.7.2) "must be stopped
+    // manually": the reference it passed stands.
+    if (motion_ == Activity::Referencing && found_at_ &&
+        (physical_now() - found_at_->first) * found_at_->second >= 0) {
+        body_.halt();
+        commit_reference();
+        finish(Error::None, "completed");
+        target_ = position();
+        return;
+    }
     // With acceleration control the first stop brakes to zero velocity; a second one stops hard
     // (2.6.5). The movement's result is ABORTED, at the time the stop arrived.
-    if (motion_ == Activity::Targeting && settings_.velocity > 0 && settings_.acceleration > 0 && !braking_) {
+    if (motion_ == Activity::Targeting && move_acceleration_ > 0 && !braking_) {
         braking_ = true;
         error_ = static_cast<std::int32_t>(Error::Aborted);
         outcome_ = "stopped";
         arrival_error_.reset();
-        if (body_.decelerate(static_cast<double>(settings_.acceleration) / 1000.0) > clock_.now())
+        double rest_nm = 0;
+        if (body_.decelerate(move_acceleration_ / 1000.0, &rest_nm) > clock_.now()) {
+            target_ = std::llround(logical_from_physical(rest_nm * 1000.0));
             return;
+        }
     }
     if (motion_ == Activity::Stepping)
         body_.stop_burst();
@@ -706,7 +727,8 @@ void Channel::stream_to(double target, Ticks duration, bool interpolate)
     const double here = physical_now();
     double physical = std::clamp(physical_from_logical(target), body_.stop_min_nm() * 1000.0, body_.stop_max_nm() * 1000.0);
     const double seconds = clock_.seconds(std::max<Ticks>(duration, 1));
-    const double speed = interpolate ? std::abs(physical - here) / seconds : top_speed();
+    // At the frame's pace, but no faster than the stage goes: a frame too far lags behind.
+    const double speed = interpolate ? std::min(std::abs(physical - here) / seconds, top_speed()) : top_speed();
     if (speed <= 0 || body_.move_to(physical / 1000.0, speed / 1000.0, 0.0) <= clock_.now()) {
         motion_ = Activity::Holding;   // at the frame's target already
         body_.set_closed_loop_hold(true);
@@ -771,12 +793,19 @@ void Channel::plan_reference()
     reference_start_ = here;
     reference_found_ = false;
     const auto opts = settings_.referencing_options;
-    const double lo = travel_min_;
-    const double hi = travel_max_;
+    double lo = travel_min_;
+    double hi = travel_max_;
+    if (range_limited()) {   // the range limit acts as end stops for referencing (2.12)
+        const double a = physical_from_logical(static_cast<double>(settings_.range_min));
+        const double b = physical_from_logical(static_cast<double>(settings_.range_max));
+        lo = std::max(lo, std::min(a, b));
+        hi = std::min(hi, std::max(a, b));
+    }
     const double speed = top_speed();
     std::vector<double> legs;   // physical positions, unit
     double found_at = 0;
     double pass_dir = 1;
+    found_at_.reset();
 
     if (type_->reference == Reference::EndStop) {
         // Towards the end stop of the safe direction, then a short way back off it (2.7.4).
@@ -784,7 +813,7 @@ void Channel::plan_reference()
         const double end = d > 0 ? hi : lo;
         legs = {end, end - d * kOvershoot};
         found_at = end;
-        reference_point_ = end;
+        pending_point_ = end;
         reference_found_ = true;
     } else {
         const double d0 = (opts & 0x01) ? -1.0 : 1.0;
@@ -839,23 +868,26 @@ void Channel::plan_reference()
             found_at = *found;
             // Distance-coded marks tell which mark this is: the physical zero stays at r. An endless
             // rotary stage's marks do not: the mark found is 0.
-            reference_point_ = period > 0 && !coded ? *found : r;
+            pending_point_ = period > 0 && !coded ? *found : r;
             reference_found_ = true;
             const double over = std::clamp(*found + pass_dir * kOvershoot, lo, hi);
             if (opts & 0x20) {   // Stop On Reference Found: stop past it, without returning (bit 5 wins)
                 legs.push_back(over);
             } else if (opts & 0x10) {   // Continue On Reference Found: on to the end stop
-                legs.push_back(pass_dir > 0 ? std::min(hi, 1e15) : std::max(lo, -1e15));
+                legs.push_back(pass_dir > 0 ? std::min(hi, *found + 1e15) : std::max(lo, *found - 1e15));
             } else {
                 legs.push_back(over);
                 legs.push_back(*found);
             }
         }
     }
-    distance_to_mark_ = reference_found_ ? std::llround(found_at - here) : 0;
+    pending_distance_ = reference_found_ ? std::llround(found_at - here) : 0;
+    if (reference_found_)
+        found_at_ = std::make_pair(found_at, pass_dir);
+    pending_offset_.reset();
     if (reference_found_ && (opts & 0x04)) {   // Auto Zero: the position reads 0 where the reference was found
-        const double rel = found_at - reference_point_;
-        scale_offset_ = -std::llround(inverted_ ? -rel : rel);
+        const double rel = found_at - pending_point_;
+        pending_offset_ = -std::llround(inverted_ ? -rel : rel);
     }
     for (auto& l : legs)
         l /= 1000.0;
@@ -870,9 +902,18 @@ void Channel::end_reference()
         finish(Error::EndStopReached, "reference_not_found");
         return;
     }
-    referenced_ = true;
+    commit_reference();
     target_ = position();
     finish(Error::None, "completed");
+}
+
+void Channel::commit_reference()
+{
+    reference_point_ = pending_point_;
+    distance_to_mark_ = pending_distance_;
+    if (pending_offset_)
+        scale_offset_ = *pending_offset_;   // non-volatile (2.7.5)
+    referenced_ = true;
 }
 
 void Channel::set_referenced(bool known)

@@ -248,8 +248,16 @@ private:
     double reference_point_ = 0;
     double reference_start_ = 0;
     bool end_stop_event_ = false;
-    bool braking_ = false;
-    bool streaming_ = false;           ///< a first stop brakes the closed-loop move under way
+    bool braking_ = false;           ///< a first stop brakes the closed-loop move under way
+    double move_acceleration_ = 0;   ///< the closed-loop move's acceleration (unit/s²; 0: none)
+    bool streaming_ = false;         ///< part of a trajectory stream
+    // What a reference search commits when it ends (4.7.2: "updated when a referencing sequence
+    // finishes"): the reference point, the distance to the mark, the auto-zero offset.
+    double pending_point_ = 0;
+    std::int64_t pending_distance_ = 0;
+    std::optional<std::int64_t> pending_offset_;
+    std::optional<std::pair<double, double>> found_at_;   ///< the mark's physical position, the passing direction
+    void commit_reference();
     const char* outcome_ = "";
 };
 

@@ -26,11 +26,16 @@ std::string quote_string(std::string_view s)
     return out;
 }
 
-/// An I32 property reads as a signed 32-bit number (Hold Time's 0xffffffff reads -1).
+/// An I32 property reads as a signed 32-bit number (Hold Time's 0xffffffff reads -1), but for
+/// those whose range the guide gives past 2^31 (Pulse Width, ESD Counter Threshold: up to 4×10^9),
+/// which read as the unsigned number written.
 std::string number(const Property& p, std::int64_t v)
 {
+    const auto bits = static_cast<std::uint32_t>(static_cast<std::uint64_t>(v));
+    if (p.type == Type::I32 && p.id != Id::HoldTime && p.max > std::numeric_limits<std::int32_t>::max())
+        return std::to_string(bits);
     if (p.type == Type::I32)
-        return std::to_string(static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v))));
+        return std::to_string(static_cast<std::int32_t>(bits));
     return std::to_string(v);
 }
 
@@ -97,16 +102,17 @@ void Controller::restore_defaults()
 {
     for (auto& c : channels_)
         c->restore_defaults();
+    // Every channel row's cell (the stored rows' values, and the live rows kept in the store:
+    // Sensor Input Select, Signal Correction Options, Output Trigger Mode) and the device's.
     for (const auto& p : table()) {
-        if (p.kind != Kind::Stored)
-            continue;
         const auto row = static_cast<std::size_t>(p.id);
         if (p.scope == Scope::Channel)
             for (auto& store : channel_store_)
                 store[row] = p.initial;
-        else
+        else if (p.kind == Kind::Stored)
             device_store_[row] = p.initial;
     }
+    std::fill(io_.begin(), io_.end(), IoModule{});
     device_name_ = config_.serial_number;   // "default = the serial number string" (4.2.5)
     power_up();
 }
@@ -115,14 +121,14 @@ void Controller::power_up()
 {
     for (auto& c : channels_)
         c->power_up();
-    for (const auto& p : table()) {   // volatile stored properties back to their power-up values
-        if (p.kind != Kind::Stored || p.nonvolatile)
+    for (const auto& p : table()) {   // volatile properties back to their power-up values
+        if (p.nonvolatile)
             continue;
         const auto row = static_cast<std::size_t>(p.id);
         if (p.scope == Scope::Channel)
             for (auto& store : channel_store_)
                 store[row] = p.initial;
-        else
+        else if (p.kind == Kind::Stored)
             device_store_[row] = p.initial;
     }
     // The Max Closed Loop Frequency starts at its stored default (4.4.17-4.4.18).
@@ -136,11 +142,17 @@ void Controller::power_up()
     group_values_.clear();
     group_external_ = false;
     group_armed_ = nullptr;
+    for (const auto ch : stream_.channels)
+        channels_[ch]->set_streaming(false);
     stream_ = Stream{};
     trigger_mode_ = 0;
     trigger_condition_ = 0;
     set_locked(false);
-    std::fill(io_.begin(), io_.end(), IoModule{});
+    for (auto& io : io_) {   // the analog input range is non-volatile (4.12.3)
+        const auto range = io.ain_range;
+        io = IoModule{};
+        io.ain_range = range;
+    }
 }
 
 std::uint32_t Controller::device_state() const
@@ -283,6 +295,11 @@ void Controller::run(const Property& p, const std::vector<std::int64_t>& indices
         } else if (p.id == Id::Stb) {
             out = std::to_string(s.errors.count() ? 0x04 : 0);   // SCPI's error/event queue bit
         }
+        std::size_t size = out.size();
+        for (const auto& a : answers)
+            size += a.size() + 2;
+        if (size > kMaxAnswer)   // one message's answer is bounded (64 :CGR:VAL? of 256 values would not be)
+            return error(static_cast<std::int32_t>(Error::BufferOverflow), error_text(0x000d));
         answers.push_back(std::move(out));
         return;
     }
@@ -657,6 +674,9 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
     }
     case Id::ModPower: {
         const auto m = static_cast<std::size_t>(indices[0]);
+        for (std::size_t i = 3 * m; i < std::min(channels_.size(), 3 * m + 3); ++i)
+            if (channels_[i]->streaming())
+                return Error::BusyStreaming;
         module_power_[m] = v != 0;
         for (std::size_t i = 3 * m; i < std::min(channels_.size(), 3 * m + 3); ++i)
             channels_[i]->set_power_supply(v != 0);
@@ -687,6 +707,8 @@ std::optional<Error> Controller::write(const Property& p, const std::vector<std:
     }
     if (p.scope == Scope::Channel) {
         const auto i = static_cast<std::size_t>(indices[0]);
+        if (channels_[i]->streaming())   // "unavailable for movement or configuration commands" (2.15.1)
+            return Error::BusyStreaming;
         if (const auto e = write_channel(p, *channels_[i], v))
             return e;
         if (p.id == Id::TriggerMode) {

@@ -185,5 +185,7 @@ inline constexpr std::size_t kStreamBuffer = 1024;
 
 /// The most commands a command group holds (the guide: "limited in size", no figure).
 inline constexpr std::size_t kMaxGroupCommands = 256;
+/// The longest answer line one message may have; a query past it queues 13 BUFFER_OVERFLOW.
+inline constexpr std::size_t kMaxAnswer = 65536;
 
 } // namespace rigsim::mcs2

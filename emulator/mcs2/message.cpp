@@ -170,9 +170,10 @@ private:
             std::uint64_t v = 0;
             constexpr std::uint64_t kLimit = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()) + 1;
             while (i_ < s_.size() && is_digit(s_[i_])) {
-                v = v * 10 + static_cast<std::uint64_t>(s_[i_] - '0');
-                if (v > kLimit)
-                    return failed(ScpiError::DataTypeError);   // past int64
+                const auto d = static_cast<std::uint64_t>(s_[i_] - '0');
+                if (v > (kLimit - d) / 10)
+                    return failed(ScpiError::DataTypeError);   // past int64 (checked before it wraps)
+                v = v * 10 + d;
                 ++i_;
             }
             // A decimal fraction (`:MOVE0 1000000.000000`, as EPICS motorSmarAct prints every value

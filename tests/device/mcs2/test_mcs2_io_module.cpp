@@ -89,10 +89,15 @@ TEST_CASE("MCS2 emergency stop: NORMAL stops, RESTRICTED locks until the mode is
     trig_in(h, "low");                    // AUTO_RELEASE: the inverse edge
     CHECK(h.number(":DEV:STAT?") == 0);
     h.send(":DEV:TRIG:INP:COND 1");       // FALLING
-    trig_in(h, "high");
+    trig_in(h, "high");                   // not the edge that acts
     CHECK(h.number(":DEV:STAT?") == 0);
-    trig_in(h, "pulse");                  // high -> low -> high: the falling edge stops and locks
-    CHECK(h.number(":DEV:STAT?") == 0);   // ... and the rising one, its inverse, releases
+    h.send(":MOVE0 5000000000");
+    CHECK(moving(h, 0) == 1);
+    trig_in(h, "low");                    // the falling edge stops and locks
+    CHECK(moving(h, 0) == 0);
+    CHECK(h.number(":DEV:STAT?") == 2);
+    trig_in(h, "high");                   // the rising one, its inverse, releases
+    CHECK(h.number(":DEV:STAT?") == 0);
     CHECK(h.errors() == std::vector<std::string>{"37,\"Movement locked\""});
 }
 

@@ -294,8 +294,10 @@ TEST_CASE("MCS2 a connection that goes stops the movements it started, not the o
     h.send_to(*other, sink, ":CHAN1:VEL 1000000;:MOVE1 1000000000");
     h.send(":CHAN0:VEL 1000000;:MOVE0 1000000000");
     h.advance_ms(10);
+    CHECK((activity(h, 1) & kMoving) != 0);
     other.reset();
     CHECK(activity(h, 1) == 0);
+    CHECK(h.ask(":CHAN1:ERR?") == "25");
     CHECK((activity(h, 0) & kMoving) != 0);
 }
 
@@ -377,4 +379,79 @@ TEST_CASE("MCS2 trajectory stream: starts half full, underflows if not closed, a
     CHECK(h.errors() == std::vector<std::string>{"263,\"Invalid sensor mode\""});
     h.send(":STR:ABOR;:STR:OPEN 1");
     CHECK(h.errors() == std::vector<std::string>{"257,\"No IO module present\""});
+}
+
+TEST_CASE("MCS2 relative moves accumulate during the power-save delay, and after a braking stop start from "
+          "where it stops",
+          "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":CHAN0:SENS:PMOD 2;:CHAN0:MMOD 1;VEL 10000000000");
+    h.send(":MOVE0 1000000000");
+    CHECK(h.number(":CHAN0:POS:TARG?") == 1'000'000'000);   // known at the command
+    h.send(":MOVE0 1000000000");
+    h.advance_ms(1'000);
+    CHECK(h.number(":CHAN0:POS?") == 2'000'000'000);
+    // Braking: 1 mm/s², a stop at 1 mm/s leaves 0.5 mm to go; a relative move then adds to where
+    // the braking ends, not to the stopped move's target.
+    h.send(":CHAN0:SENS:PMOD 1;:CHAN0:VEL 1000000000;ACC 1000000000;:MOVE0 5000000000");
+    h.advance_ms(1'000);
+    h.send(":STOP0");
+    CHECK(h.number(":CHAN0:POS:TARG?") == 3'000'000'000);   // 2 + 0.5 accelerating + 0.5 braking
+    h.send(":MOVE0 1000000");
+    CHECK(h.number(":CHAN0:POS:TARG?") == 3'001'000'000);
+}
+
+TEST_CASE("MCS2 braking never passes the move's target or an end stop, whatever :ACC became meanwhile",
+          "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":CHAN0:VEL 10000000000;ACC 100000000000000");   // 10 mm/s, 100 m/s²
+    h.send(":MOVE0 10400000000");                           // 10.4 mm, 0.1 mm before the end stop
+    h.advance_ms(1'000);
+    h.send(":CHAN0:ACC 1000000");                           // 1 µm/s²: a stop would take 50 m
+    h.send(":STOP0");
+    h.advance_ms(100);
+    CHECK(activity(h) == 0);
+    CHECK(h.number(":CHAN0:POS?") <= 10'400'000'000);
+    CHECK(h.ask(":CHAN0:ERR?") == "25");
+}
+
+TEST_CASE("MCS2 referencing: the range limit is an end stop, and an aborted search leaves the scale as it was",
+          "[device][mcs2]")
+{
+    auto config = mcs2_device_config();
+    for (auto& c : rigsim::mcs2::config_of(config).channels)
+        c.start_position = 2'000'000'000;
+    Mcs2Harness h(config);
+    // The mark (physical 0) is 2 mm behind; with the limit 1 mm either side, the search forwards
+    // turns at +1 mm and meets the other limit before the mark: not found (2.12).
+    h.send(":CHAN0:RLIM:MIN -1000000000;MAX 1000000000;:CHAN0:REF:OPT 0;:REF0");
+    h.advance_ms(1'000);
+    CHECK(activity(h) == 0);
+    CHECK((state(h) & kReferenced) == 0);
+    CHECK(h.ask(":CHAN0:ERR?") == "512");
+    CHECK(h.number(":CHAN0:POS?") == -1'000'000'000);
+    // Auto zero is committed when the search ends: stopped before, the offset stays.
+    h.send(":CHAN1:LSC:OFF 7000000000;:CHAN1:REF:OPT 5;:REF1");
+    h.advance_ms(50);
+    h.send(":STOP1");
+    CHECK(h.ask(":CHAN1:LSC:OFF?;:CHAN1:REF:DTRM?") == "7000000000; 0");
+    CHECK((state(h, 1) & kReferenced) == 0);
+}
+
+TEST_CASE("MCS2 trajectory stream: its channels refuse configuration, and *RST ends it", "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":STR:OPEN 0;:STR:FRAM 0,1000000;:STR:FRAM 0,2000000");
+    h.send(":CHAN0:AMPL 0;:CHAN0:SENS:PMOD 2;:MOD0:PSUP 0");
+    CHECK(h.errors() == std::vector<std::string>{"771,\"Busy streaming\"", "771,\"Busy streaming\"",
+                                                 "771,\"Busy streaming\""});
+    CHECK(h.ask(":CHAN0:AMPL?") == "1");
+    h.send("*RST");
+    std::string sink;
+    auto again = h.open(sink);
+    CHECK(h.send_to(*again, sink, ":CHAN0:STAT?") == "295008\r\n");   // no IS_STREAMING
+    h.send_to(*again, sink, ":MOVE0 1000");
+    CHECK(h.send_to(*again, sink, ":SYST:ERR:COUN?") == "0\r\n");
 }

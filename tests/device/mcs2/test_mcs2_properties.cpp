@@ -85,8 +85,7 @@ TEST_CASE("MCS2: stored properties take their range and read back, past it 19 In
         for (const auto v : {p.min, p.max}) {
             CHECK(h.send(path + " " + std::to_string(v)).empty());   // a setting is never answered
             CHECK(h.errors().empty());
-            const auto expected = p.type == mcs2::Type::I32 ? static_cast<std::int64_t>(static_cast<std::int32_t>(v)) : v;
-            CHECK(h.number(path + "?") == expected);
+            CHECK(h.number(path + "?") == v);   // Pulse Width's 4×10^9 too: read unsigned
         }
         h.send(path + " " + std::to_string(p.max + 1));
         CHECK(h.errors() == std::vector<std::string>{"19,\"Invalid parameter\""});
@@ -192,9 +191,12 @@ TEST_CASE("MCS2: common commands (Table 6.1)", "[device][mcs2]")
     CHECK(h.send("*WAI;*OPC").empty());
     CHECK(h.errors().empty());
     // *RST resets the device and the connection must be made again (Table 6.1).
-    h.send(":CHAN0:VEL 5000");
+    h.send(":CHAN0:VEL 5000;:CHAN0:TUN:WPR 1397571922");
     h.send("*RST");
     CHECK(h.hangups() == 1);
+    std::string sink;
+    auto again = h.open(sink);
+    CHECK(h.send_to(*again, sink, ":CHAN0:VEL?;:CHAN0:TUN:WPR?") == "0; 1\r\n");
 }
 
 TEST_CASE("MCS2 firmware 1.0.6: the keywords of later firmware are undefined", "[device][mcs2]")
@@ -213,6 +215,44 @@ TEST_CASE("MCS2 firmware 1.0.6: the keywords of later firmware are undefined", "
     CHECK(current.ask(":CHAN0:SENS:DEL?") == "100");
     CHECK(current.ask(":MOD:STAT?") == "1");
     CHECK(current.number(":CHAN0:STAT?") == (0x8060 | (1 << 18)));
+}
+
+TEST_CASE("MCS2 defaults of the live rows: Signal Correction Options 15, and a power-up keeps what is non-volatile",
+          "[device][mcs2]")
+{
+    Mcs2Harness h;
+    CHECK(h.ask(":CHAN0:SCOR:OPT?") == "15");   // 4.6.2: 0x0f
+    h.send(":CHAN0:SCOR:OPT 2;:CHAN0:LSC:OFF 7;:CHAN0:SDIR 1;:CHAN0:MMOD 4;:CHAN0:RLIM:MIN 5");
+    CHECK(h.ask(":CHAN0:SCOR:OPT?") == "7");    // bits 0 and 2 read 1
+    h.device().power_cycle({});
+    CHECK(h.ask(":CHAN0:SCOR:OPT?;:CHAN0:LSC:OFF?;:CHAN0:SDIR?") == "7; 7; 1");   // non-volatile
+    CHECK(h.ask(":CHAN0:MMOD?;:CHAN0:RLIM:MIN?") == "0; 0");                     // volatile
+    rigsim::PowerCycle erase;
+    erase.keep_saved = false;
+    h.device().power_cycle(erase);
+    CHECK(h.ask(":CHAN0:SCOR:OPT?;:CHAN0:LSC:OFF?;:CHAN0:SDIR?") == "15; 0; 0");
+}
+
+TEST_CASE("MCS2 bounds: a 20-digit number is -104, one message's answer at most 64 KiB", "[device][mcs2]")
+{
+    Mcs2Harness h;
+    h.send(":CHAN0:VEL 92233720368547758080");   // wraps uint64 if checked after the multiply
+    CHECK(h.errors() == std::vector<std::string>{"-104,\"Data type error\""});
+    CHECK(h.ask(":CHAN0:VEL?") == "0");
+    h.send(":CHAN0:POS 99999999999999");   // a long number to read: 14 digits
+    h.send(":CGR:OPEN 0");
+    for (int i = 0; i < 256; ++i)
+        h.send(":CHAN0:POS:TARG?");
+    h.send(":CGR:CLOS");
+    std::string many;
+    for (int i = 0; i < 64; ++i)
+        many += ":CGR:VAL?;";
+    const auto answer = h.send(many);
+    CHECK(answer.size() <= rigsim::mcs2::kMaxAnswer + 2);
+    CHECK(answer.size() > 60'000);
+    const auto e = h.errors();
+    REQUIRE(!e.empty());
+    CHECK(e[0] == "13,\"Buffer overflow\"");
 }
 
 TEST_CASE("MCS2 tuning: written only with the key, the type then reads 0 \"modified\" until saved to a slot",

@@ -147,6 +147,7 @@ TEST_CASE("mcs2 message: each syntax error has its SCPI code (Table 6.4) and its
     CHECK(error(":CHAN0:VEL 12ab").first == ScpiError::DataTypeError);
     CHECK(error(":CHAN0:VEL 99999999999999999999").first == ScpiError::DataTypeError);
     CHECK(error(":CHAN0:VEL 9223372036854775808").first == ScpiError::DataTypeError);
+    CHECK(error(":CHAN0:VEL 92233720368547758080").first == ScpiError::DataTypeError);   // would wrap uint64
     CHECK(error(":STR:FRAM 0,1,").first == ScpiError::MissingParameter);
     CHECK(error(":STR:FRAM 0,,1").first == ScpiError::MissingParameter);
     CHECK(error(":CHAN0:VEL 1 2").first == ScpiError::InvalidSeparator);
