@@ -997,6 +997,10 @@ void Channel::tick(Ticks now)
                 body_.place((settings_.safe_direction == 0 ? travel_max_ : travel_min_) / 1000.0);
             }
             calibrated_ = true;
+            // Detect Distance Code Inversion (option bit 1, 2.6.1) learns how the stage's coded
+            // marks run: rigsim's run as the type says, not inverted.
+            if ((settings_.calibration_options & 0x02) && type_->reference == Reference::DistanceCoded)
+                code_inversion_detected_ = true;
             finish(Error::None, "completed");
         }
         break;

@@ -164,6 +164,9 @@ public:
     bool moving() const { return motion_ != Activity::Idle && motion_ != Activity::Holding; }
     /// An end stop met since the last call (for the broadcast stop, 10.9).
     bool take_end_stop_event() { return std::exchange(end_stop_event_, false); }
+    /// A calibration with Detect Distance Code Inversion ended since the last call: Distance Code
+    /// Inverted (4.7.3) is to read what it found, 0.
+    bool take_code_inversion_detected() { return std::exchange(code_inversion_detected_, false); }
 
     // ---- set-up and faults (control API) ----
     const models::StickSlipPositioner& body() const { return body_; }
@@ -251,6 +254,7 @@ private:
     bool braking_ = false;           ///< a first stop brakes the closed-loop move under way
     double move_acceleration_ = 0;   ///< the closed-loop move's acceleration (unit/s²; 0: none)
     bool streaming_ = false;         ///< part of a trajectory stream
+    bool code_inversion_detected_ = false;
     // What a reference search commits when it ends (4.7.2: "updated when a referencing sequence
     // finishes"): the reference point, the distance to the mark, the auto-zero offset.
     double pending_point_ = 0;

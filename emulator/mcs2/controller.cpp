@@ -915,6 +915,8 @@ void Controller::tick(Ticks now)
         if (c.take_end_stop_event() &&
             (channel_store_[i][static_cast<std::size_t>(Id::BroadcastStop)] & 0x01))
             broadcast_stop(i);
+        if (c.take_code_inversion_detected())
+            stored_channel(i, Id::DistanceCodeInverted) = 0;
     }
     if (stream_.running)
         stream_tick(now);

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <thread>
 
 #include "control_support.hpp"
 #include "e2e_support.hpp"
@@ -55,6 +56,9 @@ TEST_CASE("MCS2 over TCP: two clients at once, each with its own answers and its
 
     // A move by one client, seen by the other, on the clock the control API runs.
     a.send(":CHAN0:MMOD 0;VEL 1000000000;HOLD 0\r\n:MOVE0 1000000000\r\n");
+    // Settings are not answered: a query on the same connection orders them before what the other
+    // connection and the control API do next (their bytes travel on sockets of their own).
+    REQUIRE(a.request(":SYST:ERR:COUN?\r\n") == "0\r\n");
     CHECK(b.request(":CHAN0:STAT?\r\n") == "262243\r\n");   // moving, closed loop, sensor, calibrated, amplifier
     REQUIRE(http(api, "POST", "/api/clock", R"({"step_ms": 500})").status == 200);
     CHECK(b.request(":CHAN0:POS?\r\n") == "500000000\r\n");
@@ -74,8 +78,16 @@ TEST_CASE("MCS2 over TCP: a client that goes stops its movements, *RST closes th
         CHECK(a.request(":CHAN1:STAT?\r\n") == "262243\r\n");
         a.abort();   // the cable pulled: "all movements that were sent over the disconnected interface are stopped"
     }
-    REQUIRE(http(api, "POST", "/api/clock", R"({"step_ms": 10})").status == 200);
-    CHECK(b.request(":CHAN1:STAT?\r\n") == "262240\r\n");
+    // The daemon learns of the reset when it reads it, on its own socket: wait for that (the
+    // paused clock has not moved the stage meanwhile).
+    std::string state;
+    for (const auto deadline = SteadyClock::now() + 5s; SteadyClock::now() < deadline;) {
+        state = b.request(":CHAN1:STAT?\r\n");
+        if (state != "262243\r\n")
+            break;
+        std::this_thread::sleep_for(10ms);
+    }
+    CHECK(state == "262240\r\n");
     CHECK(b.request(":CHAN1:ERR?\r\n") == "25\r\n");   // ABORTED
     b.send("*RST\r\n");   // "resets the device (reconnect necessary!)"
     CHECK(b.wait_for_eof(5000ms));
@@ -98,6 +110,7 @@ TEST_CASE("MCS2 and the control API: state, a stall fault, the wire log's notes 
 
     REQUIRE(http(api, "POST", "/api/faults", R"({"device":"mcs2","channel":3,"kind":"stall"})").status == 201);
     m.send(":CHAN3:MMOD 1;VEL 1000000000\r\n:MOVE3 1000000000\r\n");
+    REQUIRE(m.request(":SYST:ERR:COUN?\r\n") == "0\r\n");   // the move started: ordered before the clock runs
     REQUIRE(http(api, "POST", "/api/clock", R"({"run_until_idle": true, "max_ms": 60000})").status == 200);
     CHECK(m.request(":CHAN3:POS?;ERR?\r\n") == "0; 512\r\n");   // END_STOP_REACHED: it could not move
     const auto channel = http(api, "GET", "/api/devices/mcs2/channels/3");

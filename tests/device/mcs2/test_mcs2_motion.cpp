@@ -247,7 +247,13 @@ TEST_CASE("MCS2 distance-coded marks: two adjacent marks tell the position", "[d
     auto& c = rigsim::mcs2::config_of(config).channels[0];
     c.positioner_type = 303;
     c.start_position = 500'000'000;
+    c.calibration_ms = 0;
     Mcs2Harness h(config);
+    // Calibration with Detect Distance Code Inversion (option bit 1) finds the marks not inverted.
+    h.send(":CHAN0:REF:DCIN 1;:CHAN0:CAL:OPT 2;:CAL0");
+    h.advance_ms(1);
+    CHECK(h.ask(":CHAN0:REF:DCIN?") == "0");
+    h.send(":CHAN0:CAL:OPT 0");
     h.send(":REF0");
     h.advance_ms(1'000);
     CHECK(activity(h) == 0);
