@@ -12,13 +12,16 @@ so the command sequences they send are written out, each citing where it comes f
   a non-zero count read with `:SYST:ERR?` and split at the comma; `:MOD:STAT?` without an index.
 - kamzik3 reads each error with the pattern `([-0-9]+),"([\\w ]+)"`."""
 
+import os
 import re
 import socket
+import time
 
 import pytest
 
 ACTIVELY_MOVING, CLOSED_LOOP_ACTIVE, IS_REFERENCED, END_STOP_REACHED = 0x1, 0x2, 0x80, 0x100
 KAMZIK3_ERROR = re.compile(r'([-0-9]+),"([\w ]+)"')
+REAL_TIME = os.environ.get("RIGSIM_REAL_TIME") == "1"   # conftest.py: the clock runs, clients wait
 
 
 class Mcs2Line:
@@ -66,6 +69,14 @@ def epics_poll(line, axis):
     return status, sensor_mode, position, target, positioner_type
 
 
+def wait_until_stopped(line, axis, timeout_s=30):
+    """Polls as EPICS does until ACTIVELY_MOVING clears (at once after finish() on the stepped clock)."""
+    deadline = time.monotonic() + timeout_s
+    while int(line.query(":CHAN%d:STAT?" % axis)) & ACTIVELY_MOVING:
+        assert time.monotonic() < deadline, "still moving"
+        time.sleep(0.05)
+
+
 def test_epics_motorsmaract_start_up_poll_move_and_home(rig, mcs2, finish):
     assert epics_clear_errors(mcs2) == []
     assert mcs2.query(":DEV:SNUM?") == '"MCS2-00000001"'   # printed as "Device Name: %s"
@@ -84,9 +95,11 @@ def test_epics_motorsmaract_start_up_poll_move_and_home(rig, mcs2, finish):
     status, _, _, target, _ = epics_poll(mcs2, 0)
     assert status & (ACTIVELY_MOVING | CLOSED_LOOP_ACTIVE) == ACTIVELY_MOVING | CLOSED_LOOP_ACTIVE
     assert target == 1e9
-    rig.step(500)
-    assert epics_poll(mcs2, 0)[2] == 5e8
+    if not REAL_TIME:
+        rig.step(500)
+        assert epics_poll(mcs2, 0)[2] == 5e8
     finish()
+    wait_until_stopped(mcs2, 0)
     status, _, position, _, _ = epics_poll(mcs2, 0)
     assert status & ACTIVELY_MOVING == 0 and position == 1e9
 
@@ -96,6 +109,7 @@ def test_epics_motorsmaract_start_up_poll_move_and_home(rig, mcs2, finish):
     mcs2.write(":REF%d" % 1)
     assert epics_clear_errors(mcs2) == []   # which also orders the homing before the clock's run below
     finish()
+    wait_until_stopped(mcs2, 1)
     status, _, position, _, _ = epics_poll(mcs2, 1)
     assert status & IS_REFERENCED and position == 0.0
     assert epics_clear_errors(mcs2) == []
