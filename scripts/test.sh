@@ -37,7 +37,7 @@ mark "sanitizer build (clang, ASan + UBSan, -Werror)"
 bash scripts/configure.sh build/asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_CXX_FLAGS_DEBUG=-gline-tables-only -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
   -DRIGSIM_SANITIZE=ON -DRIGSIM_WERROR=ON -DRIGSIM_BENCH=OFF -DRIGSIM_FUZZ=ON
-cmake --build build/asan -j"$jobs" --target unit_tests device_tests rigsimd e2e_tests rigsim_modemlines rigsim_fuzz
+cmake --build build/asan -j"$jobs" --target unit_tests device_tests rigsimd rigsim-tap e2e_tests rigsim_modemlines rigsim_fuzz
 mark "sanitizer tests: unit, device, e2e, fuzz regressions"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/asan -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'unit|device|e2e|fuzz'

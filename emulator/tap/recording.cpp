@@ -1,0 +1,214 @@
+#include "emulator/tap/recording.hpp"
+
+#include "emulator/apt/frame_framer.hpp"
+#include "emulator/apt/wire_decode.hpp"
+#include "emulator/mcs/line_framer.hpp"
+#include "emulator/mcs/wire_names.hpp"
+#include "emulator/mcs2/line_framer.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace rigsim::tap {
+
+namespace {
+
+std::string hex(std::string_view bytes)
+{
+    static constexpr char kDigits[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(bytes.size() * 2);
+    for (const char c : bytes) {
+        const auto b = static_cast<unsigned char>(c);
+        out += kDigits[b >> 4];
+        out += kDigits[b & 15];
+    }
+    return out;
+}
+
+/// Bytes kept waiting for the end of a frame before they are written as a line of their own
+/// (garbage with no frame in it: a unit at the wrong baud rate).
+constexpr std::size_t kMaxPending = 4096;
+
+} // namespace
+
+bool parse_protocol(std::string_view name, Protocol& out)
+{
+    if (name == "apt")
+        out = Protocol::Apt;
+    else if (name == "mcs")
+        out = Protocol::Mcs;
+    else if (name == "mcs2")
+        out = Protocol::Mcs2;
+    else
+        return false;
+    return true;
+}
+
+std::string_view protocol_name(Protocol p)
+{
+    switch (p) {
+    case Protocol::Apt:
+        return "apt";
+    case Protocol::Mcs:
+        return "mcs";
+    case Protocol::Mcs2:
+        return "mcs2";
+    }
+    return "apt";
+}
+
+class Stream {
+public:
+    Stream(Recorder& r, Protocol p, Direction d) : r_(r), protocol_(p), dir_(d) {}
+
+    void feed(std::uint64_t conn, std::string_view data, std::int64_t t_us)
+    {
+        while (!data.empty()) {
+            std::size_t used = 0;
+            bool frame = false;
+            nlohmann::json decoded;
+            switch (protocol_) {
+            case Protocol::Apt: {
+                const auto res = apt_.parse(data);
+                used = res.consumed;
+                if (res.status == apt::FrameFramer::Status::Frame) {
+                    frame = true;
+                    apt::decode_for_log(res.frame.bytes, decoded);
+                }
+                break;
+            }
+            case Protocol::Mcs: {
+                const auto res = mcs_.parse(data);
+                used = res.consumed;
+                if (res.status == mcs::LineFramer::Status::Command) {
+                    frame = true;
+                    mcs::decode_line(res.line, dir_ == Direction::In, decoded);
+                }
+                break;
+            }
+            case Protocol::Mcs2: {
+                const auto res = mcs2_.parse(data);
+                used = res.consumed;
+                if (res.status == mcs2::LineFramer::Status::Line) {
+                    frame = true;
+                    decoded["text"] = std::string(res.line);
+                }
+                break;
+            }
+            }
+            if (used == 0)
+                used = data.size();   // a framer that took nothing: keep the bytes, never loop
+            pending_.append(data.substr(0, used));
+            data.remove_prefix(used);
+            if (frame)
+                emit(conn, t_us, &decoded);
+            else if (pending_.size() >= kMaxPending)
+                emit(conn, t_us, nullptr);
+        }
+    }
+
+    /// What is waiting for the end of its frame, as a line of its own.
+    void flush(std::uint64_t conn, std::int64_t t_us)
+    {
+        if (!pending_.empty())
+            emit(conn, t_us, nullptr);
+    }
+
+private:
+    void emit(std::uint64_t conn, std::int64_t t_us, const nlohmann::json* decoded)
+    {
+        nlohmann::json line;
+        line["seq"] = r_.seq_++;
+        line["t_us"] = t_us;
+        line["conn"] = conn;
+        line["dir"] = dir_ == Direction::In ? "in" : "out";
+        line["bytes"] = hex(pending_);
+        if (decoded)
+            line["decoded"] = *decoded;
+        else
+            line["partial"] = true;   // no whole frame: garbage, or cut off
+        pending_.clear();
+        r_.write(line);
+    }
+
+    Recorder& r_;
+    Protocol protocol_;
+    Direction dir_;
+    std::string pending_;
+    apt::FrameFramer apt_;
+    mcs::LineFramer mcs_;
+    mcs2::LineFramer mcs2_;
+};
+
+Recorder::Recorder(const std::string& path, Protocol protocol, const nlohmann::json& header)
+    : protocol_(protocol), path_(path)
+{
+    file_ = std::fopen(path.c_str(), "w");
+    if (!file_)
+        throw std::runtime_error(path + ": cannot write the recording: " + std::strerror(errno));
+    nlohmann::json head = header;
+    head["rigsim_recording"] = kRecordingVersion;
+    head["protocol"] = protocol_name(protocol);
+    write(head);
+    lines_ = 0;
+}
+
+Recorder::~Recorder()
+{
+    if (file_)
+        std::fclose(file_);
+}
+
+Stream& Recorder::stream(std::uint64_t conn, Direction dir)
+{
+    if (conn != conn_ || !in_) {
+        in_ = std::make_unique<Stream>(*this, protocol_, Direction::In);
+        out_ = std::make_unique<Stream>(*this, protocol_, Direction::Out);
+        conn_ = conn;
+    }
+    return dir == Direction::In ? *in_ : *out_;
+}
+
+void Recorder::bytes(std::uint64_t conn, Direction dir, std::string_view data, std::int64_t t_us)
+{
+    if (conn != conn_ && in_)
+        flush_partial(conn_, t_us);
+    stream(conn, dir).feed(conn, data, t_us);
+}
+
+void Recorder::flush_partial(std::uint64_t conn, std::int64_t t_us)
+{
+    if (!in_ || conn != conn_)
+        return;
+    in_->flush(conn, t_us);
+    out_->flush(conn, t_us);
+}
+
+void Recorder::event(std::string_view name, std::uint64_t conn, std::int64_t t_us, const nlohmann::json& extra)
+{
+    flush_partial(conn, t_us);
+    if (name == "disconnect") {   // the next connection's frames start afresh
+        in_.reset();
+        out_.reset();
+    }
+    nlohmann::json line = extra.is_object() ? extra : nlohmann::json::object();
+    line["seq"] = seq_++;
+    line["t_us"] = t_us;
+    line["conn"] = conn;
+    line["event"] = std::string(name);
+    write(line);
+}
+
+void Recorder::write(const nlohmann::json& line)
+{
+    const auto text = line.dump() + "\n";
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
+        throw std::runtime_error(path_ + ": cannot write the recording: " + std::strerror(errno));
+    ++lines_;
+}
+
+} // namespace rigsim::tap
