@@ -82,7 +82,7 @@ dict_of() {
   case "$1" in
     mcs2_*) echo tests/fuzz/mcs2.dict ;;
     mcs_*) echo tests/fuzz/mcs.dict ;;
-    apt_*) echo tests/fuzz/apt.dict ;;
+    apt_*|tap_*) echo tests/fuzz/apt.dict ;;
     control_*) echo tests/fuzz/http.dict ;;
     *) echo tests/fuzz/json.dict ;;
   esac

@@ -205,7 +205,9 @@ void Recorder::event(std::string_view name, std::uint64_t conn, std::int64_t t_u
 
 void Recorder::write(const nlohmann::json& line)
 {
-    const auto text = line.dump() + "\n";
+    // A unit's line need not be UTF-8: its decoded text gets U+FFFD where it is not (the raw bytes
+    // are in hex, whole), as in the control API's wire log. (fuzz_tap_recorder's first finding.)
+    const auto text = line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
     if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
         throw std::runtime_error(path_ + ": cannot write the recording: " + std::strerror(errno));
     ++lines_;

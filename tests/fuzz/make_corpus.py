@@ -360,8 +360,33 @@ def mcs2_session_seeds(src, corpus):
                 corpus.add("mcs2_session", b"\n" + stream)
 
 
+def tap_seeds(src, corpus):
+    """The recorder: each MCS and APT transcript's sends and answers as chunks of both directions,
+    under its protocol's first byte (0 apt, 1 mcs), and every MCS2 device test case's messages (2)."""
+    def chunks(first, pieces):
+        out = bytes([first])
+        for direction, data in pieces:
+            for k in range(0, len(data), 63):
+                part = data[k:k + 63]
+                out += bytes([(len(part) << 2) | direction]) + part
+        return out
+    for name, header, steps, answers in mcs_transcripts(src):
+        sends = [(0, s[1]) for s in steps if s[0] == "send"]
+        corpus.add("tap_recorder", chunks(1, sends + [(1, a) for a in answers]))
+    for name, rig, steps, answers in apt_transcripts(src):
+        sends = [(0, s[2]) for s in steps if s[0] == "send"]
+        corpus.add("tap_recorder", chunks(0, sends + [(1, a) for a in answers]))
+    for path in sorted((src / "tests/device/mcs2").glob("test_*.cpp")):
+        for case in re.split(r"\nTEST_CASE\(", path.read_text())[1:]:
+            lines = [m.group(1).encode().decode("unicode_escape").encode("latin-1") + b"\r\n"
+                     for m in MCS2_CALL.finditer(case) if m.group(1)]
+            if lines:
+                corpus.add("tap_recorder", chunks(2, [(0, l) for l in lines]))
+
+
 def write_corpus(src, out):
     corpus = Corpus(out)
+    tap_seeds(src, corpus)
     mcs2_seeds(src, corpus)
     mcs2_session_seeds(src, corpus)
     mcs_seeds(src, corpus)
