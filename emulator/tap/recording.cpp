@@ -190,7 +190,9 @@ void Recorder::flush_partial(std::uint64_t conn, std::int64_t t_us)
 
 void Recorder::event(std::string_view name, std::uint64_t conn, std::int64_t t_us, const nlohmann::json& extra)
 {
-    flush_partial(conn, t_us);
+    // An end cuts the frames under way: their bytes go first, as partial lines.
+    if (name == "disconnect" || name == "stop" || name == "unit_lost")
+        flush_partial(conn, t_us);
     if (name == "disconnect") {   // the next connection's frames start afresh
         in_.reset();
         out_.reset();

@@ -43,8 +43,9 @@ public:
 
     /// Bytes that crossed connection `conn` in `dir`, at `t_us` microseconds after the start.
     void bytes(std::uint64_t conn, Direction dir, std::string_view data, std::int64_t t_us);
-    /// An event line: {"event": name, "conn": conn, ...extra}. Bytes of the connection still
-    /// waiting for the end of their frame are written first (partial).
+    /// An event line: {"event": name, "conn": conn, ...extra}. A "disconnect", "stop" or
+    /// "unit_lost" first writes the connection's bytes still waiting for the end of their frame
+    /// (partial lines); other events ("connect", "unit", "baud") cut no frame.
     void event(std::string_view name, std::uint64_t conn, std::int64_t t_us, const nlohmann::json& extra);
     /// Frames and lines written so far (the header not counted).
     std::uint64_t lines() const { return lines_; }

@@ -211,6 +211,7 @@ private:
         // Keep the slave open: the client's opening and closing it then never hangs the master up.
         pty_slave_ = ::open(slave, O_RDWR | O_NOCTTY);
         make_raw(pty_slave_, 0);
+        pty_speed_ = client_speed();
         ::unlink(path.c_str());
         if (::symlink(slave, path.c_str()) != 0)
             usage_error("--listen: cannot make the symlink " + path);
@@ -272,8 +273,10 @@ private:
                 return;
             }
             const std::string_view data(from_client_.data(), n);
+            const bool unit = unit_ || open_unit();
+            forward_baud();   // the rate the client set before it wrote these bytes
             rec_.bytes(conn_, rigsim::tap::Direction::In, data, now_us());
-            if (!unit_ && !open_unit()) {   // unplugged: these bytes had nowhere to go
+            if (!unit) {   // unplugged: these bytes had nowhere to go
                 read_client();
                 return;
             }
@@ -315,6 +318,35 @@ private:
                     read_unit();
             });
         });
+    }
+
+    /// The output speed the client set on the tap's pty (0: not a pty).
+    speed_t client_speed() const
+    {
+        termios t{};
+        if (pty_slave_ < 0 || ::tcgetattr(pty_slave_, &t) != 0)
+            return 0;
+        return ::cfgetospeed(&t);
+    }
+
+    /// A baud rate the client set on the pty since the last bytes goes to a serial unit before
+    /// them, as it would on the unit's own port (a client at the wrong rate gets what the unit gives).
+    void forward_baud()
+    {
+        const speed_t speed = client_speed();
+        if (speed == pty_speed_ || o_.to.rfind("serial:", 0) != 0 || !unit_)
+            return;
+        pty_speed_ = speed;
+        make_raw(unit_->native_handle(), speed);
+        static constexpr std::pair<speed_t, long> kRates[] = {
+            {B1200, 1200},     {B2400, 2400},     {B4800, 4800},     {B9600, 9600},     {B19200, 19200},
+            {B38400, 38400},   {B57600, 57600},   {B115200, 115200}, {B230400, 230400}, {B460800, 460800},
+            {B921600, 921600}};
+        long baud = 0;
+        for (const auto& [s, b] : kRates)
+            if (s == speed)
+                baud = b;
+        rec_.event("baud", conn_, now_us(), {{"baud", baud}});
     }
 
     void client_gone(const std::string& why)
@@ -364,6 +396,7 @@ private:
     std::optional<asio::posix::stream_descriptor> unit_;
     bool unit_reading_ = false;
     int pty_slave_ = -1;
+    speed_t pty_speed_ = 0;   ///< the pty's speed last forwarded (at first: what it was opened with)
     std::string pty_link_;
     std::uint64_t conn_ = 0;
     std::array<char, 4096> from_client_{};

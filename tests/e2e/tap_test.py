@@ -88,6 +88,9 @@ def test_apt_on_a_serial_line_through_a_pty_client(rigsim, tmp_path):
         while len(data) < 90 and time.time() < deadline:
             data += os.read(fd, 90 - len(data))
         assert len(data) == 90 and struct.unpack_from("<H", data)[0] == 0x0006   # HW_GET_INFO
+        attrs = termios.tcgetattr(fd)                # the client changes the line's rate: the tap
+        attrs[4] = attrs[5] = termios.B9600          # sets the unit's port to it before its next bytes
+        termios.tcsetattr(fd, termios.TCSANOW, attrs)
         os.write(fd, b"\x11\x04\x00")   # half a header: cut when the tap stops
         time.sleep(0.3)
     finally:
@@ -98,6 +101,9 @@ def test_apt_on_a_serial_line_through_a_pty_client(rigsim, tmp_path):
     assert frames[0]["dir"] == "in" and frames[0]["decoded"]["name"] == "MGMSG_HW_REQ_INFO"
     assert frames[1]["dir"] == "out" and frames[1]["decoded"]["name"] == "MGMSG_HW_GET_INFO"
     assert bytes.fromhex(frames[1]["bytes"]) == data
+    bauds = [r for r in records if r.get("event") == "baud"]
+    assert [b["baud"] for b in bauds] == [9600]
+    assert bauds[0]["seq"] < [r for r in records if r.get("partial")][0]["seq"]
     partial = [r for r in records if r.get("partial")]
     assert len(partial) == 1 and partial[0]["bytes"] == "110400"   # no byte lost
     assert not os.path.exists(client_link)   # the tap removes its link
