@@ -1,0 +1,235 @@
+"""rigsim-replay: play the client side of a rigsim-tap recording against rigsim and compare every
+answer with the unit's (docs/conformance.md, "Replaying a recording").
+
+    python3 -m rigsim.replay FILE --rig RIG.json --device NAME [--rigsimd PATH] [--junit OUT]
+                             [--ignore FIELD]... [--timeout S]
+
+Starts rigsimd on RIG.json with its clock paused, connects to device NAME once per connection of
+the recording, and walks the recording in order: the clock is stepped to each line's time (the
+gaps between the recorded times), each frame the client sent is sent, and each frame the unit sent
+is read from rigsim and compared with it, field by field as rigsim's codec reads both (the daemon's
+wire log decodes rigsim's; the tap decoded the unit's). Fields that may differ are ignored:
+serial numbers by default (DEFAULT_IGNORED), and each --ignore FIELD. Prints one line per
+difference (connection, the recording's seq and time, the message, the field, the unit's value,
+rigsim's value) and exits 0 when conformant, 1 with differences, 2 on bad input (the recording's
+file and line named). --junit OUT writes a JUnit XML report, one test case per answer.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import socket
+import sys
+from collections.abc import Sequence
+from typing import Any
+from xml.sax.saxutils import escape, quoteattr
+
+from rigsim.daemon import Rigsim
+
+DEFAULT_IGNORED = ("serial_number",)
+PROTOCOLS = ("apt", "mcs", "mcs2")
+
+
+class RecordingError(Exception):
+    """The recording cannot be replayed: the message names the file and the line."""
+
+
+def _check(cond: bool, where: str, what: str) -> None:
+    if not cond:
+        raise RecordingError(f"{where}: {what}")
+
+
+def read_recording(path: str) -> tuple[dict[str, Any], list[dict[str, Any]]]:
+    """The header and the lines of a version 1 recording, every line checked (RecordingError)."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except (OSError, UnicodeDecodeError) as e:
+        raise RecordingError(f"{path}: cannot read the recording: {e}") from e
+    lines = text.split("\n")
+    _check(text.endswith("\n"), f"{path}:{len(lines)}", "the last line is cut (no line end): a recording cut mid-line")
+    records: list[dict[str, Any]] = []
+    header: dict[str, Any] = {}
+    last_t = 0
+    for number, line in enumerate(lines[:-1], 1):
+        where = f"{path}:{number}"
+        try:
+            obj = json.loads(line)
+        except ValueError as e:
+            raise RecordingError(f"{where}: not JSON ({e})") from e
+        _check(isinstance(obj, dict), where, "expected a JSON object")
+        if number == 1:
+            _check(obj.get("rigsim_recording") == 1, where,
+                   "not a rigsim recording of version 1 (the first line has no \"rigsim_recording\": 1)")
+            _check(obj.get("protocol") in PROTOCOLS, where, f"protocol: expected one of {', '.join(PROTOCOLS)}")
+            header = obj
+            continue
+        _check(obj.get("seq") == len(records), where, f"seq: expected {len(records)}, got {obj.get('seq')!r}")
+        t = obj.get("t_us")
+        _check(isinstance(t, int) and t >= last_t, where, "t_us: expected an integer time not before the last line's")
+        last_t = t
+        _check(isinstance(obj.get("conn"), int) and obj["conn"] >= 0, where, "conn: expected a connection number")
+        if "event" in obj:
+            _check(isinstance(obj["event"], str), where, "event: expected a name")
+        else:
+            _check(obj.get("dir") in ("in", "out"), where, "dir: expected \"in\" or \"out\"")
+            data = obj.get("bytes")
+            _check(isinstance(data, str) and len(data) % 2 == 0, where, "bytes: expected hex digits, two a byte")
+            try:
+                obj["raw"] = bytes.fromhex(data)
+            except ValueError as e:
+                raise RecordingError(f"{where}: bytes: not hex ({e})") from e
+            _check(isinstance(obj.get("decoded"), dict) or obj.get("partial") is True, where,
+                   "expected \"decoded\" (an object) or \"partial\": true")
+        obj["line"] = number
+        records.append(obj)
+    _check(bool(header), f"{path}:1", "empty recording")
+    return header, records
+
+
+def _read_frame(sock: socket.socket, protocol: str, buf: bytearray) -> bytes:
+    """One frame of `protocol` from `sock` (socket.timeout when none comes)."""
+    def need(n: int) -> None:
+        while len(buf) < n:
+            chunk = sock.recv(4096)
+            if not chunk:
+                raise ConnectionError("rigsim closed the connection")
+            buf.extend(chunk)
+    if protocol == "apt":
+        need(6)
+        size = 6 + (int.from_bytes(buf[2:4], "little") if buf[4] & 0x80 else 0)
+        need(size)
+    else:
+        while b"\n" not in buf:
+            need(len(buf) + 1)
+        size = buf.index(b"\n") + 1
+    frame = bytes(buf[:size])
+    del buf[:size]
+    return frame
+
+
+def _fields(decoded: dict[str, Any], protocol: str) -> dict[str, Any]:
+    """What is compared of a decoded frame: its fields (and name), or an MCS2 line's text."""
+    if protocol == "mcs2":
+        return {"text": decoded.get("text")}
+    out = dict(decoded.get("fields") or {})
+    out["(message)"] = decoded.get("name") or decoded.get("command")
+    return out
+
+
+def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = None,
+           ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0) -> tuple[list[dict[str, Any]], int]:
+    """The differences, and the number of answers compared."""
+    header, records = read_recording(recording)
+    protocol = header["protocol"]
+    with Rigsim(rig_path, rigsimd=rigsimd, args=["--paused"]) as rig:
+        endpoint = rig.endpoint(device)
+        if endpoint.protocol != protocol:
+            raise RecordingError(f"{recording}:1: a recording of protocol {protocol}, but device {device} "
+                                 f"speaks {endpoint.protocol}")
+        differences: list[dict[str, Any]] = []
+        pairs: list[tuple[dict[str, Any], bytes | None]] = []
+        sock: socket.socket | None = None
+        conn = None
+        buf = bytearray()
+        clock_us = records[0]["t_us"] if records else 0
+        for r in records:
+            gap_ms = (r["t_us"] - clock_us) // 1000
+            if gap_ms > 0:
+                rig.step(int(gap_ms))
+                clock_us += gap_ms * 1000
+            if "event" in r:
+                if r["event"] == "disconnect" and sock:
+                    sock.close()
+                    sock = None
+                continue
+            if r["conn"] != conn or sock is None:
+                if sock:
+                    sock.close()
+                sock = socket.create_connection(endpoint.address, timeout=timeout_s)
+                conn = r["conn"]
+                buf = bytearray()
+            if r["dir"] == "in":
+                sock.sendall(r["raw"])
+                continue
+            if r.get("partial"):
+                continue
+            try:
+                got: bytes | None = _read_frame(sock, protocol, buf)
+            except (socket.timeout, ConnectionError):
+                got = None
+            pairs.append((r, got))
+        if sock:
+            sock.close()
+        log = rig.log(device)
+        outs = [e for e in log["entries"] if e["direction"] == "out"]
+        k = 0
+        for r, got in pairs:
+            where = {"conn": r["conn"], "seq": r["seq"], "t_ms": r["t_us"] / 1000, "line": r["line"]}
+            unit = _fields(r["decoded"], protocol)
+            name = unit.get("(message)") or unit.get("text")
+            if got is None:
+                differences.append(dict(where, message=name, field="(answer)", unit=r["bytes"], rigsim="none"))
+                continue
+            while k < len(outs) and bytes.fromhex(outs[k]["hex"]) != got:
+                k += 1
+            ours = _fields(outs[k].get("decoded", {}), protocol) if k < len(outs) else {}
+            k += 1
+            if got == r["raw"]:
+                continue
+            for field in sorted(set(unit) | set(ours)):
+                if field in ignore or unit.get(field) == ours.get(field):
+                    continue
+                differences.append(dict(where, message=name, field=field, unit=unit.get(field),
+                                        rigsim=ours.get(field)))
+        return differences, len(pairs)
+
+
+def write_junit(path: str, recording: str, differences: list[dict[str, Any]], compared: int) -> None:
+    by_seq: dict[int, list[dict[str, Any]]] = {}
+    for d in differences:
+        by_seq.setdefault(d["seq"], []).append(d)
+    cases = []
+    for seq, ds in sorted(by_seq.items()):
+        text = "\n".join(f"{d['field']}: unit {d['unit']!r}, rigsim {d['rigsim']!r}" for d in ds)
+        cases.append(f'  <testcase name={quoteattr("seq %d %s" % (seq, ds[0]["message"]))}>'
+                     f'<failure message={quoteattr(ds[0]["field"])}>{escape(text)}</failure></testcase>')
+    cases.append(f'  <testcase name={quoteattr("%d answers compared" % compared)}/>')
+    with open(path, "w", encoding="utf-8") as f:
+        f.write('<?xml version="1.0" encoding="UTF-8"?>\n')
+        f.write(f'<testsuite name={quoteattr("rigsim-replay " + os.path.basename(recording))} '
+                f'tests="{len(cases)}" failures="{len(by_seq)}">\n' + "\n".join(cases) + "\n</testsuite>\n")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="rigsim-replay", description=__doc__.split("\n\n")[0])
+    parser.add_argument("recording")
+    parser.add_argument("--rig", required=True, help="the rig JSON to replay against")
+    parser.add_argument("--device", required=True, help="the device of the rig the recording's unit is")
+    parser.add_argument("--rigsimd", default=None, help="the rigsimd binary (default: $RIGSIMD, PATH)")
+    parser.add_argument("--junit", default=None, help="write a JUnit XML report here")
+    parser.add_argument("--ignore", action="append", default=[], help="a field that may differ (repeatable)")
+    parser.add_argument("--timeout", type=float, default=2.0, help="seconds to wait for each answer")
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:
+        return 2 if e.code else 0
+    try:
+        differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
+                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout)
+    except RecordingError as e:
+        print(f"rigsim-replay: {e}", file=sys.stderr)
+        return 2
+    for d in differences:
+        print(f"conn {d['conn']} seq {d['seq']} at {d['t_ms']:.3f} ms (line {d['line']}) {d['message']}: "
+              f"{d['field']}: unit {d['unit']!r}, rigsim {d['rigsim']!r}")
+    if args.junit:
+        write_junit(args.junit, args.recording, differences, compared)
+    print(f"rigsim-replay: {compared} answers compared, {len(differences)} difference(s)", file=sys.stderr)
+    return 1 if differences else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
