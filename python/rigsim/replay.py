@@ -3,6 +3,7 @@ answer with the unit's (docs/conformance.md, "Replaying a recording").
 
     python3 -m rigsim.replay FILE --rig RIG.json --device NAME [--rigsimd PATH] [--junit OUT]
                              [--ignore FIELD]... [--timeout S]
+    python3 -m rigsim.replay FILE --learn --out RIG.json [--device NAME]
 
 Starts rigsimd on RIG.json with its clock paused, connects to device NAME once per connection of
 the recording, and walks the recording in order: the clock is stepped to each line's time (the
@@ -187,6 +188,123 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
         return differences, len(pairs)
 
 
+# ---- learning a rig from a recording ----
+
+_ALIASES = {"PROPERTY": "PROP", "DEVICE": "DEV", "SNUMBER": "SNUM", "NOCHANNELS": "NOCH", "CHANNEL": "CHAN",
+            "PTYPE": "PTYP", "CODE": "CODE"}
+
+
+def _mcs2_queries(text: str) -> list[list[str]]:
+    """The queries of one MCS2 message as keyword paths in short upper case (`CHAN0`, `PTYP`), the
+    optional root dropped; relative commands resolved at the level of the one before (6.2.3)."""
+    level: list[str] = []
+    out: list[list[str]] = []
+    for command in text.split(";"):
+        command = command.strip()
+        if not command or command.startswith("*"):
+            if command.upper().startswith("*IDN?"):
+                out.append(["*IDN"])
+            continue
+        head = command.split(" ", 1)[0]
+        query = head.endswith("?")
+        head = head.rstrip("?")
+        words = []
+        for w in head.strip(":").split(":"):
+            letters = w.rstrip("0123456789").upper()
+            words.append(_ALIASES.get(letters, letters) + w[len(letters):])
+        if words and words[0] == "PROP":
+            words = words[1:]
+        path = words if command.startswith(":") or not level else level + words
+        level = path[:-1]
+        if query:
+            out.append(path)
+    return out
+
+
+def _learn_mcs2(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
+    section: dict[str, Any] = {}
+    types: dict[int, int] = {}
+    off_mark: dict[int, bool] = {}   # the first state word read: REFERENCE_MARK (bit 15) clear
+    count = 0
+    pending: list[list[str]] = []
+    for r in records:
+        if "event" in r or r.get("partial"):
+            continue
+        text = r["decoded"].get("text", "")
+        if r["dir"] == "in":
+            pending = _mcs2_queries(text)
+            continue
+        answers = [a.strip() for a in text.split(";")]
+        if len(answers) != len(pending):
+            pending = []
+            continue
+        for path, answer in zip(pending, answers):
+            if path == ["DEV", "SNUM"]:
+                section["serial_number"] = answer.strip('"')
+            elif path == ["*IDN"] and answer.count(",") >= 3:
+                section["serial_number"] = answer.split(",")[2]
+            elif path == ["DEV", "NOCH"] and answer.isdigit():
+                count = int(answer)
+            elif len(path) >= 2 and path[0].startswith("CHAN") and path[0][4:].isdigit() and \
+                    path[1:] in (["PTYP"], ["PTYP", "CODE"]) and answer.isdigit() and int(answer) >= 300:
+                types[int(path[0][4:])] = int(answer)
+            elif len(path) == 2 and path[0].startswith("CHAN") and path[0][4:].isdigit() and \
+                    path[1] in ("STAT", "STATE") and answer.lstrip("-").isdigit():
+                off_mark.setdefault(int(path[0][4:]), not int(answer) & 0x8000)
+        pending = []
+    count = max([count, 1] + [c + 1 for c in types] + [c + 1 for c in off_mark])
+    channels: list[dict[str, Any]] = [{} for _ in range(count)]
+    for c, t in types.items():
+        channels[c]["positioner_type"] = t
+    for c, off in off_mark.items():
+        if off:   # off its mark at power-up: 5 mm (5°) past it, half way to the default end stop
+            channels[c]["start_position"] = 5_000_000_000   # (the physical start itself is not seen)
+    section["channels"] = channels
+    device["mcs2"] = section
+
+
+def _learn_mcs(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
+    section: dict[str, Any] = {}
+    count = 1
+    for r in records:
+        if r.get("dir") != "out" or r.get("partial"):
+            continue
+        text = r["decoded"].get("text", "").strip(":\n")
+        if text.startswith("ID") and text[2:].isdigit():
+            section["system_id"] = int(text[2:])
+        elif text.startswith("N") and text[1:].isdigit():
+            count = max(count, int(text[1:]))
+    section["channels"] = [{} for _ in range(count)]
+    device["mcs"] = section
+
+
+def _learn_apt(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
+    for r in records:
+        decoded = r.get("decoded") or {}
+        if r.get("dir") == "out" and decoded.get("name") == "MGMSG_HW_GET_INFO":
+            fields = decoded.get("fields") or {}
+            if isinstance(fields.get("model_number"), str):
+                device["model"] = fields["model_number"]
+            if isinstance(fields.get("serial_number"), int):
+                device["apt"] = {"serial_number": fields["serial_number"]}
+            return
+    raise RecordingError("no HW_GET_INFO answer in the recording: the unit's model is not known")
+
+
+def learn(recording: str, name: str | None = None) -> dict[str, Any]:
+    """A rig with one device as the recording shows the unit: MCS2 its serial number, channel count
+    and the positioner types read; MCS its system ID and channel count; APT its model and serial
+    number (HW_GET_INFO). What the session did not read keeps rigsim's defaults."""
+    header, records = read_recording(recording)
+    protocol = header["protocol"]
+    device: dict[str, Any] = {"name": name or protocol + "0", "protocol": protocol}
+    try:
+        {"mcs2": _learn_mcs2, "mcs": _learn_mcs, "apt": _learn_apt}[protocol](records, device)
+    except RecordingError as e:
+        raise RecordingError(f"{recording}: {e}") from e
+    return {"devices": [device]}
+
+
 def write_junit(path: str, recording: str, differences: list[dict[str, Any]], compared: int) -> None:
     by_seq: dict[int, list[dict[str, Any]]] = {}
     for d in differences:
@@ -206,8 +324,10 @@ def write_junit(path: str, recording: str, differences: list[dict[str, Any]], co
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="rigsim-replay", description=__doc__.split("\n\n")[0])
     parser.add_argument("recording")
-    parser.add_argument("--rig", required=True, help="the rig JSON to replay against")
-    parser.add_argument("--device", required=True, help="the device of the rig the recording's unit is")
+    parser.add_argument("--rig", help="the rig JSON to replay against")
+    parser.add_argument("--device", help="the device of the rig the recording's unit is (--learn: its name)")
+    parser.add_argument("--learn", action="store_true", help="write a rig learnt from the recording to --out")
+    parser.add_argument("--out", help="--learn: the rig JSON to write")
     parser.add_argument("--rigsimd", default=None, help="the rigsimd binary (default: $RIGSIMD, PATH)")
     parser.add_argument("--junit", default=None, help="write a JUnit XML report here")
     parser.add_argument("--ignore", action="append", default=[], help="a field that may differ (repeatable)")
@@ -216,6 +336,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as e:
         return 2 if e.code else 0
+    if args.learn:
+        if not args.out:
+            print("rigsim-replay: --learn needs --out RIG.json", file=sys.stderr)
+            return 2
+        try:
+            rig = learn(args.recording, args.device)
+            with open(args.out, "w", encoding="utf-8") as f:
+                json.dump(rig, f, indent=2)
+                f.write("\n")
+        except (RecordingError, OSError) as e:
+            print(f"rigsim-replay: {e}", file=sys.stderr)
+            return 2
+        return 0
+    if not args.rig or not args.device:
+        print("rigsim-replay: --rig and --device are required (or --learn --out)", file=sys.stderr)
+        return 2
     try:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
                                        list(DEFAULT_IGNORED) + args.ignore, args.timeout)

@@ -130,10 +130,11 @@ REPLAY = [sys.executable, "-m", "rigsim.replay"]
 MCS2_RIG = os.path.join(SOURCE, "config", "examples", "mcs2.json")
 
 
-def record_mcs2_session(rigsim, tmp_path):
-    """A client's MCS2 session through the tap against config/examples/mcs2.json running in real
-    time, as a real unit does: a 100 ms move, and 400 ms later the queries that see it ended."""
-    rig = rigsim(MCS2_RIG)
+def record_mcs2_session(rigsim, tmp_path, rig_path=MCS2_RIG):
+    """A client's MCS2 session through the tap against config/examples/mcs2.json (or `rig_path`)
+    running in real time, as a real unit does: a 100 ms move, and 400 ms later the queries that see
+    it ended."""
+    rig = rigsim(rig_path)
     host, port = rig.endpoint("mcs2").address
     tap, record, first = start_tap(tmp_path, "mcs2", "tcp:127.0.0.1:0", "tcp:%s:%d" % (host, port))
     with socket.create_connection(("127.0.0.1", int(first.rsplit(":", 1)[1])), timeout=5) as s, \
@@ -231,3 +232,24 @@ def test_the_recording_reader_refuses_any_damage_with_its_own_error(rigsim, tmp_
             assert str(e).startswith(str(path)), e
             refused += 1
     assert refused > 1500
+
+
+def test_a_rig_learnt_from_a_recording_replays_conformant(rigsim, rigsimd_path, tmp_path):
+    unit = json.loads(open(MCS2_RIG).read())
+    unit["devices"][0]["mcs2"]["serial_number"] = "MCS2-00004321"
+    unit["devices"][0]["mcs2"]["channels"][0]["positioner_type"] = 301
+    unit_rig = tmp_path / "unit.json"
+    unit_rig.write_text(json.dumps(unit))
+    record = record_mcs2_session(rigsim, tmp_path, str(unit_rig))
+    learnt = tmp_path / "learnt.json"
+    run = run_replay(str(record), "--learn", "--out", str(learnt), "--device", "stage")
+    assert run.returncode == 0, run.stderr
+    device = json.loads(learnt.read_text())["devices"][0]
+    assert device["name"] == "stage" and device["protocol"] == "mcs2"
+    assert device["mcs2"]["serial_number"] == "MCS2-00004321"
+    assert len(device["mcs2"]["channels"]) == 6
+    assert device["mcs2"]["channels"][0] == {"positioner_type": 301, "start_position": 5000000000}   # off its mark
+    run = run_replay(str(record), "--rig", str(learnt), "--device", "stage", "--rigsimd", rigsimd_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    run = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--rigsimd", rigsimd_path)
+    assert run.returncode == 1 and "MCS2-00004321" in run.stdout
