@@ -111,6 +111,9 @@ def main():
         usage = run([os.path.join(bin_dir, "rigsimctl"), "--help"], env, tmp, "rigsimctl --help").stdout
         if not usage.startswith("usage: rigsimctl"):
             sys.exit(f"FAIL: rigsimctl --help printed:\n{usage}")
+        usage = run([os.path.join(bin_dir, "rigsim-replay"), "--help"], env, tmp, "rigsim-replay --help").stdout
+        if not usage.startswith("usage: rigsim-replay"):
+            sys.exit(f"FAIL: rigsim-replay --help printed:\n{usage}")
 
         eps = run([python, "-c",
                    "from importlib.metadata import entry_points\n"
@@ -130,7 +133,7 @@ def main():
                     "    assert pytestconfig.getini('rigsim_strict') is False\n")
         run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--rigsimd=/nowhere/rigsimd",
              "test_plugin_loaded.py::test_options"], env, tmp, "pytest with the plugin loaded by entry point")
-        print("PASS: pip install --no-index ./python; import rigsim, rigsimctl --help, pytest11 entry point, "
+        print("PASS: pip install --no-index ./python; import rigsim, rigsimctl and rigsim-replay --help, pytest11 entry point, "
               "py.typed")
         if rigsimd is None:
             print("(no --rigsimd: the driver-style suite was not run)")

@@ -115,6 +115,18 @@ def test_apt_on_a_serial_line_through_a_pty_client(rigsim, tmp_path):
     assert not os.path.exists(client_link)   # the tap removes its link
 
 
+def test_the_build_trees_rigsim_replay_launcher(tmp_path):
+    launcher = os.environ.get("RIGSIM_REPLAY")
+    if not launcher:
+        pytest.skip("RIGSIM_REPLAY names the build tree's launcher (CTest sets it)")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}   # it finds the package itself
+    usage = subprocess.run([launcher, "--help"], capture_output=True, text=True, timeout=30, env=env)
+    assert usage.returncode == 0 and usage.stdout.startswith("usage: rigsim-replay")
+    missing = subprocess.run([launcher, str(tmp_path / "none.jsonl"), "--learn", "--out", str(tmp_path / "r.json")],
+                             capture_output=True, text=True, timeout=30, env=env)
+    assert missing.returncode == 2 and "none.jsonl: cannot read the recording" in missing.stderr
+
+
 def test_bad_arguments_exit_2_naming_the_flag(tmp_path):
     run = subprocess.run([TAP, "--protocol", "can", "--listen", "tcp:127.0.0.1:0", "--to", "tcp:127.0.0.1:1",
                           "--record", str(tmp_path / "r")], capture_output=True, text=True, timeout=10)
