@@ -10,7 +10,8 @@ the recording, and walks the recording in order: the clock is stepped to each li
 gaps between the recorded times), each frame the client sent is sent, and each frame the unit sent
 is read from rigsim and compared with it, field by field as rigsim's codec reads both (the daemon's
 wire log decodes rigsim's; the tap decoded the unit's). Fields that may differ are ignored:
-serial numbers by default (DEFAULT_IGNORED), and each --ignore FIELD. Prints one line per
+serial numbers by default (DEFAULT_IGNORED), and each --ignore FIELD; --tolerance FIELD=AMOUNT
+takes numbers within AMOUNT as equal (a position read while the stage moves). Prints one line per
 difference (connection, the recording's seq and time, the message, the field, the unit's value,
 rigsim's value) and exits 0 when conformant, 1 with differences, 2 on bad input (the recording's
 file and line named). --junit OUT writes a JUnit XML report, one test case per answer.
@@ -111,18 +112,58 @@ def _read_frame(sock: socket.socket, protocol: str, buf: bytearray) -> bytes:
     return frame
 
 
-def _fields(decoded: dict[str, Any], protocol: str) -> dict[str, Any]:
-    """What is compared of a decoded frame: its fields (and name), or an MCS2 line's text."""
+def _fields(decoded: dict[str, Any], protocol: str, queries: list[list[str]] | None = None) -> dict[str, Any]:
+    """What is compared of a decoded frame: its fields (and name); an MCS2 answer line's answers
+    named by the queries that asked for them (`CHAN0:POS`), else its text."""
     if protocol == "mcs2":
-        return {"text": decoded.get("text")}
+        text = decoded.get("text")
+        answers = [a.strip() for a in text.split(";")] if isinstance(text, str) else []
+        if queries and len(queries) == len(answers):
+            return {":".join(q): a for q, a in zip(queries, answers)}
+        return {"text": text}
     out = dict(decoded.get("fields") or {})
     out["(message)"] = decoded.get("name") or decoded.get("command")
     return out
 
 
+def _number(text: Any) -> float | None:
+    if isinstance(text, bool):
+        return None
+    if isinstance(text, (int, float)):
+        return float(text)
+    try:
+        return float(str(text).strip())
+    except ValueError:
+        return None
+
+
+def _rule(field: str, rules: dict[str, Any] | Sequence[str]) -> str | None:
+    """The rule's key that names `field`: the field itself, or one keyword of an MCS2 answer's
+    query path (`POS` names `CHAN0:POS`)."""
+    if field in rules:
+        return field
+    for keyword in field.split(":"):
+        if keyword in rules:
+            return keyword
+    return None
+
+
+def _same(field: str, unit: Any, ours: Any, tolerance: dict[str, float]) -> bool:
+    """Equal, or two numbers within the tolerance a rule gives the field."""
+    if unit == ours:
+        return True
+    key = _rule(field, tolerance)
+    if key is None:
+        return False
+    nu, no = _number(unit), _number(ours)
+    return nu is not None and no is not None and abs(nu - no) <= tolerance[key]
+
+
 def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = None,
-           ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0) -> tuple[list[dict[str, Any]], int]:
+           ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0,
+           tolerance: dict[str, float] | None = None) -> tuple[list[dict[str, Any]], int]:
     """The differences, and the number of answers compared."""
+    tolerance = tolerance or {}
     header, records = read_recording(recording)
     protocol = header["protocol"]
     with Rigsim(rig_path, rigsimd=rigsimd, args=["--paused"]) as rig:
@@ -135,6 +176,7 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
         sock: socket.socket | None = None
         conn = None
         buf = bytearray()
+        queries: list[list[str]] = []
         clock_us = records[0]["t_us"] if records else 0
         for r in records:
             gap_ms = (r["t_us"] - clock_us) // 1000
@@ -154,6 +196,8 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                 buf = bytearray()
             if r["dir"] == "in":
                 sock.sendall(r["raw"])
+                if protocol == "mcs2":
+                    queries = _mcs2_queries(r["decoded"].get("text", "")) if "decoded" in r else []
                 continue
             if r.get("partial"):
                 continue
@@ -161,7 +205,8 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                 got: bytes | None = _read_frame(sock, protocol, buf)
             except (socket.timeout, ConnectionError):
                 got = None
-            pairs.append((r, got))
+            pairs.append((dict(r, queries=queries), got))
+            queries = []
         if sock:
             sock.close()
         log = rig.log(device)
@@ -169,19 +214,19 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
         k = 0
         for r, got in pairs:
             where = {"conn": r["conn"], "seq": r["seq"], "t_ms": r["t_us"] / 1000, "line": r["line"]}
-            unit = _fields(r["decoded"], protocol)
-            name = unit.get("(message)") or unit.get("text")
+            unit = _fields(r["decoded"], protocol, r.get("queries"))
+            name = unit.get("(message)") or r["decoded"].get("text")
             if got is None:
                 differences.append(dict(where, message=name, field="(answer)", unit=r["bytes"], rigsim="none"))
                 continue
             while k < len(outs) and bytes.fromhex(outs[k]["hex"]) != got:
                 k += 1
-            ours = _fields(outs[k].get("decoded", {}), protocol) if k < len(outs) else {}
+            ours = _fields(outs[k].get("decoded", {}), protocol, r.get("queries")) if k < len(outs) else {}
             k += 1
             if got == r["raw"]:
                 continue
             for field in sorted(set(unit) | set(ours)):
-                if field in ignore or unit.get(field) == ours.get(field):
+                if _rule(field, ignore) is not None or _same(field, unit.get(field), ours.get(field), tolerance):
                     continue
                 differences.append(dict(where, message=name, field=field, unit=unit.get(field),
                                         rigsim=ours.get(field)))
@@ -191,7 +236,8 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
 # ---- learning a rig from a recording ----
 
 _ALIASES = {"PROPERTY": "PROP", "DEVICE": "DEV", "SNUMBER": "SNUM", "NOCHANNELS": "NOCH", "CHANNEL": "CHAN",
-            "PTYPE": "PTYP", "CODE": "CODE"}
+            "PTYPE": "PTYP", "CODE": "CODE", "POSITION": "POS", "STATE": "STAT", "TARGET": "TARG",
+            "CURRENT": "CURR", "SYSTEM": "SYST", "ERROR": "ERR"}
 
 
 def _mcs2_queries(text: str) -> list[list[str]]:
@@ -332,6 +378,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--junit", default=None, help="write a JUnit XML report here")
     parser.add_argument("--ignore", action="append", default=[], help="a field that may differ (repeatable)")
     parser.add_argument("--timeout", type=float, default=2.0, help="seconds to wait for each answer")
+    parser.add_argument("--tolerance", action="append", default=[], metavar="FIELD=AMOUNT",
+                        help="numbers of FIELD within AMOUNT are equal (repeatable; MCS2: a query's keyword, POS)")
     try:
         args = parser.parse_args(argv)
     except SystemExit as e:
@@ -349,12 +397,19 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"rigsim-replay: {e}", file=sys.stderr)
             return 2
         return 0
+    tolerance: dict[str, float] = {}
+    for t in args.tolerance:
+        name, _, amount = t.partition("=")
+        if not name or _number(amount) is None:
+            print(f"rigsim-replay: --tolerance: expected FIELD=AMOUNT, got {t!r}", file=sys.stderr)
+            return 2
+        tolerance[name] = float(_number(amount) or 0)
     if not args.rig or not args.device:
         print("rigsim-replay: --rig and --device are required (or --learn --out)", file=sys.stderr)
         return 2
     try:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
-                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout)
+                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance)
     except RecordingError as e:
         print(f"rigsim-replay: {e}", file=sys.stderr)
         return 2

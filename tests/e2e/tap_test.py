@@ -188,8 +188,10 @@ def test_replay_against_another_positioner_names_the_answers_that_differ(rigsim,
     other.write_text(json.dumps(rig))
     run = run_replay(str(record), "--rig", str(other), "--device", "mcs2", "--rigsimd", rigsimd_path)
     assert run.returncode == 1, run.stdout + run.stderr
-    assert "text: unit '300; \"SL...S1SS\"', rigsim '301; \"SL...D1SS\"'" in run.stdout
-    assert "1 difference(s)" in run.stderr
+    # Each answer of a compound line is named by the query that asked for it.
+    assert "CHAN0:PTYP: unit '300', rigsim '301'" in run.stdout
+    assert "CHAN0:PTYP:NAME: unit '\"SL...S1SS\"', rigsim '\"SL...D1SS\"'" in run.stdout
+    assert "2 difference(s)" in run.stderr
 
 
 def test_replay_refuses_bad_recordings_naming_the_line(rigsim, rigsimd_path, tmp_path):
@@ -265,3 +267,33 @@ def test_a_rig_learnt_from_a_recording_replays_conformant(rigsim, rigsimd_path, 
     assert run.returncode == 0, run.stdout + run.stderr
     run = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--rigsimd", rigsimd_path)
     assert run.returncode == 1 and "MCS2-00004321" in run.stdout
+
+
+def test_a_position_read_while_moving_conforms_within_a_tolerance(rigsim, rigsimd_path, tmp_path):
+    """Read mid-move in real time, a position differs by the part of a millisecond the replay's
+    stepped clock does not reproduce: --tolerance POS=AMOUNT takes it as equal, and only it."""
+    sys.path.insert(0, os.path.join(SOURCE, "python"))
+    from rigsim.replay import _same
+    assert _same("CHAN0:POS", "300512000", "300000000", {"POS": 1e6})
+    assert not _same("CHAN0:POS", "300512000", "300000000", {"POS": 1e5})
+    assert not _same("CHAN0:STAT", "262243", "262242", {"POS": 1e6})
+    assert not _same("CHAN0:PTYP:NAME", "\"SL...S1SS\"", "\"SL...D1SS\"", {"NAME": 1e6})
+    assert _same("position", 1000, 1002, {"position": 2}) and not _same("position", 1000, 1003, {"position": 2})
+    rig = rigsim(MCS2_RIG)
+    host, port = rig.endpoint("mcs2").address
+    tap, record, first = start_tap(tmp_path, "mcs2", "tcp:127.0.0.1:0", "tcp:%s:%d" % (host, port))
+    with socket.create_connection(("127.0.0.1", int(first.rsplit(":", 1)[1])), timeout=5) as s, \
+            s.makefile("rb") as answers:
+        s.sendall(b":CHAN0:MMOD 0;VEL 1000000000\r\n:MOVE0 1000000000\r\n:CHAN0:STAT?\r\n")
+        answers.readline()
+        time.sleep(0.3)
+        s.sendall(b":CHAN0:POS?;STAT?\r\n")   # mid-move: 0.3 mm of 1 mm
+        mid = answers.readline()
+    time.sleep(0.2)
+    stop_tap(tap)
+    assert mid.endswith(b"; 262243\r\n")
+    run = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--rigsimd", rigsimd_path,
+                     "--tolerance", "POS=5000000")   # 5 µm: 5 ms at 1 mm/s
+    assert run.returncode == 0, run.stdout + run.stderr
+    bad = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--tolerance", "POS=fast")
+    assert bad.returncode == 2 and "--tolerance: expected FIELD=AMOUNT" in bad.stderr
