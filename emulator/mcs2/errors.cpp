@@ -7,8 +7,9 @@ namespace rigsim::mcs2 {
 
 std::string_view error_text(std::int32_t code)
 {
-    // Table A.1, the codes the device reports (not the PC library's 0xf0xx).
-    static constexpr std::array<std::pair<std::int32_t, std::string_view>, 62> kTexts{{
+    // Table A.1, the codes the device reports (not the PC library's 0xf0xx; nor 0x7ffe, which
+    // a unit answers for a feature its firmware lacks and rigsim never does).
+    static constexpr std::array<std::pair<std::int32_t, std::string_view>, 61> kTexts{{
         {0x0000, "No error"},
         {0x0001, "Unknown command"},
         {0x0002, "Invalid packet size"},
@@ -70,7 +71,6 @@ std::string_view error_text(std::int32_t code)
         {0x0303, "Busy streaming"},
         {0x0500, "Internal communication"},
         {0x7ffd, "Feature not supported"},
-        {0x7ffe, "Feature not implemented"},
     }};
     for (const auto& [c, text] : kTexts)
         if (c == code)

@@ -33,6 +33,14 @@ def start_tap(tmp_path, protocol, listen, to):
     return tap, record, first
 
 
+def wait_for_line(record, text, timeout_s=5):
+    """Polls the recording (written line by line as it happens) until a line holds `text`."""
+    deadline = time.monotonic() + timeout_s
+    while text not in record.read_text():
+        assert time.monotonic() < deadline, "no %r in the recording" % text
+        time.sleep(0.01)
+
+
 def stop_tap(tap):
     tap.terminate()
     assert tap.wait(timeout=10) == 0
@@ -64,7 +72,7 @@ def test_mcs2_over_tcp_is_recorded_as_the_unit_saw_it(rigsim, tmp_path):
         assert answers.readline() == b'-113,"Undefined header"\r\n'
         s.sendall(b":CHAN0:POS:TARG?;:DEV:SNUM?\r\n")   # sent in pieces a frame does not care about
         assert answers.readline() == b'1000; "MCS2-00001234"\r\n'
-    time.sleep(0.3)
+    wait_for_line(record, '"event":"disconnect"')
     stop_tap(tap)
     header, records = recording(record)
     assert header["protocol"] == "mcs2" and header["to"].startswith("tcp:")
@@ -98,7 +106,7 @@ def test_apt_on_a_serial_line_through_a_pty_client(rigsim, tmp_path):
         attrs[4] = attrs[5] = termios.B9600          # sets the unit's port to it before its next bytes
         termios.tcsetattr(fd, termios.TCSANOW, attrs)
         os.write(fd, b"\x11\x04\x00")   # half a header: cut when the tap stops
-        time.sleep(0.3)
+        wait_for_line(record, '"event":"baud"')   # written as the tap reads these bytes
     finally:
         os.close(fd)
     stop_tap(tap)
@@ -160,7 +168,7 @@ def record_mcs2_session(rigsim, tmp_path, rig_path=MCS2_RIG):
         time.sleep(0.4)   # recorded time: the replay steps its paused clock by it
         s.sendall(b":CHAN0:POS?;STAT?\r\n")
         answers.readline()
-    time.sleep(0.2)
+    wait_for_line(record, '"event":"disconnect"')
     stop_tap(tap)
     return record
 
@@ -286,10 +294,10 @@ def test_a_position_read_while_moving_conforms_within_a_tolerance(rigsim, rigsim
             s.makefile("rb") as answers:
         s.sendall(b":CHAN0:MMOD 0;VEL 1000000000\r\n:MOVE0 1000000000\r\n:CHAN0:STAT?\r\n")
         answers.readline()
-        time.sleep(0.3)
+        time.sleep(0.3)   # the unit's real time (recorded): the read comes mid-move
         s.sendall(b":CHAN0:POS?;STAT?\r\n")   # mid-move: 0.3 mm of 1 mm
         mid = answers.readline()
-    time.sleep(0.2)
+    wait_for_line(record, '"event":"disconnect"')
     stop_tap(tap)
     assert mid.endswith(b"; 262243\r\n")
     run = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--rigsimd", rigsimd_path,
