@@ -39,8 +39,10 @@ constexpr std::size_t kMaxConfigDepth = 64;
 constexpr std::array<std::string_view, 5> kRigKeys{"tick_hz", "devices", "control", "clock", "kinematics"};
 constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
-constexpr std::array<std::string_view, 7> kDeviceKeys{"name",     "protocol", "model",          "firmware",
-                                                      "tcp_port", "pty",      "faithful_timing"};
+constexpr std::array<std::string_view, 8> kDeviceKeys{"name",     "protocol", "model",           "firmware",
+                                                      "tcp_port", "pty",      "faithful_timing", "link"};
+constexpr std::array<std::string_view, 5> kLinkKeys{"latency_timer_ms", "packet_bytes", "usb_frame_us",
+                                                    "processing_us", "tcp"};
 
 
 /// What kind of file a non-regular st_mode is, for messages.
@@ -175,12 +177,36 @@ private:
                 fail(pointer_to(pointer, "faithful_timing"), "expected true or false, got " + describe(*t));
             d.faithful_timing = t->get<bool>();
         }
+        if (const auto* l = find(v, "link"))
+            d.link = load_link(*l, pointer_to(pointer, "link"));
         for (const auto& other : families_.all())
             if (other.name != family.name && find(v, other.name))
                 fail(pointer_to(pointer, other.name), "an " + quote(other.name) + " object belongs to " +
                                                           other.device_noun + ", not to protocol " + quote(family.name));
         family.load(*this, v, pointer, d);
         return d;
+    }
+
+    LinkModel load_link(const json& v, const std::string& pointer) const
+    {
+        if (!v.is_object())
+            fail(pointer, "expected an object, got " + describe(v));
+        check_keys(v, pointer, kLinkKeys);
+        LinkModel link;
+        const auto number = [&](const char* key, std::int64_t lo, std::int64_t hi, std::uint32_t& out) {
+            if (const auto* n = find(v, key))
+                out = static_cast<std::uint32_t>(get_int(*n, pointer_to(pointer, key), lo, hi));
+        };
+        number("latency_timer_ms", 1, 255, link.latency_timer_ms);
+        number("packet_bytes", 1, 4096, link.packet_bytes);
+        number("usb_frame_us", 125, 1000, link.usb_frame_us);
+        number("processing_us", 0, 10'000'000, link.processing_us);
+        if (const auto* t = find(v, "tcp")) {
+            if (!t->is_boolean())
+                fail(pointer_to(pointer, "tcp"), "expected true or false, got " + describe(*t));
+            link.tcp = t->get<bool>();
+        }
+        return link;
     }
 
     /// Record that device `owner` uses `value`; a second user is an error at `pointer`.

@@ -19,6 +19,17 @@ namespace rigsim {
 
 class FamilyRegistry;
 
+/// The timing of the link between a unit and its host ("link" in the rig JSON; docs/config.md
+/// "The link model"): a USB-serial chip's latency timer, packet and frame, and the unit's
+/// processing time per answer.
+struct LinkModel {
+    std::uint32_t latency_timer_ms = 16;   ///< 1..255 (FTDI; Linux's default since 4.10)
+    std::uint32_t packet_bytes = 62;       ///< data bytes of a full USB packet (64 less 2 status bytes)
+    std::uint32_t usb_frame_us = 1000;     ///< a USB frame (full speed: 1 ms)
+    std::uint32_t processing_us = 0;       ///< the unit's time from a message to its answer
+    bool tcp = false;                      ///< on TCP connections too (always on the pty)
+};
+
 struct DeviceConfig {
     std::string name;                 ///< unique; names the pty symlink and the logger
     std::string protocol;             ///< the family's name: "mcs", "apt"
@@ -31,6 +42,8 @@ struct DeviceConfig {
     std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
     /// Pace the pty's output at the controller's baud rate (MCS: CB, effective after R).
     bool faithful_timing = false;
+    /// The link model; absent: answers leave as soon as the line (if paced) has carried them.
+    std::optional<LinkModel> link;
     /// The family's own section (mcs::McsConfig, apt::AptConfig); read it with section_of.
     std::any section;
     /// Where the rig text describes the device ("rig.json", "/devices/2"): errors found after

@@ -1,5 +1,6 @@
 #include "emulator/daemon/link.hpp"
 #include "emulator/core/log_format.hpp"
+#include "emulator/daemon/usb_serial.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +67,11 @@ public:
           peer_(peer)
     {
         link_.sessions_.push_back(this);
+        if (const auto& m = link_.model_; m && (serial_ || m->tcp)) {
+            const double hz = link_.clock_.tick_hz();
+            usb_.emplace(UsbSerialTiming{m->latency_timer_ms * hz / 1e3, m->usb_frame_us * hz / 1e6, m->packet_bytes},
+                         static_cast<double>(link_.clock_.now()));
+        }
         // The device may end the connection itself (an MCS2's *RST): it goes through to the
         // transport; the other parts of the connection are the transport's as they are.
         Connection inner;
@@ -86,7 +92,7 @@ public:
     ~LinkSession() override
     {
         inner_.reset();   // before the link forgets us: it may still send while closing
-        link_.held_pieces_ -= held_.size() + in_held_.size();
+        link_.held_pieces_ -= held_.size() + in_held_.size() + (usb_ ? usb_->pieces() : 0);
         auto& s = link_.sessions_;
         s.erase(std::remove(s.begin(), s.end(), this), s.end());
         link_.changed();
@@ -125,6 +131,8 @@ public:
         if (!kept.empty()) {
             if (link_.bandwidth_.id != 0 && link_.bandwidth_.inbound)
                 throttle_in(kept, now);
+            else if (usb_)   // the host sends them in the next USB frame, the chip's UART on
+                hold_in(usb_in(kept.size(), now), std::string(kept));
             else if (in_held_.empty())
                 deliver(kept, now);
             else
@@ -151,6 +159,11 @@ public:
             held_.pop_front();
             send_(bytes);
         }
+        if (usb_) {
+            const auto before = usb_->pieces();
+            usb_->release(now, [&](const std::string& packet) { send_(packet); });
+            link_.held_pieces_ -= before - usb_->pieces();
+        }
         check(now);
         finish_close();
     }
@@ -159,23 +172,28 @@ public:
         Ticks next = held_.empty() ? kNever : held_.front().first;
         if (!in_held_.empty())
             next = std::min(next, in_held_.front().first);
+        if (usb_)
+            next = std::min(next, usb_->next_packet());
         if (state_ == State::Open)
             next = std::min(next, next_close(now));
         return next;
     }
     void drop_held()
     {
-        link_.held_pieces_ -= held_.size() + in_held_.size();
+        link_.held_pieces_ -= held_.size() + in_held_.size() + (usb_ ? usb_->pieces() : 0);
+        if (usb_)
+            usb_->clear();
         held_.clear();
         in_held_.clear();
         held_cost_ = 0;
         in_held_bytes_ = 0;
         line_free_ = 0;
+        in_line_free_ = 0;
         out_free_ = 0;
         in_free_ = 0;
         link_.changed();
     }
-    std::size_t held() const { return held_.size(); }
+    std::size_t held() const { return held_.size() + (usb_ ? usb_->pieces() : 0); }
 
     /// Acts on the closing faults due by `now`.
     void check(Ticks now)
@@ -286,7 +304,7 @@ private:
     }
     void finish_close()
     {
-        if (state_ != State::Closing || !held_.empty())
+        if (state_ != State::Closing || !held_.empty() || (usb_ && usb_->bytes() > 0))
             return;
         state_ = State::Closed;
         if (conn_.hangup)
@@ -319,12 +337,12 @@ private:
         }
         if (!bytes.empty()) {
             const Ticks now = link_.clock_.now();
-            const Ticks at = link_.due(now);
+            const double at = usb_ ? link_.ready(now) : static_cast<double>(link_.due(now));
             if (link_.slice_.id == 0) {
                 place(bytes, at, now);
             } else {
                 for (std::size_t i = 0; i < bytes.size(); i += link_.slice_.slice_bytes) {
-                    const Ticks slice_at = sliced_ ? std::max(at, slice_last_ + link_.slice_.gap) : at;
+                    const double slice_at = sliced_ ? std::max(at, static_cast<double>(slice_last_ + link_.slice_.gap)) : at;
                     slice_last_ = place(bytes.substr(i, link_.slice_.slice_bytes), slice_at, now);
                     sliced_ = true;
                 }
@@ -335,8 +353,8 @@ private:
     }
 
     /// Holds `piece` until the line (serial pace, bandwidth) has carried it, from `at`; returns
-    /// when its last byte goes.
-    Ticks place(std::string_view piece, Ticks at, Ticks now)
+    /// when its last byte has left the unit.
+    Ticks place(std::string_view piece, double at, Ticks now)
     {
         const double tick_hz = link_.clock_.tick_hz();
         const auto baud = serial_ ? link_.inner_.serial_baud() : 0;
@@ -346,32 +364,100 @@ private:
             double per_byte = tick_hz / link_.bandwidth_.bytes_per_s;
             if (baud > 0)
                 per_byte = std::max(per_byte, 10.0 * tick_hz / baud);
-            double t = std::max(out_free_, static_cast<double>(at));
+            double t = std::max(out_free_, at);
             std::size_t start = 0;
             Ticks piece_at = 0;
             for (std::size_t i = 0; i < piece.size(); ++i) {
                 t += per_byte;
                 const auto byte_at = static_cast<Ticks>(std::ceil(t));
                 if (i > start && byte_at != piece_at) {
-                    push(piece_at, std::string(piece.substr(start, i - start)), now);
+                    hand(static_cast<double>(piece_at), 0, piece.substr(start, i - start), now);
                     start = i;
                 }
                 piece_at = byte_at;
             }
             out_free_ = t;
-            push(piece_at, std::string(piece.substr(start)), now);
+            hand(static_cast<double>(piece_at), 0, piece.substr(start), now);
             return piece_at;
         }
         // Faithful timing (a PtyEndpoint names its session "pty <path>"): the bytes arrive when
         // the line has carried them, 10 bits per byte at the device's baud rate, after
         // whatever it still carries.
         if (baud > 0) {
-            const double ticks = static_cast<double>(piece.size()) * 10.0 * tick_hz / baud;
-            line_free_ = std::max(line_free_, static_cast<double>(at)) + ticks;
-            at = static_cast<Ticks>(std::ceil(line_free_));
+            const double per_byte = 10.0 * tick_hz / baud;
+            const double start = std::max(line_free_, at);
+            line_free_ = start + static_cast<double>(piece.size()) * per_byte;
+            hand(start + per_byte, per_byte, piece, now);
+            return static_cast<Ticks>(std::ceil(line_free_ - 1e-9));
         }
-        push(at, std::string(piece), now);
-        return at;
+        hand(at, 0, piece, now);
+        return static_cast<Ticks>(std::ceil(at - 1e-9));
+    }
+
+    /// Bytes that have left the unit, byte i at `first + i * per_byte`: to the USB-serial chip
+    /// if there is one, else to the client once the last has come.
+    void hand(double first, double per_byte, std::string_view piece, Ticks now)
+    {
+        if (!usb_) {
+            const double last = first + static_cast<double>(piece.size() - 1) * per_byte;
+            push(static_cast<Ticks>(std::ceil(last - 1e-9)), std::string(piece), now);
+            return;
+        }
+        if (!admit(piece.size()))
+            return;
+        usb_->feed(first, per_byte, std::string(piece));
+        ++link_.held_pieces_;
+        link_.changed();
+    }
+
+    /// When `size` client bytes written now reach the unit: in the next USB frame, then as the
+    /// chip's UART carries them on a paced serial line.
+    Ticks usb_in(std::size_t size, Ticks now)
+    {
+        const auto frame = static_cast<double>(next_frame(now));
+        const auto baud = serial_ ? link_.inner_.serial_baud() : 0;
+        if (baud == 0)
+            return static_cast<Ticks>(frame);
+        in_line_free_ = std::max(in_line_free_, frame) + static_cast<double>(size) * 10.0 * link_.clock_.tick_hz() / baud;
+        return static_cast<Ticks>(std::ceil(in_line_free_ - 1e-9));
+    }
+
+    /// The tick of the first USB frame after `now`.
+    Ticks next_frame(Ticks now) const
+    {
+        const double frame = link_.model_->usb_frame_us * link_.clock_.tick_hz() / 1e6;
+        const double t = (std::floor(static_cast<double>(now) / frame + 1e-9) + 1) * frame;
+        return std::max(now, static_cast<Ticks>(std::ceil(t - 1e-9)));
+    }
+
+    /// Bytes the USB-serial chip holds, as the output bound counts them.
+    std::size_t usb_cost() const
+    {
+        return usb_ ? usb_->bytes() + usb_->pieces() * cost_of(0) : 0;
+    }
+
+    /// Whether `size` more bytes may be held for the client: held bytes, the chip's and what the
+    /// transport has queued share the connection's output bound. Beyond it they are dropped,
+    /// with a warning, as the transport would.
+    bool admit(std::size_t size)
+    {
+        const auto cost = cost_of(size);
+        const std::size_t queued = conn_.queued_bytes ? conn_.queued_bytes() : 0;
+        const std::size_t bound = conn_.max_queued_bytes > 0 ? conn_.max_queued_bytes : kMaxHeldBytes;
+        if (held_cost_ + usb_cost() + queued + cost > bound) {
+            // Nobody reads, or the faults hold more than the connection may.
+            if (dropping_ == 0 && link_.log_)
+                link_.log_->warn("{}: {} bytes held back by the wire and {} queued: dropping answers "
+                                 "beyond the connection's bound ({} bytes)",
+                                 peer_, held_cost_ + usb_cost(), queued, bound);
+            dropping_ += size;
+            link_.dropped_ += size;
+            return false;
+        }
+        if (dropping_ > 0 && link_.log_)
+            link_.log_->warn("{}: dropped {} bytes of answers held back by the wire's faults", peer_, dropping_);
+        dropping_ = 0;
+        return true;
     }
 
     std::size_t cost_of(std::size_t bytes) const
@@ -386,25 +472,9 @@ private:
             send_(bytes);
             return;
         }
-        // Held bytes and what the transport has queued share the connection's output bound.
-        const auto cost = cost_of(bytes.size());
-        const std::size_t queued = conn_.queued_bytes ? conn_.queued_bytes() : 0;
-        const std::size_t bound = conn_.max_queued_bytes > 0 ? conn_.max_queued_bytes : kMaxHeldBytes;
-        if (held_cost_ + queued + cost > bound) {
-            // Nobody reads, or the faults hold more than the connection may: as the transport
-            // would, drop rather than grow.
-            if (dropping_ == 0 && link_.log_)
-                link_.log_->warn("{}: {} bytes held back by the wire's faults and {} queued: dropping answers "
-                                 "beyond the connection's bound ({} bytes)",
-                                 peer_, held_cost_, queued, bound);
-            dropping_ += bytes.size();
-            link_.dropped_ += bytes.size();
+        if (!admit(bytes.size()))
             return;
-        }
-        if (dropping_ > 0 && link_.log_)
-            link_.log_->warn("{}: dropped {} bytes of answers held back by the wire's faults", peer_, dropping_);
-        dropping_ = 0;
-        held_cost_ += cost;
+        held_cost_ += cost_of(bytes.size());
         ++link_.held_pieces_;
         // A wire keeps its order: a later answer never overtakes an earlier one.
         held_.emplace_back(std::max(at, held_.empty() ? at : held_.back().first), std::move(bytes));
@@ -472,6 +542,7 @@ private:
     Connection conn_;
     std::unique_ptr<Session> inner_;
     bool serial_;
+    std::optional<UsbSerialBuffer> usb_;   ///< the link model's chip, on this connection
     std::string peer_;
     State state_ = State::Open;
     Ticks first_in_ = kNever;   ///< when the client's first byte came
@@ -480,6 +551,7 @@ private:
     double line_free_ = 0;   ///< tick (fractional) at which the serial line has sent all it was given
     double out_free_ = 0;    ///< the same for a bandwidth fault, device to client
     double in_free_ = 0;     ///< and client to device
+    double in_line_free_ = 0;   ///< the link model's chip has sent the unit all it was given
     bool sliced_ = false;    ///< a slice went out (slice_last_ holds when)
     Ticks slice_last_ = 0;
     std::deque<std::pair<Ticks, std::string>> held_;      ///< to the client
@@ -623,6 +695,7 @@ void Link::reset()
     baud_ = BaudMismatchFault{};
     for (auto* s : sessions_)
         s->drop_held();
+    unit_free_ = 0;
     dropped_ = 0;
     corrupted_ = 0;
 }
@@ -675,6 +748,15 @@ Ticks Link::due(Ticks now)
     if (latency_.jitter > 0)
         jitter = std::uniform_int_distribution<Ticks>(0, latency_.jitter)(latency_rng_);
     return now + latency_.latency + jitter;
+}
+
+double Link::ready(Ticks now)
+{
+    const auto at = static_cast<double>(due(now));
+    if (!model_ || model_->processing_us == 0)
+        return at;
+    unit_free_ = std::max(unit_free_, at) + model_->processing_us * clock_.tick_hz() / 1e6;
+    return unit_free_;
 }
 
 Ticks Link::next_change(Ticks now) const

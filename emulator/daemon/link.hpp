@@ -8,6 +8,7 @@
 // clock paces the line faster.
 
 #include "emulator/core/device.hpp"
+#include "emulator/core/rig_config.hpp"
 #include "models/clock.hpp"
 
 #include <spdlog/logger.h>
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -115,6 +117,13 @@ public:
     std::uint32_t line_baud() const override { return inner_.line_baud(); }
     ControlSurface* control() override { return inner_.control(); }
 
+    /// The link model (rig JSON "link"): the unit's processing time before each answer, and a
+    /// USB-serial chip (usb_serial.hpp) between it and the client, on the pty's sessions and, with
+    /// `tcp`, on TCP's too; client bytes reach the unit at the next USB frame. Sessions opened
+    /// after the call have it.
+    void set_model(const LinkModel& model) { model_ = model; }
+    const std::optional<LinkModel>& model() const { return model_; }
+
     /// Unplugged: client bytes are lost and the device's answers too (the pty stays).
     void set_unplugged(std::uint64_t id, bool unplugged);
     bool unplugged() const { return unplugged_ != 0; }
@@ -165,6 +174,9 @@ private:
     std::string filter(std::string_view bytes, bool inbound);
     /// When bytes sent now go out (now with no latency fault).
     Ticks due(Ticks now);
+    /// When an answer the unit begins now is ready: after the answers before it and its
+    /// processing time (the link model's); `due` without a model.
+    double ready(Ticks now);
     /// The active closing fault of `kind`, or nullptr.
     const ActiveClose* close_fault(CloseKind kind) const;
     /// Something moved the link's next change outside its tick.
@@ -182,6 +194,8 @@ private:
     std::vector<ActiveClose> closes_;   ///< at most one of each kind
     OverrunFault overrun_;          ///< id 0: none
     BaudMismatchFault baud_;        ///< id 0: none
+    std::optional<LinkModel> model_;
+    double unit_free_ = 0;          ///< the unit has processed every message by this tick
     std::vector<LinkSession*> sessions_;
     std::size_t held_pieces_ = 0;   ///< pieces held by all sessions together, both ways
     std::uint64_t dropped_ = 0;

@@ -136,6 +136,8 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         auto e = std::make_unique<Entry>();
         e->device = make_device(dc, world_, make_logger(dc.name, options.log_levels), *store_, events_);
         e->link = std::make_unique<Link>(*e->device, clock_, make_logger(dc.name, options.log_levels));
+        if (dc.link)
+            e->link->set_model(*dc.link);
         e->paced = std::make_unique<PacedDevice>(*e->link, ticker_, memory_trim_);
         entries_.push_back(std::move(e));
     }

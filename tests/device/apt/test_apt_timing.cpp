@@ -122,4 +122,106 @@ TEST_CASE("faithful_timing: the pty's line runs at 115200 baud 8N1, a 90-byte HW
     CHECK(pty_out.size() == 24);
 }
 
+namespace {
+
+/// A TDC001 powered up on `clock`, behind a link with `model`.
+struct ModelledTdc001 {
+    ModelledTdc001(Clock& clock, LinkModel model, bool faithful = false)
+        : world(clock), device(config(faithful), world, std::make_shared<spdlog::logger>("apt", std::make_shared<spdlog::sinks::null_sink_st>())),
+          link(device, clock)
+    {
+        world.link_all();
+        device.power_up();
+        link.set_model(model);
+    }
+    static DeviceConfig config(bool faithful)
+    {
+        auto c = tdc001();
+        c.faithful_timing = faithful;
+        return c;
+    }
+    models::World world;
+    AptDevice device;
+    Link link;
+};
+
+/// What a client reads: (tick, bytes) per write the link hands the transport.
+using Reads = std::vector<std::pair<Ticks, std::size_t>>;
+
+/// Steps `clock` tick by tick to `until`.
+void run_to(Clock& clock, Ticks until)
+{
+    while (clock.now() < until)
+        clock.advance(1);
+}
+
+} // namespace
+
+TEST_CASE("link model: a 12-byte answer comes at the USB-serial chip's latency timer, a 90-byte one in two USB packets",
+          "[device][apt][timing][link]")
+{
+    Clock clock;   // 1 kHz: a tick is a USB frame
+    ModelledTdc001 unit(clock, LinkModel{});   // 16 ms timer, 62-byte packets, 1 ms frames
+    Reads pty_reads;
+    std::string tcp_out;
+    auto pty = unit.link.open_session([&](std::string_view b) { pty_reads.emplace_back(clock.now(), b.size()); },
+                                      "pty /tmp/x/tdc001");
+    auto tcp = unit.link.open_session([&](std::string_view b) { tcp_out.append(b); }, "tcp 127.0.0.1:5000");
+
+    SECTION("12 bytes: held until the timer expires at 16 ms")
+    {
+        pty->receive(bytes("11 04 01 00 50 01"));   // MOT_REQ_POSCOUNTER: reaches the unit in frame 1
+        run_to(clock, 40);
+        CHECK(pty_reads == Reads{{16, 12}});
+        tcp->receive(bytes("11 04 01 00 50 01"));   // TCP has no chip unless the model says so
+        CHECK(tcp_out.size() == 12);
+    }
+    SECTION("90 bytes: 62 in the next frame, 28 when the restarted timer expires")
+    {
+        pty->receive(bytes("05 00 00 00 50 01"));   // HW_REQ_INFO, reaches the unit at 1 ms
+        run_to(clock, 40);
+        CHECK(pty_reads == Reads{{1, 62}, {17, 28}});
+    }
+    SECTION("the timer keeps its phase between answers")
+    {
+        run_to(clock, 20);
+        pty->receive(bytes("11 04 01 00 50 01"));   // status packets at 16, 32: the answer at 32
+        run_to(clock, 60);
+        CHECK(pty_reads == Reads{{32, 12}});
+    }
+}
+
+TEST_CASE("link model: with faithful_timing the chip's UART carries both ways at 115200 baud", "[device][apt][timing][link]")
+{
+    Clock clock;
+    ModelledTdc001 unit(clock, LinkModel{}, true);
+    Reads reads;
+    auto pty = unit.link.open_session([&](std::string_view b) { reads.emplace_back(clock.now(), b.size()); },
+                                      "pty /tmp/x/tdc001");
+    // The request: frame 1, then 6 bytes (0.52 ms) on the line: at the unit in tick 2. The
+    // answer's 62nd byte is at the chip at 2 + 62 x 0.0868 = 7.38 ms: frame 8; the last 28 go at
+    // 8 + 16.
+    pty->receive(bytes("05 00 00 00 50 01"));
+    run_to(clock, 40);
+    CHECK(reads == Reads{{8, 62}, {24, 28}});
+}
+
+TEST_CASE("link model: on TCP on request, and the unit's processing time per answer", "[device][apt][timing][link]")
+{
+    Clock clock;
+    LinkModel model;
+    model.latency_timer_ms = 1;
+    model.processing_us = 2000;
+    model.tcp = true;
+    ModelledTdc001 unit(clock, model);
+    Reads reads;
+    auto tcp = unit.link.open_session([&](std::string_view b) { reads.emplace_back(clock.now(), b.size()); },
+                                      "tcp 127.0.0.1:5000");
+    // Two requests in one write reach the unit at 1 ms; it answers the first at 3 ms, the second
+    // at 5 ms; a 1 ms timer sends each at once.
+    tcp->receive(bytes("11 04 01 00 50 01 11 04 01 00 50 01"));
+    run_to(clock, 20);
+    CHECK(reads == Reads{{3, 12}, {5, 12}});
+}
+
 } // namespace test_apt_timing

@@ -1,6 +1,7 @@
 // MCS move timing on the stepped clock, tick by tick (manual 2.4 GS, 3.3 MPA/MPR, 3.2 SCLS):
 // what the e2e tests used to check against the wall clock through the daemon.
 #include "mcs_harness.hpp"
+#include "emulator/daemon/link.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -114,6 +115,40 @@ TEST_CASE("faithful_timing: the serial line runs at 9600 baud until CB and R cha
         CHECK(h.device().serial_baud() == 0);
         CHECK(h.send(":CB115200\n:R\n") == ":BR114285\n:E-1,0\n");
         CHECK(h.device().serial_baud() == 0);
+    }
+}
+
+TEST_CASE("link model: :GP0 and its answer at 9600 baud through a USB-serial chip", "[device][mcs][timing][link]")
+{
+    auto config = mcs_device_config();
+    config.faithful_timing = true;
+    McsHarness h(config);
+    CHECK(h.send(":MPA0,1000000,0\n") == ":E0,0\n");
+    h.advance_ms(2000);
+    REQUIRE(h.send(":GP0\n") == ":P0,1000000\n");
+    rigsim::Link link{h.device(), h.clock()};
+    std::vector<std::pair<Ticks, std::string>> reads;
+    const auto read = [&](std::string_view b) { reads.emplace_back(h.clock().now(), std::string(b)); };
+    const auto t0 = h.clock().now();
+    SECTION("the line alone: 12 bytes of answer, 12.5 ms")
+    {
+        auto pty = link.open_session(read, "pty /tmp/x/mcs");
+        pty->receive(":GP0\n");
+        h.advance_ms(40);
+        REQUIRE(reads.size() == 1);
+        CHECK(reads[0] == std::make_pair(t0 + 13, std::string(":P0,1000000\n")));
+    }
+    SECTION("the chip: the request in frame 1 and 5.2 ms on the line, the answer's first 8 bytes at the timer")
+    {
+        link.set_model(rigsim::LinkModel{});
+        auto pty = link.open_session(read, "pty /tmp/x/mcs");
+        pty->receive(":GP0\n");
+        h.advance_ms(40);
+        // At the unit at 1 + 5.2 -> 7 ms; its bytes reach the chip at 8.04, 9.08, ... 19.5 ms:
+        // 8 of them by the timer at 16 ms, the last 4 at 32 ms.
+        REQUIRE(reads.size() == 2);
+        CHECK(reads[0] == std::make_pair(t0 + 16, std::string(":P0,1000")));
+        CHECK(reads[1] == std::make_pair(t0 + 32, std::string("000\n")));
     }
 }
 

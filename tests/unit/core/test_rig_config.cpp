@@ -51,7 +51,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, mcs, apt, mcs2)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, link, mcs, apt, mcs2)";
 
 } // namespace
 
@@ -661,6 +661,43 @@ TEST_CASE("rig config: faithful_timing is a boolean", "[unit][config]")
         FAIL("no error");
     } catch (const rigsim::ConfigError& e) {
         CHECK(std::string(e.what()) == "rig.json: /devices/0/faithful_timing: expected true or false, got 1");
+    }
+}
+
+TEST_CASE("rig config: link is the link model, every key optional and checked", "[unit][config]")
+{
+    const auto none = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json");
+    CHECK_FALSE(none.devices[0].link.has_value());
+    const auto dflt = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","link":{},"mcs":{"channels":[{}]}}]})", "rig.json");
+    REQUIRE(dflt.devices[0].link.has_value());
+    CHECK(dflt.devices[0].link->latency_timer_ms == 16);
+    CHECK(dflt.devices[0].link->packet_bytes == 62);
+    CHECK(dflt.devices[0].link->usb_frame_us == 1000);
+    CHECK(dflt.devices[0].link->processing_us == 0);
+    CHECK_FALSE(dflt.devices[0].link->tcp);
+    const auto set = rigsim::parse_rig_config(
+        R"({"devices":[{"name":"a","protocol":"apt","model":"KDC101","link":{"latency_timer_ms":2,"packet_bytes":510,"usb_frame_us":125,"processing_us":300,"tcp":true},"apt":{"serial_number":27000001}}]})",
+        "rig.json");
+    REQUIRE(set.devices[0].link.has_value());
+    CHECK(set.devices[0].link->latency_timer_ms == 2);
+    CHECK(set.devices[0].link->packet_bytes == 510);
+    CHECK(set.devices[0].link->usb_frame_us == 125);
+    CHECK(set.devices[0].link->processing_us == 300);
+    CHECK(set.devices[0].link->tcp);
+    const std::pair<const char*, const char*> bad[] = {
+        {R"(true)", "/devices/0/link: expected an object, got true"},
+        {R"({"latency_timer_ms":0})", "/devices/0/link/latency_timer_ms: expected an integer 1..255, got 0"},
+        {R"({"latency_timer_ms":256})", "/devices/0/link/latency_timer_ms: expected an integer 1..255, got 256"},
+        {R"({"packet_bytes":0})", "/devices/0/link/packet_bytes: expected an integer 1..4096, got 0"},
+        {R"({"usb_frame_us":100})", "/devices/0/link/usb_frame_us: expected an integer 125..1000, got 100"},
+        {R"({"processing_us":-1})", "/devices/0/link/processing_us: expected an integer 0..10000000, got -1"},
+        {R"({"tcp":"yes"})", "/devices/0/link/tcp: expected true or false, got \"yes\""},
+        {R"({"latency":16})", "/devices/0/link: unknown key \"latency\" (allowed: latency_timer_ms, packet_bytes, usb_frame_us, processing_us, tcp)"},
+    };
+    for (const auto& [link, message] : bad) {
+        INFO(link);
+        CHECK(error_of_text(std::string(R"({"devices":[{"name":"a","protocol":"apt","model":"KDC101","link":)") + link + R"(,"apt":{"serial_number":27000001}}]})") ==
+              std::string("rig.json: ") + message);
     }
 }
 
