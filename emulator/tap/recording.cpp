@@ -127,9 +127,10 @@ private:
         line["conn"] = conn;
         line["dir"] = dir_ == Direction::In ? "in" : "out";
         line["bytes"] = hex(pending_);
-        if (decoded)
+        if (decoded) {
             line["decoded"] = *decoded;
-        else
+            r_.latency(line, dir_, *decoded);
+        } else
             line["partial"] = true;   // no whole frame: garbage, or cut off
         pending_.clear();
         r_.write(line);
@@ -166,6 +167,7 @@ Recorder::~Recorder()
 Stream& Recorder::stream(std::uint64_t conn, Direction dir)
 {
     if (conn != conn_ || !in_) {
+        asked_ = false;
         in_ = std::make_unique<Stream>(*this, protocol_, Direction::In);
         out_ = std::make_unique<Stream>(*this, protocol_, Direction::Out);
         conn_ = conn;
@@ -178,6 +180,47 @@ void Recorder::bytes(std::uint64_t conn, Direction dir, std::string_view data, s
     if (conn != conn_ && in_)
         flush_partial(conn_, t_us);
     stream(conn, dir).feed(conn, data, t_us);
+}
+
+namespace {
+
+/// Whether the client's frame asks for an answer: an APT request (its name has _REQ_), every
+/// MCS command (the unit acknowledges each in its default synchronous mode, manual 2.3), an
+/// MCS2 line with a query.
+bool asks(Protocol protocol, const nlohmann::json& decoded)
+{
+    switch (protocol) {
+    case Protocol::Apt: {
+        const auto name = decoded.find("name");
+        return name != decoded.end() && name->is_string() && name->get<std::string>().find("_REQ_") != std::string::npos;
+    }
+    case Protocol::Mcs:
+        return true;
+    case Protocol::Mcs2: {
+        const auto text = decoded.find("text");
+        return text != decoded.end() && text->is_string() && text->get<std::string>().find('?') != std::string::npos;
+    }
+    }
+    return false;
+}
+
+} // namespace
+
+void Recorder::latency(nlohmann::json& line, Direction dir, const nlohmann::json& decoded)
+{
+    const auto seq = line["seq"].get<std::uint64_t>();
+    const auto t_us = line["t_us"].get<std::int64_t>();
+    if (dir == Direction::In) {
+        asked_ = asks(protocol_, decoded);
+        asked_seq_ = seq;
+        asked_t_us_ = t_us;
+        return;
+    }
+    if (!asked_)
+        return;
+    asked_ = false;
+    line["reply_to"] = asked_seq_;
+    line["latency_us"] = t_us - asked_t_us_;
 }
 
 void Recorder::flush_partial(std::uint64_t conn, std::int64_t t_us)
@@ -196,6 +239,7 @@ void Recorder::event(std::string_view name, std::uint64_t conn, std::int64_t t_u
     if (name == "disconnect") {   // the next connection's frames start afresh
         in_.reset();
         out_.reset();
+        asked_ = false;
     }
     nlohmann::json line = extra.is_object() ? extra : nlohmann::json::object();
     line["seq"] = seq_++;

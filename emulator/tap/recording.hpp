@@ -55,6 +55,10 @@ private:
     void write(const nlohmann::json& line);
     void flush_partial(std::uint64_t conn, std::int64_t t_us);
     Stream& stream(std::uint64_t conn, Direction dir);
+    /// A frame line's reply timing: a client frame that asks for an answer is remembered; the
+    /// unit's next frame on the connection is its reply, with "reply_to" (the request's seq) and
+    /// "latency_us" (from the request's line to the reply's).
+    void latency(nlohmann::json& line, Direction dir, const nlohmann::json& decoded);
 
     Protocol protocol_;
     std::FILE* file_ = nullptr;
@@ -64,6 +68,9 @@ private:
     std::uint64_t conn_ = 0;                 ///< the connection the streams below belong to
     std::unique_ptr<Stream> in_;
     std::unique_ptr<Stream> out_;
+    bool asked_ = false;                     ///< the connection's last client frame awaits its reply
+    std::uint64_t asked_seq_ = 0;
+    std::int64_t asked_t_us_ = 0;
 };
 
 } // namespace rigsim::tap

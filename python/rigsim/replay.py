@@ -2,14 +2,19 @@
 answer with the unit's (docs/conformance.md, "Replaying a recording").
 
     python3 -m rigsim.replay FILE --rig RIG.json --device NAME [--rigsimd PATH] [--junit OUT]
-                             [--ignore FIELD]... [--timeout S]
+                             [--ignore FIELD]... [--tolerance FIELD=AMOUNT]... [--timeout S]
+                             [--via tcp|pty] [--timing]
     python3 -m rigsim.replay FILE --learn --out RIG.json [--device NAME]
 
 Starts rigsimd on RIG.json with its clock paused, connects to device NAME once per connection of
-the recording, and walks the recording in order: the clock is stepped to each line's time (the
-gaps between the recorded times), each frame the client sent is sent, and each frame the unit sent
-is read from rigsim and compared with it, field by field as rigsim's codec reads both (the daemon's
-wire log decodes rigsim's; the tap decoded the unit's). Fields that may differ are ignored:
+the recording (over its pty when the client used one, else TCP; --via chooses), and walks the
+recording in order: the clock is stepped to each line's time (the gaps between the recorded
+times), each frame the client sent is sent, and each frame the unit sent is read from rigsim and
+compared with it, field by field as rigsim's codec reads both (the daemon's wire log decodes
+rigsim's; the tap decoded the unit's). A reply (a line with "reply_to") is awaited a millisecond of
+clock at a time, and its latency on rigsim's clock compared with the spread of the unit's latencies
+for the same request: one outside it by more than a millisecond is reported, and counts as a
+difference with --timing. Fields that may differ are ignored:
 serial numbers by default (DEFAULT_IGNORED), and each --ignore FIELD; --tolerance FIELD=AMOUNT
 takes numbers within AMOUNT as equal (a position read while the stage moves). Prints one line per
 difference (connection, the recording's seq and time, the message, the field, the unit's value,
@@ -22,8 +27,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import select
 import socket
 import sys
+import termios
+import tty
 from collections.abc import Sequence
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
@@ -85,31 +93,105 @@ def read_recording(path: str) -> tuple[dict[str, Any], list[dict[str, Any]]]:
                 raise RecordingError(f"{where}: bytes: not hex ({e})") from e
             _check(isinstance(obj.get("decoded"), dict) or obj.get("partial") is True, where,
                    "expected \"decoded\" (an object) or \"partial\": true")
+            if "latency_us" in obj or "reply_to" in obj:
+                _check(obj.get("dir") == "out" and isinstance(obj.get("latency_us"), int) and obj["latency_us"] >= 0
+                       and isinstance(obj.get("reply_to"), int) and 0 <= obj["reply_to"] < len(records), where,
+                       "latency_us, reply_to: expected both on an out frame, a time and an earlier line's seq")
         obj["line"] = number
         records.append(obj)
     _check(bool(header), f"{path}:1", "empty recording")
     return header, records
 
 
-def _read_frame(sock: socket.socket, protocol: str, buf: bytearray) -> bytes:
-    """One frame of `protocol` from `sock` (socket.timeout when none comes)."""
-    def need(n: int) -> None:
-        while len(buf) < n:
-            chunk = sock.recv(4096)
-            if not chunk:
-                raise ConnectionError("rigsim closed the connection")
-            buf.extend(chunk)
+class _Connection:
+    """One client connection to rigsim: a TCP socket, or the device's pty opened raw."""
+
+    def __init__(self, endpoint: Any, via: str, timeout_s: float):
+        self.timeout_s = timeout_s
+        self.sock: socket.socket | None = None
+        self.fd = -1
+        if via == "pty":
+            self.fd = os.open(endpoint.pty, os.O_RDWR | os.O_NOCTTY)
+            tty.setraw(self.fd, termios.TCSANOW)
+        else:
+            self.sock = socket.create_connection(endpoint.address, timeout=timeout_s)
+
+    def send(self, data: bytes) -> None:
+        if self.sock:
+            self.sock.sendall(data)
+            return
+        view = memoryview(data)
+        while view:
+            view = view[os.write(self.fd, view):]
+
+    def recv(self, wait_s: float) -> bytes | None:
+        """What has come within `wait_s` seconds: None when nothing has; ConnectionError when closed."""
+        fileno = self.sock.fileno() if self.sock else self.fd
+        if not select.select([fileno], [], [], wait_s)[0]:
+            return None
+        chunk = self.sock.recv(4096) if self.sock else os.read(self.fd, 4096)
+        if not chunk:
+            raise ConnectionError("rigsim closed the connection")
+        return chunk
+
+    def close(self) -> None:
+        if self.sock:
+            self.sock.close()
+        elif self.fd >= 0:
+            os.close(self.fd)
+        self.sock, self.fd = None, -1
+
+
+def _take_frame(protocol: str, buf: bytearray) -> bytes | None:
+    """The first whole frame of `protocol` in `buf`, taken out of it; None while it is not whole."""
     if protocol == "apt":
-        need(6)
+        if len(buf) < 6:
+            return None
         size = 6 + (int.from_bytes(buf[2:4], "little") if buf[4] & 0x80 else 0)
-        need(size)
+        if len(buf) < size:
+            return None
     else:
-        while b"\n" not in buf:
-            need(len(buf) + 1)
+        if b"\n" not in buf:
+            return None
         size = buf.index(b"\n") + 1
     frame = bytes(buf[:size])
     del buf[:size]
     return frame
+
+
+def _read_frame(conn: _Connection, protocol: str, buf: bytearray) -> bytes | None:
+    """One frame of `protocol` from `conn` within its timeout (None when none comes)."""
+    while (frame := _take_frame(protocol, buf)) is None:
+        chunk = conn.recv(conn.timeout_s)
+        if chunk is None:
+            return None
+        buf.extend(chunk)
+    return frame
+
+
+# A step of the clock while a reply is awaited, and how long the replay waits for rigsim's bytes
+# after each: the step's answer comes after the bytes it released are written.
+_AWAIT_STEP_MS = 1
+_AWAIT_PROBE_S = 0.01
+
+
+def _await_frame(conn: _Connection, protocol: str, buf: bytearray, rig: Rigsim,
+                 limit_ms: int) -> tuple[bytes | None, int]:
+    """A reply: the clock stepped a millisecond at a time until a whole frame has come (or
+    `limit_ms` have passed); the frame and the milliseconds stepped."""
+    stepped = 0
+    while True:
+        frame = _take_frame(protocol, buf)
+        if frame is not None:
+            return frame, stepped
+        chunk = conn.recv(_AWAIT_PROBE_S)
+        if chunk is not None:
+            buf.extend(chunk)
+            continue
+        if stepped >= limit_ms:
+            return None, stepped
+        rig.step(_AWAIT_STEP_MS)
+        stepped += _AWAIT_STEP_MS
 
 
 def _fields(decoded: dict[str, Any], protocol: str, queries: list[list[str]] | None = None) -> dict[str, Any]:
@@ -159,56 +241,110 @@ def _same(field: str, unit: Any, ours: Any, tolerance: dict[str, float]) -> bool
     return nu is not None and no is not None and abs(nu - no) <= tolerance[key]
 
 
+def _request_key(request: dict[str, Any], protocol: str) -> str:
+    """What a request is, for the spread of its replies' latencies: the APT message's name, the MCS
+    command's mnemonic, an MCS2 line's queries."""
+    decoded = request.get("decoded") or {}
+    if protocol == "mcs2":
+        text = decoded.get("text", "")
+        return "; ".join(":".join(q) for q in _mcs2_queries(text)) or str(text)
+    return str(decoded.get("command") or decoded.get("name") or request.get("bytes", ""))
+
+
+def latency_spread(records: list[dict[str, Any]], protocol: str) -> dict[str, tuple[int, int]]:
+    """The shortest and the longest reply latency (µs) the unit showed for each kind of request."""
+    by_seq = {r["seq"]: r for r in records}
+    spread: dict[str, tuple[int, int]] = {}
+    for r in records:
+        if "latency_us" in r and r.get("reply_to") in by_seq:
+            key = _request_key(by_seq[r["reply_to"]], protocol)
+            lo, hi = spread.get(key, (r["latency_us"], r["latency_us"]))
+            spread[key] = (min(lo, r["latency_us"]), max(hi, r["latency_us"]))
+    return spread
+
+
+# A reply's latency on rigsim's clock is within the unit's spread when it is no more than this
+# outside it: the replay steps the clock a millisecond at a time.
+TIMING_SLACK_US = 1000
+
+
 def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = None,
            ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0,
-           tolerance: dict[str, float] | None = None) -> tuple[list[dict[str, Any]], int]:
-    """The differences, and the number of answers compared."""
+           tolerance: dict[str, float] | None = None, via: str | None = None) -> tuple[list[dict[str, Any]], int]:
+    """The differences, and the number of answers compared. A reply whose latency on rigsim's clock
+    falls outside the unit's spread is a difference with "timing": True."""
     tolerance = tolerance or {}
     header, records = read_recording(recording)
     protocol = header["protocol"]
+    spread = latency_spread(records, protocol)
+    by_seq = {r["seq"]: r for r in records}
+    if via is None:
+        via = "pty" if str(header.get("listen", "")).startswith("pty:") else "tcp"
     with Rigsim(rig_path, rigsimd=rigsimd, args=["--paused"]) as rig:
         endpoint = rig.endpoint(device)
         if endpoint.protocol != protocol:
             raise RecordingError(f"{recording}:1: a recording of protocol {protocol}, but device {device} "
                                  f"speaks {endpoint.protocol}")
+        if via == "pty" and not endpoint.pty:
+            raise RecordingError(f"{recording}:1: the client used a pty, but device {device} has none "
+                                 "(--via tcp replays over TCP)")
         differences: list[dict[str, Any]] = []
         pairs: list[tuple[dict[str, Any], bytes | None]] = []
-        sock: socket.socket | None = None
-        conn = None
+        conn: _Connection | None = None
+        conn_id = None
         buf = bytearray()
         queries: list[list[str]] = []
-        clock_us = records[0]["t_us"] if records else 0
-        for r in records:
-            gap_ms = (r["t_us"] - clock_us) // 1000
-            if gap_ms > 0:
-                rig.step(int(gap_ms))
-                clock_us += gap_ms * 1000
-            if "event" in r:
-                if r["event"] == "disconnect" and sock:
-                    sock.close()
-                    sock = None
-                continue
-            if r["conn"] != conn or sock is None:
-                if sock:
-                    sock.close()
-                sock = socket.create_connection(endpoint.address, timeout=timeout_s)
-                conn = r["conn"]
-                buf = bytearray()
-            if r["dir"] == "in":
-                sock.sendall(r["raw"])
-                if protocol == "mcs2":
-                    queries = _mcs2_queries(r["decoded"].get("text", "")) if "decoded" in r else []
-                continue
-            if r.get("partial"):
-                continue
-            try:
-                got: bytes | None = _read_frame(sock, protocol, buf)
-            except (socket.timeout, ConnectionError):
-                got = None
-            pairs.append((dict(r, queries=queries), got))
-            queries = []
-        if sock:
-            sock.close()
+        clock_us = records[0]["t_us"] if records else 0   # the recording's time rigsim's clock is at
+        sent_us: dict[int, int] = {}   # a request's seq -> clock_us when it was sent
+        try:
+            for r in records:
+                awaited = r.get("dir") == "out" and not r.get("partial") and r.get("reply_to") in sent_us
+                gap_ms = (r["t_us"] - clock_us) // 1000
+                if gap_ms > 0 and not awaited:
+                    rig.step(int(gap_ms))
+                    clock_us += gap_ms * 1000
+                if "event" in r:
+                    if r["event"] == "disconnect" and conn:
+                        conn.close()
+                        conn = None
+                    continue
+                if r["conn"] != conn_id or conn is None:
+                    if conn:
+                        conn.close()
+                    conn = _Connection(endpoint, via, timeout_s)
+                    conn_id = r["conn"]
+                    buf = bytearray()
+                if r["dir"] == "in":
+                    conn.send(r["raw"])
+                    sent_us[r["seq"]] = clock_us
+                    if protocol == "mcs2":
+                        queries = _mcs2_queries(r["decoded"].get("text", "")) if "decoded" in r else []
+                    continue
+                if r.get("partial"):
+                    continue
+                got: bytes | None
+                try:
+                    if awaited:
+                        limit_ms = max(300, 2 * r["latency_us"] // 1000 + 100)
+                        got, stepped = _await_frame(conn, protocol, buf, rig, limit_ms)
+                        clock_us += stepped * 1000
+                        key = _request_key(by_seq[r["reply_to"]], protocol)
+                        ours = clock_us - sent_us[r["reply_to"]]
+                        lo, hi = spread[key]
+                        if got is not None and not lo - TIMING_SLACK_US <= ours <= hi + TIMING_SLACK_US:
+                            differences.append({"conn": r["conn"], "seq": r["seq"], "t_ms": r["t_us"] / 1000,
+                                                "line": r["line"], "message": key, "field": "(latency)",
+                                                "unit": f"{lo / 1000:.3f}..{hi / 1000:.3f} ms",
+                                                "rigsim": f"{ours / 1000:.0f} ms", "timing": True})
+                    else:
+                        got = _read_frame(conn, protocol, buf)
+                except (socket.timeout, ConnectionError, OSError):
+                    got = None
+                pairs.append((dict(r, queries=queries), got))
+                queries = []
+        finally:
+            if conn:
+                conn.close()
         log = rig.log(device)
         outs = [e for e in log["entries"] if e["direction"] == "out"]
         k = 0
@@ -230,6 +366,7 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                     continue
                 differences.append(dict(where, message=name, field=field, unit=unit.get(field),
                                         rigsim=ours.get(field)))
+        differences.sort(key=lambda d: int(d["seq"]))
         return differences, len(pairs)
 
 
@@ -348,7 +485,28 @@ def learn(recording: str, name: str | None = None) -> dict[str, Any]:
         {"mcs2": _learn_mcs2, "mcs": _learn_mcs, "apt": _learn_apt}[protocol](records, device)
     except RecordingError as e:
         raise RecordingError(f"{recording}: {e}") from e
+    _learn_link(header, records, device)
     return {"devices": [device]}
+
+
+def _learn_link(header: dict[str, Any], records: list[dict[str, Any]], device: dict[str, Any]) -> None:
+    """A unit on a serial line answers through a USB-serial chip, whose latency timer spreads the
+    replies to one kind of request over a window as wide as the timer (a reply waits for the
+    timer's next expiry, at any phase): the widest spread of one kind's latencies is the timer
+    (docs/config.md, "The link model"). The line's pace as well where the rate is the unit's own
+    (APT: 115200; MCS: its factory 9600)."""
+    to = str(header.get("to", ""))
+    spread = latency_spread(records, header["protocol"])
+    if not to.startswith("serial:") or not spread:
+        return
+    timer_ms = min(255, max(1, round(max(hi - lo for lo, hi in spread.values()) / 1000)))
+    link: dict[str, Any] = {"latency_timer_ms": timer_ms}
+    if not str(header.get("listen", "")).startswith("pty:"):
+        link["tcp"] = True   # the client came over TCP: the replay will too
+    device["link"] = link
+    baud = to.rsplit(",", 1)[1] if "," in to else "115200"
+    if (device["protocol"] == "apt" and baud == "115200") or (device["protocol"] == "mcs" and baud == "9600"):
+        device["faithful_timing"] = True
 
 
 def write_junit(path: str, recording: str, differences: list[dict[str, Any]], compared: int) -> None:
@@ -380,6 +538,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--timeout", type=float, default=2.0, help="seconds to wait for each answer")
     parser.add_argument("--tolerance", action="append", default=[], metavar="FIELD=AMOUNT",
                         help="numbers of FIELD within AMOUNT are equal (repeatable; MCS2: a query's keyword, POS)")
+    parser.add_argument("--via", choices=("tcp", "pty"), default=None,
+                        help="how to reach rigsim (default: its pty when the recorded client used a pty, else TCP)")
+    parser.add_argument("--timing", action="store_true",
+                        help="a reply whose latency is outside the unit's spread is a difference (exit 1)")
     try:
         args = parser.parse_args(argv)
     except SystemExit as e:
@@ -409,16 +571,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     try:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
-                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance)
+                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance, args.via)
     except RecordingError as e:
         print(f"rigsim-replay: {e}", file=sys.stderr)
         return 2
-    for d in differences:
-        print(f"conn {d['conn']} seq {d['seq']} at {d['t_ms']:.3f} ms (line {d['line']}) {d['message']}: "
+    timing = [d for d in differences if d.get("timing")]
+    if not args.timing:
+        differences = [d for d in differences if not d.get("timing")]
+    for d in differences + ([] if args.timing else timing):
+        print(f"{'timing: ' if d.get('timing') and not args.timing else ''}"
+              f"conn {d['conn']} seq {d['seq']} at {d['t_ms']:.3f} ms (line {d['line']}) {d['message']}: "
               f"{d['field']}: unit {d['unit']!r}, rigsim {d['rigsim']!r}")
     if args.junit:
         write_junit(args.junit, args.recording, differences, compared)
-    print(f"rigsim-replay: {compared} answers compared, {len(differences)} difference(s)", file=sys.stderr)
+    print(f"rigsim-replay: {compared} answers compared, {len(differences)} difference(s), "
+          f"{len(timing)} reply time(s) outside the unit's spread"
+          f"{'' if args.timing else ' (differences with --timing)'}", file=sys.stderr)
     return 1 if differences else 0
 
 

@@ -114,6 +114,8 @@ def test_apt_on_a_serial_line_through_a_pty_client(rigsim, tmp_path):
     frames = [r for r in records if "decoded" in r]
     assert frames[0]["dir"] == "in" and frames[0]["decoded"]["name"] == "MGMSG_HW_REQ_INFO"
     assert frames[1]["dir"] == "out" and frames[1]["decoded"]["name"] == "MGMSG_HW_GET_INFO"
+    assert frames[1]["reply_to"] == frames[0]["seq"]   # the reply's latency, from request to reply
+    assert frames[1]["latency_us"] == frames[1]["t_us"] - frames[0]["t_us"] and frames[1]["latency_us"] > 0
     assert bytes.fromhex(frames[1]["bytes"]) == data
     bauds = [r for r in records if r.get("event") == "baud"]
     assert [b["baud"] for b in bauds] == [9600]
@@ -305,3 +307,64 @@ def test_a_position_read_while_moving_conforms_within_a_tolerance(rigsim, rigsim
     assert run.returncode == 0, run.stdout + run.stderr
     bad = run_replay(str(record), "--rig", MCS2_RIG, "--device", "mcs2", "--tolerance", "POS=fast")
     assert bad.returncode == 2 and "--tolerance: expected FIELD=AMOUNT" in bad.stderr
+
+
+def record_apt_serial_session(rigsim, tmp_path, unit):
+    """A client on the tap's pty asking a KDC101 on a serial line (the daemon's pty, with `unit`'s
+    link model) for HW_GET_INFO and then ten positions, a few ms apart."""
+    rig = rigsim({"devices": [unit]})
+    tap, record, _ = start_tap(tmp_path, "apt", "pty:" + str(tmp_path / "tap-kdc101"),
+                               "serial:%s,115200" % rig.endpoint(unit["name"]).pty)
+    fd = os.open(str(tmp_path / "tap-kdc101"), os.O_RDWR | os.O_NOCTTY)
+    try:
+        import tty
+        tty.setraw(fd)
+        for request, size in [(0x0005, 90)] + [(0x0411, 12)] * 10:   # HW_REQ_INFO, MOT_REQ_POSCOUNTER
+            os.write(fd, struct.pack("<HBBBB", request, 1 if request == 0x0411 else 0, 0, 0x50, 0x01))
+            data = b""
+            deadline = time.time() + 5
+            while len(data) < size and time.time() < deadline:
+                data += os.read(fd, size - len(data))
+            assert len(data) == size
+            time.sleep(0.003)
+    finally:
+        os.close(fd)
+    deadline = time.monotonic() + 5   # the last reply is written as the tap passes it on
+    while record.read_text().count('"latency_us"') < 11:
+        assert time.monotonic() < deadline, record.read_text()
+        time.sleep(0.01)
+    stop_tap(tap)
+    return record
+
+
+KDC101 = {"name": "kdc101", "protocol": "apt", "model": "KDC101", "faithful_timing": True,
+          "link": {"latency_timer_ms": 1}, "apt": {"serial_number": 27000004, "stage": "Z825B"}}
+
+
+def test_reply_times_through_a_usb_serial_chip_are_recorded_learnt_and_compared(rigsim, rigsimd_path, tmp_path):
+    """The unit answers through a USB-serial chip (the link model, here a 1 ms latency timer): each
+    reply's latency is recorded; the rig learnt from the recording has the chip and replays within
+    the unit's spread; a chip whose timer is 30 ms answers outside it, a difference with --timing."""
+    record = record_apt_serial_session(rigsim, tmp_path, KDC101)
+    _, records = recording(record)
+    replies = [r for r in records if "latency_us" in r]
+    assert len(replies) == 11 and all(r["latency_us"] > 0 for r in replies)
+    learnt = tmp_path / "learnt.json"
+    run = run_replay(str(record), "--learn", "--out", str(learnt), "--device", "kdc101")
+    assert run.returncode == 0, run.stderr
+    device = json.loads(learnt.read_text())["devices"][0]
+    assert device["model"] == "KDC101" and device["faithful_timing"] is True
+    assert 1 <= device["link"]["latency_timer_ms"] <= 3 and "tcp" not in device["link"]   # replayed on the pty
+    device["apt"]["stage"] = "Z825B"
+    learnt.write_text(json.dumps({"devices": [device]}))
+    run = run_replay(str(record), "--rig", str(learnt), "--device", "kdc101", "--rigsimd", rigsimd_path, "--timing")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "11 answers compared, 0 difference(s), 0 reply time(s)" in run.stderr
+    slow = dict(KDC101, link={"latency_timer_ms": 30})
+    slow_rig = tmp_path / "slow.json"
+    slow_rig.write_text(json.dumps({"devices": [slow]}))
+    run = run_replay(str(record), "--rig", str(slow_rig), "--device", "kdc101", "--rigsimd", rigsimd_path)
+    assert run.returncode == 0, run.stdout + run.stderr   # reported, not counted without --timing
+    assert "timing: conn 1 seq" in run.stdout and "MGMSG_MOT_REQ_POSCOUNTER: (latency): unit '" in run.stdout
+    run = run_replay(str(record), "--rig", str(slow_rig), "--device", "kdc101", "--rigsimd", rigsimd_path, "--timing")
+    assert run.returncode == 1 and "(latency)" in run.stdout and "timing: " not in run.stdout
