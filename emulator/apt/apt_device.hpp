@@ -174,8 +174,12 @@ private:
     void save_to_eeprom(std::size_t bay, std::uint16_t id, std::string_view peer);
     /// Keep `m` if it is a SET that the bay's module saves (Module::saved_data).
     void remember(std::size_t bay, const msg::Message& m);
-    /// Replay what the state file holds for this device (power-up from non-volatile memory).
+    /// Replay the rig's "eeprom" entries, then what the state file holds for this device
+    /// (power-up from non-volatile memory). A rig entry the unit refuses is a ConfigError.
     void restore_from_eeprom();
+    /// Replays one entry (key "bay0/0x0413", its data in hex) from `from` ("rig", "state file":
+    /// the peer of the request) as if a client had sent the SET; why it is not one the bay saves and takes, if not.
+    std::optional<std::string> restore_entry(const std::string& key, const std::string& hex, const char* from);
     void broadcast(const std::string& frame, std::vector<std::string> notes = {});
     /// Note on the frame being handled (the wire log's entry for it).
     void note(std::string text) { notes_.push_back(std::move(text)); }

@@ -1,4 +1,5 @@
 #include "emulator/apt/config.hpp"
+#include "emulator/apt/eeprom_entries.hpp"
 
 #include "emulator/apt/catalogue.hpp"
 #include "emulator/apt/shipped_stages.hpp"
@@ -22,8 +23,9 @@ namespace {
 using nlohmann::json;
 
 /// Every key an "apt" object may hold; which ones a device has depends on its model's kind.
-constexpr std::array<std::string_view, 8> kAptKeys{"stage",    "bays",  "serial_number",          "solenoid",
-                                                    "actuator", "gauge", "hardware_max_voltage_v", "flipper"};
+constexpr std::array<std::string_view, 9> kAptKeys{"stage",    "bays",  "serial_number",          "solenoid",
+                                                    "actuator", "gauge", "hardware_max_voltage_v", "flipper",
+                                                    "eeprom"};
 constexpr std::array<std::string_view, 1> kSolenoidKeys{"interlock_fitted"};
 constexpr std::array<std::string_view, 1> kFlipperKeys{"position"};
 constexpr std::array<std::string_view, 1> kCardKeys{"channels"};
@@ -41,20 +43,20 @@ std::vector<std::string_view> keys_of(const ControllerModel& c)
     switch (c.kind) {
     case UnitKind::Motor:
         if (!c.built_in_stage.empty())   // an integrated unit: its stage is built in
-            return {"serial_number"};
-        return {"stage", "bays", "serial_number"};
+            return {"serial_number", "eeprom"};
+        return {"stage", "bays", "serial_number", "eeprom"};
     case UnitKind::Solenoid:
-        return {"solenoid", "serial_number"};
+        return {"solenoid", "serial_number", "eeprom"};
     case UnitKind::Piezo:
-        if (c.rack)
+        if (c.rack)   // its cards save nothing
             return {"hardware_max_voltage_v", "bays", "serial_number"};
-        return {"actuator", "serial_number"};
+        return {"actuator", "serial_number", "eeprom"};
     case UnitKind::StrainGauge:
-        return {"gauge", "serial_number"};
+        return {"gauge", "serial_number", "eeprom"};
     case UnitKind::Flipper:
-        return {"flipper", "serial_number"};
+        return {"flipper", "serial_number", "eeprom"};
     case UnitKind::Polariser:
-        return {"serial_number"};
+        return {"serial_number", "eeprom"};
     case UnitKind::PiezoMotor:
         return {"actuators", "serial_number"};
     }
@@ -374,6 +376,28 @@ StrainGaugeConfig load_gauge(const ConfigReader& r, const json& g, const std::st
     return gauge;
 }
 
+/// The "eeprom" object: state file entries, each "bay<N>/0x<id>" (the form eeprom_key writes)
+/// with its data in hex; whether the unit saves and takes each, its device checks at power-up.
+std::map<std::string, std::string> load_eeprom(const ConfigReader& r, const json& e, const std::string& pointer)
+{
+    if (!e.is_object())
+        r.fail(pointer, "expected an object of \"bay<N>/0x<id>\": \"<hex data>\" entries, got " + describe(e));
+    std::map<std::string, std::string> out;
+    for (const auto& item : e.items()) {
+        const auto at = pointer_to(pointer, item.key());
+        if (!parse_eeprom_key(item.key()))
+            r.fail(at, "expected a key bay<N>/0x<4 lower-case hex digits> (a state file's), got " + quote(item.key()));
+        if (!item.value().is_string())
+            r.fail(at, "expected a string of hex digits, got " + describe(item.value()));
+        std::string data;
+        std::string why;
+        if (!from_hex(item.value().get<std::string>(), data, why))
+            r.fail(at, why);
+        out.emplace(item.key(), item.value().get<std::string>());
+    }
+    return out;
+}
+
 /// Every key of `a` is one of the model's: a key of another kind of unit names what this
 /// one holds instead.
 void check_apt_keys(const ConfigReader& r, const json& a, const std::string& apt_pointer,
@@ -435,6 +459,8 @@ AptConfig load_apt(const ConfigReader& r, const json& a, const std::string& apt_
         apt.serial_number = static_cast<std::uint32_t>(
             r.get_int(*sn, k.at("serial_number"), lo, lo + 999'999, " (the model's serial prefix)"));
     }
+    if (const auto* e = k.find("eeprom"))
+        apt.eeprom = load_eeprom(r, *e, k.at("eeprom"));
     return apt;
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,11 @@ struct AptConfig {
     int hardware_max_voltage_v = 150; ///< BPC30x amplifier's maximum: 75, 100 or 150
     /// BPC30x: bay 0, 1, ...; the loader gives a rack without "bays" a default bay per slot.
     std::vector<PiezoBayConfig> piezo_bays;
+    /// The unit's non-volatile memory at power-up ("eeprom": the state file's entries, "bay0/0x0413"
+    /// -> the SET's data in hex): replayed before the state file's own, as if a client had sent
+    /// them. The loader checks each key and value's form; the device, at power-up, that its bay
+    /// saves the SET and takes it (else a ConfigError naming the entry).
+    std::map<std::string, std::string> eeprom;
 };
 
 /// The APT section of `device` (a default one if it has none yet).

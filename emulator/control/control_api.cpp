@@ -246,7 +246,8 @@ HttpReply ControlApi::get_device(const ControlledDevice& d)
         state["link"] = json{{"unplugged", d.link->unplugged()},
                              {"dropped_bytes", d.link->dropped()},
                              {"corrupted_bytes", d.link->corrupted()},
-                             {"held_answers", d.link->held()}};
+                             {"held_answers", d.link->held()},
+                             {"held_requests", d.link->held_requests()}};
     return ok(state);
 }
 

@@ -194,6 +194,7 @@ public:
         link_.changed();
     }
     std::size_t held() const { return held_.size() + (usb_ ? usb_->pieces() : 0); }
+    std::size_t held_requests() const { return in_held_.size(); }
 
     /// Acts on the closing faults due by `now`.
     void check(Ticks now)
@@ -705,6 +706,14 @@ std::size_t Link::held() const
     std::size_t n = 0;
     for (const auto* s : sessions_)
         n += s->held();
+    return n;
+}
+
+std::size_t Link::held_requests() const
+{
+    std::size_t n = 0;
+    for (const auto* s : sessions_)
+        n += s->held_requests();
     return n;
 }
 

@@ -152,6 +152,8 @@ public:
     std::uint64_t dropped() const { return dropped_; }
     std::uint64_t corrupted() const { return corrupted_; }
     std::size_t held() const;
+    /// Client writes held back from the device now (a bandwidth fault, the link model's USB frame).
+    std::size_t held_requests() const;
     /// Back to a fresh wire (POST /api/reset): every fault ended, held bytes dropped, the line
     /// idle, the counters at 0.
     void reset();

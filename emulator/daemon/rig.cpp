@@ -200,8 +200,6 @@ std::vector<std::pair<std::size_t, std::size_t>> Rig::contacts() const
 
 void check_rig_devices(const RigConfig& config)
 {
-    if (!config.kinematics)
-        return;
     Clock clock(config.tick_hz);
     models::World world(clock);
     StateStore store;
@@ -209,7 +207,12 @@ void check_rig_devices(const RigConfig& config)
     std::vector<std::unique_ptr<Device>> devices;
     for (const auto& dc : config.devices)   // loggers without sinks, not the daemon's
         devices.push_back(make_device(dc, world, std::make_shared<spdlog::logger>(dc.name), store, events));
-    build_kinematics(*config.kinematics, surfaces_of(config, devices), world);
+    // As the rig does: an APT unit's power-up replays its rig "eeprom", whose entries the unit
+    // may refuse.
+    world.link_all();
+    power_up_in_phases(devices, [](auto& d) -> Device& { return *d; });
+    if (config.kinematics)
+        build_kinematics(*config.kinematics, surfaces_of(config, devices), world);
 }
 
 Rig::~Rig()

@@ -123,9 +123,10 @@ private:
     models::CollisionWatch* collisions_ = nullptr;
 };
 
-/// What --check-config checks beyond the loader when the rig has frames: every device built in
-/// a world of its own (no endpoints, no state file, nothing served) and every joint bound to its
-/// channel (emulator/daemon/rig_kinematics.hpp). Throws ConfigError.
+/// What --check-config checks beyond the loader: every device built in a world of its own (no
+/// endpoints, no state file, nothing served) and powered up (an APT unit's rig "eeprom" replayed),
+/// and when the rig has frames, every joint bound to its channel
+/// (emulator/daemon/rig_kinematics.hpp). Throws ConfigError.
 void check_rig_devices(const RigConfig& config);
 
 /// The address a client on this machine connects to for a socket bound to `bound`: loopback

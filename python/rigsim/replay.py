@@ -270,7 +270,8 @@ TIMING_SLACK_US = 1000
 
 def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = None,
            ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0,
-           tolerance: dict[str, float] | None = None, via: str | None = None) -> tuple[list[dict[str, Any]], int]:
+           tolerance: dict[str, float] | None = None, via: str | None = None,
+           timing_slack_us: int = TIMING_SLACK_US) -> tuple[list[dict[str, Any]], int]:
     """The differences, and the number of answers compared. A reply whose latency on rigsim's clock
     falls outside the unit's spread is a difference with "timing": True."""
     tolerance = tolerance or {}
@@ -331,7 +332,7 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                         key = _request_key(by_seq[r["reply_to"]], protocol)
                         ours = clock_us - sent_us[r["reply_to"]]
                         lo, hi = spread[key]
-                        if got is not None and not lo - TIMING_SLACK_US <= ours <= hi + TIMING_SLACK_US:
+                        if got is not None and not lo - timing_slack_us <= ours <= hi + timing_slack_us:
                             differences.append({"conn": r["conn"], "seq": r["seq"], "t_ms": r["t_us"] / 1000,
                                                 "line": r["line"], "message": key, "field": "(latency)",
                                                 "unit": f"{lo / 1000:.3f}..{hi / 1000:.3f} ms",
@@ -461,17 +462,46 @@ def _learn_mcs(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
     device["mcs"] = section
 
 
+# The parameter blocks a motor controller keeps in its EEPROM (MOT_SET_EEPROMPARAMS, p. 60), whose
+# GET a learnt rig's "eeprom" replays as the SET (its ID is the GET's less 2): MotorModule::Saved
+# in emulator/apt/motor_module.hpp.
+_MOTOR_MODELS = ("TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "K10CR1", "LTS150", "LTS300", "KBD101")
+_MOTOR_SAVED = tuple("MGMSG_MOT_GET_" + n for n in (
+    "VELPARAMS", "JOGPARAMS", "GENMOVEPARAMS", "MOVERELPARAMS", "MOVEABSPARAMS", "HOMEPARAMS", "LIMSWITCHPARAMS",
+    "DCPIDPARAMS", "AVMODES", "POTPARAMS", "BUTTONPARAMS", "PMDPOSITIONLOOPPARAMS", "PMDMOTOROUTPUTPARAMS",
+    "PMDTRACKSETTLEPARAMS", "PMDPROFILEMODEPARAMS", "PMDCURRENTLOOPPARAMS", "PMDSETTLEDCURRENTLOOPPARAMS",
+    "PMDSTAGEAXISPARAMS"))
+
+
 def _learn_apt(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
+    """The model and serial number (HW_GET_INFO), and, for a motor controller, each parameter block
+    the client read before it set it: the unit's power-up values, as its EEPROM (apt.eeprom)."""
+    section: dict[str, Any] = {}
+    eeprom: dict[str, str] = {}
+    set_first: set[str] = set()   # blocks the client set before reading them: not the unit's own
     for r in records:
         decoded = r.get("decoded") or {}
-        if r.get("dir") == "out" and decoded.get("name") == "MGMSG_HW_GET_INFO":
+        name = str(decoded.get("name", ""))
+        if r.get("dir") == "in" and "_SET_" in name:
+            set_first.add(name.replace("_SET_", "_GET_"))
+        if r.get("dir") != "out":
+            continue
+        if name == "MGMSG_HW_GET_INFO" and "model" not in device:
             fields = decoded.get("fields") or {}
             if isinstance(fields.get("model_number"), str):
                 device["model"] = fields["model_number"]
             if isinstance(fields.get("serial_number"), int):
-                device["apt"] = {"serial_number": fields["serial_number"]}
-            return
-    raise RecordingError("no HW_GET_INFO answer in the recording: the unit's model is not known")
+                section["serial_number"] = fields["serial_number"]
+        elif name in _MOTOR_SAVED and name not in set_first and len(r["raw"]) > 6:
+            source = int(str(decoded.get("source", "0x50")), 16)
+            bay = source - 0x21 if 0x21 <= source <= 0x2A else 0
+            key = "bay%d/0x%04x" % (bay, int(str(decoded.get("id")), 16) - 2)
+            eeprom.setdefault(key, r["raw"][6:].hex())
+    if "model" not in device:
+        raise RecordingError("no HW_GET_INFO answer in the recording: the unit's model is not known")
+    if eeprom and device["model"] in _MOTOR_MODELS:
+        section["eeprom"] = eeprom
+    device["apt"] = section
 
 
 def learn(recording: str, name: str | None = None) -> dict[str, Any]:
@@ -542,6 +572,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="how to reach rigsim (default: its pty when the recorded client used a pty, else TCP)")
     parser.add_argument("--timing", action="store_true",
                         help="a reply whose latency is outside the unit's spread is a difference (exit 1)")
+    parser.add_argument("--timing-slack", type=float, default=TIMING_SLACK_US / 1000, metavar="MS",
+                        help="how far outside the unit's spread a reply may be, in ms (default 1: the replay's step)")
     try:
         args = parser.parse_args(argv)
     except SystemExit as e:
@@ -571,7 +603,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     try:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
-                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance, args.via)
+                                       list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance, args.via,
+                                       round(args.timing_slack * 1000))
     except RecordingError as e:
         print(f"rigsim-replay: {e}", file=sys.stderr)
         return 2

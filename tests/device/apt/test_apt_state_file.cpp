@@ -156,6 +156,53 @@ TEST_CASE("state file: entries of a bay the device lacks, of another channel or 
     CHECK(f.store().get("rack", "bay0/0x0413") != nullptr);
 }
 
+TEST_CASE("rig eeprom: apt.eeprom holds the unit's power-up parameters, under what the state file saved",
+          "[device][apt][eeprom][state]")
+{
+    auto config = tdc001();
+    config.source = "rig.json";
+    config.pointer = "/devices/0";
+    config_of(config).eeprom = {{"bay0/0x0413", kVelParams_acc16_max4096}, {"bay0/0x043a", "010000000d00"}};
+    {
+        AptHarness h(config);
+        CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 10 00 00 00 00 10 00 00");
+        CHECK(h.send("3B 04 01 00 50 01") == "3C 04 06 00 81 50 01 00 00 00 0D 00");   // backlash 851,968: the rig's
+    }
+    {
+        // What a client saved since (the state file) is laid over the rig's memory.
+        StateFileFixture f(R"({"cube": {"bay0/0x0413": "0100000000002000000000200000"}})");
+        AptHarness h(config, &f.store());
+        CHECK(h.send("14 04 01 00 50 01") == "15 04 0E 00 81 50 01 00 00 00 00 00 20 00 00 00 00 20 00 00");
+        CHECK(h.send("3B 04 01 00 50 01") == "3C 04 06 00 81 50 01 00 00 00 0D 00");
+    }
+}
+
+TEST_CASE("rig eeprom: an entry the unit does not save or take is a config error naming its pointer",
+          "[device][apt][eeprom][state]")
+{
+    const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+        {{"bay0/0x0453", "0100a0860100"},
+         "rig.json: /devices/0/apt/eeprom/bay0~10x0453: MGMSG_MOT_MOVE_ABSOLUTE is not a parameter SET that MOT_SET_EEPROMPARAMS saves"},
+        {{"bay1/0x0413", kVelParams_acc16_max4096},
+         "rig.json: /devices/0/apt/eeprom/bay1~10x0413: no bay 1 (the TDC001 has bay 0 only)"},
+        {{"bay0/0x0413", "0100"},
+         "rig.json: /devices/0/apt/eeprom/bay0~10x0413: 2 data bytes, MGMSG_MOT_SET_VELPARAMS has 14"},
+        {{"bay0/0x0413", "0100000000000000000000100000"},   // acceleration 0
+         "rig.json: /devices/0/apt/eeprom/bay0~10x0413: the bay ignores this MGMSG_MOT_SET_VELPARAMS (its warning says why)"},
+        {{"bay0/0x0413", "0200000000001000000000100000"},
+         "rig.json: /devices/0/apt/eeprom/bay0~10x0413: channel 2 in the data; bay 0 is channel 1"},
+    };
+    for (const auto& [entry, message] : cases) {
+        INFO(entry.first << " " << entry.second);
+        auto config = tdc001();
+        config.source = "rig.json";
+        config.pointer = "/devices/0";
+        config_of(config).eeprom = {{entry.first, entry.second}};
+        AptHarness h(config);
+        CHECK_THROWS_WITH(h.device(), message);
+    }
+}
+
 TEST_CASE("MOT_SET_EEPROMPARAMS saves only the parameter SETs of the manual, never the live position",
           "[device][apt][eeprom][state]")
 {

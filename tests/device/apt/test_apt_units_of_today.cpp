@@ -237,7 +237,7 @@ TEST_CASE("rig loader: the integrated units name no stage, have the later genera
           "[device][apt][today][config]")
 {
     CHECK(load_error(unit("K10CR1", {{"stage", "PRM1-Z8"}}))
-          == "rig.json: /devices/0/apt/stage: K10CR1 is an integrated stage: its keys are serial_number");
+          == "rig.json: /devices/0/apt/stage: K10CR1 is an integrated stage: its keys are serial_number, eeprom");
     auto issue3 = unit("LTS150");
     issue3["firmware"] = "issue-3";
     CHECK(load_error(issue3) == "rig.json: /devices/0/firmware: the LTS150 was made after the 2012 manual: it has the "
@@ -328,7 +328,7 @@ TEST_CASE("rig loader: a flip mount's \"flipper\" object holds its power-up posi
     CHECK(load_error(unit("MFF101", {{"flipper", {{"position", 3}}}}))
           == "rig.json: /devices/0/apt/flipper/position: expected an integer 1..2, got 3");
     CHECK(load_error(unit("MFF101", {{"stage", "DDS100"}}))
-          == "rig.json: /devices/0/apt/stage: MFF101 is a flip mount: its keys are flipper, serial_number");
+          == "rig.json: /devices/0/apt/stage: MFF101 is a flip mount: its keys are flipper, serial_number, eeprom");
 }
 
 TEST_CASE("MPC320: paddles addressed as bits 1, 2, 4, moved at POL_PARAMS' velocity, each move ending with the "

@@ -142,16 +142,16 @@ TEST_CASE("apt config: each refusal of the new unit keys names its pointer", "[u
     };
     const Row rows[]{
         // Keys of another kind of unit.
-        {"TPZ001", {{"stage", "MTS50-Z8"}}, "/stage: TPZ001 is a piezo controller: its keys are actuator, serial_number"},
+        {"TPZ001", {{"stage", "MTS50-Z8"}}, "/stage: TPZ001 is a piezo controller: its keys are actuator, serial_number, eeprom"},
         {"TDC001", {{"actuator", json::object()}},
-         "/actuator: TDC001 is a motor controller: its keys are stage, bays, serial_number"},
+         "/actuator: TDC001 is a motor controller: its keys are stage, bays, serial_number, eeprom"},
         {"BBD203", {{"hardware_max_voltage_v", 150}, {"bays", {"MLS203-X"}}},
-         "/hardware_max_voltage_v: BBD203 is a motor rack: its keys are stage, bays, serial_number"},
-        {"TSC001", {{"gauge", json::object()}}, "/gauge: TSC001 is a solenoid controller: its keys are solenoid, serial_number"},
+         "/hardware_max_voltage_v: BBD203 is a motor rack: its keys are stage, bays, serial_number, eeprom"},
+        {"TSC001", {{"gauge", json::object()}}, "/gauge: TSC001 is a solenoid controller: its keys are solenoid, serial_number, eeprom"},
         {"BPC303", {{"actuator", json::object()}},
          "/actuator: BPC303 is a piezo rack: its keys are hardware_max_voltage_v, bays, serial_number"},
-        {"KSG101", {{"solenoid", json::object()}}, "/solenoid: KSG101 is a strain gauge reader: its keys are gauge, serial_number"},
-        {"TPZ001", {{"colour", 1}}, ": unknown key \"colour\" (allowed: actuator, serial_number)"},
+        {"KSG101", {{"solenoid", json::object()}}, "/solenoid: KSG101 is a strain gauge reader: its keys are gauge, serial_number, eeprom"},
+        {"TPZ001", {{"colour", 1}}, ": unknown key \"colour\" (allowed: actuator, serial_number, eeprom)"},
         // Solenoid.
         {"KSC101", {{"solenoid", {{"interlock_fitted", 1}}}}, "/solenoid/interlock_fitted: expected true or false, got 1"},
         {"KSC101", {{"solenoid", {{"interlock", true}}}}, "/solenoid: unknown key \"interlock\" (allowed: interlock_fitted)"},
@@ -187,6 +187,14 @@ TEST_CASE("apt config: each refusal of the new unit keys names its pointer", "[u
         {"TSG001", {{"gauge", {{"stiffness_n_per_um", 0}}}},
          "/gauge/stiffness_n_per_um: expected a number > 0 and <= 1000000, got 0"},
         {"TSG001", {{"gauge", {{"zero_time_ms", -1}}}}, "/gauge/zero_time_ms: expected an integer 0..60000, got -1"},
+        // The unit's EEPROM: state file entries (the device checks the rest at power-up).
+        {"TDC001", {{"eeprom", 1}}, "/eeprom: expected an object of \"bay<N>/0x<id>\": \"<hex data>\" entries, got 1"},
+        {"TDC001", {{"eeprom", {{"bay0/0x413", "00"}}}},
+         "/eeprom/bay0~10x413: expected a key bay<N>/0x<4 lower-case hex digits> (a state file's), got \"bay0/0x413\""},
+        {"TDC001", {{"eeprom", {{"bay0/0x0413", 5}}}}, "/eeprom/bay0~10x0413: expected a string of hex digits, got 5"},
+        {"TDC001", {{"eeprom", {{"bay0/0x0413", "0g"}}}}, "/eeprom/bay0~10x0413: data is not hex (character 2 is 'g')"},
+        {"BPC303", {{"eeprom", json::object()}},
+         "/eeprom: BPC303 is a piezo rack: its keys are hardware_max_voltage_v, bays, serial_number"},
         // Serial numbers keep the model's prefix (D-1).
         {"TPZ001", {{"serial_number", 29000001}},
          "/serial_number: expected an integer 81000000..81999999 (the model's serial prefix), got 29000001"},
