@@ -230,6 +230,55 @@ def _rule(field: str, rules: dict[str, Any] | Sequence[str]) -> str | None:
     return None
 
 
+def _is_position(field: str) -> bool:
+    """A stage's position: APT's and MCS's `position` (MCS's `angle`), an MCS2 channel's `POS`."""
+    return field in ("position", "angle") or field.split(":")[-1] == "POS"
+
+
+def _position_key(fields: dict[str, Any], field: str) -> str:
+    """Whose position `field` of an answer is: its channel and the field."""
+    channel = fields.get("chan_ident", fields.get("channelIndex", ""))
+    return f"{channel}/{field}"
+
+
+def position_speeds(records: list[dict[str, Any]], protocol: str) -> dict[str, float]:
+    """How fast each stage's position may change, in its units per µs: the fastest change between
+    two consecutive readings of the unit's, or (MCS2) the fastest velocity the client set
+    (`:CHAN#:VEL`, pm/s)."""
+    speed: dict[str, float] = {}
+    last: dict[str, tuple[int, float]] = {}
+    queries: list[list[str]] = []
+    for r in records:
+        if "decoded" not in r:
+            continue
+        if r["dir"] == "in":
+            if protocol == "mcs2":
+                commands = _mcs2_commands(r["decoded"].get("text", ""))
+                queries = [p for p, q, _ in commands if q]
+                for path, query, argument in commands:
+                    v = _number(argument)
+                    if not query and len(path) == 2 and path[1] == "VEL" and v is not None:
+                        key = f"/{path[0]}:POS"
+                        speed[key] = max(speed.get(key, 0.0), abs(v) / 1e6)
+            continue
+        fields = _fields(r["decoded"], protocol, queries)
+        queries = []
+        for field, value in fields.items():
+            n = _number(value)
+            if not _is_position(field) or n is None:
+                continue
+            key = _position_key(fields, field)
+            if key in last and r["t_us"] > last[key][0]:
+                speed[key] = max(speed.get(key, 0.0), abs(n - last[key][1]) / (r["t_us"] - last[key][0]))
+            last[key] = (r["t_us"], n)
+    return speed
+
+
+# What the replay's clock may be off from the unit's when a reading is taken: the part of a
+# millisecond its steps do not reproduce.
+POSITION_WINDOW_US = 1000
+
+
 def _same(field: str, unit: Any, ours: Any, tolerance: dict[str, float]) -> bool:
     """Equal, or two numbers within the tolerance a rule gives the field."""
     if unit == ours:
@@ -346,6 +395,7 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
         finally:
             if conn:
                 conn.close()
+        speeds = position_speeds(records, protocol)
         log = rig.log(device)
         outs = [e for e in log["entries"] if e["direction"] == "out"]
         k = 0
@@ -363,7 +413,13 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
             if got == r["raw"]:
                 continue
             for field in sorted(set(unit) | set(ours)):
-                if _rule(field, ignore) is not None or _same(field, unit.get(field), ours.get(field), tolerance):
+                rules = tolerance
+                if _is_position(field) and _rule(field, tolerance) is None:
+                    # A position read while the stage moves: within what it covers in the window
+                    # and the reply's own latency, at its fastest (--tolerance FIELD=0 turns it off).
+                    window = POSITION_WINDOW_US + int(r.get("latency_us", 0))
+                    rules = dict(tolerance, **{field: speeds.get(_position_key(unit, field), 0.0) * window})
+                if _rule(field, ignore) is not None or _same(field, unit.get(field), ours.get(field), rules):
                     continue
                 differences.append(dict(where, message=name, field=field, unit=unit.get(field),
                                         rigsim=ours.get(field)))
@@ -378,18 +434,19 @@ _ALIASES = {"PROPERTY": "PROP", "DEVICE": "DEV", "SNUMBER": "SNUM", "NOCHANNELS"
             "CURRENT": "CURR", "SYSTEM": "SYST", "ERROR": "ERR"}
 
 
-def _mcs2_queries(text: str) -> list[list[str]]:
-    """The queries of one MCS2 message as keyword paths in short upper case (`CHAN0`, `PTYP`), the
-    optional root dropped; relative commands resolved at the level of the one before (6.2.3)."""
+def _mcs2_commands(text: str) -> list[tuple[list[str], bool, str]]:
+    """The commands of one MCS2 message: each keyword path in short upper case (`CHAN0`, `PTYP`),
+    the optional root dropped, relative commands resolved at the level of the one before (6.2.3);
+    whether it is a query; its argument text."""
     level: list[str] = []
-    out: list[list[str]] = []
+    out: list[tuple[list[str], bool, str]] = []
     for command in text.split(";"):
         command = command.strip()
         if not command or command.startswith("*"):
             if command.upper().startswith("*IDN?"):
-                out.append(["*IDN"])
+                out.append((["*IDN"], True, ""))
             continue
-        head = command.split(" ", 1)[0]
+        head, _, argument = command.partition(" ")
         query = head.endswith("?")
         head = head.rstrip("?")
         words = []
@@ -400,9 +457,13 @@ def _mcs2_queries(text: str) -> list[list[str]]:
             words = words[1:]
         path = words if command.startswith(":") or not level else level + words
         level = path[:-1]
-        if query:
-            out.append(path)
+        out.append((path, query, argument.strip()))
     return out
+
+
+def _mcs2_queries(text: str) -> list[list[str]]:
+    """The queries of one MCS2 message as keyword paths (_mcs2_commands)."""
+    return [path for path, query, _ in _mcs2_commands(text) if query]
 
 
 def _learn_mcs2(records: list[dict[str, Any]], device: dict[str, Any]) -> None:

@@ -309,6 +309,26 @@ def test_a_position_read_while_moving_conforms_within_a_tolerance(rigsim, rigsim
     assert bad.returncode == 2 and "--tolerance: expected FIELD=AMOUNT" in bad.stderr
 
 
+def test_a_position_read_while_moving_is_allowed_what_the_stage_covers_in_a_millisecond(rigsim):
+    """Without --tolerance, a position may differ by what the stage covers in the replay clock's
+    millisecond and the reply's latency, at the fastest the unit's own readings of it changed or
+    (MCS2) the fastest velocity the client set."""
+    sys.path.insert(0, os.path.join(SOURCE, "python"))
+    from rigsim.replay import position_speeds
+
+    def out(seq, t_us, decoded):
+        return {"seq": seq, "t_us": t_us, "conn": 1, "dir": "out", "decoded": decoded}
+
+    def pos(seq, t_us, chan, position):
+        return out(seq, t_us, {"name": "MGMSG_MOT_GET_POSCOUNTER", "fields": {"chan_ident": chan, "position": position}})
+
+    apt = [pos(0, 0, 1, 0), pos(1, 10_000, 1, 20_000), pos(2, 30_000, 1, 30_000), pos(3, 30_000, 2, 5)]
+    assert position_speeds(apt, "apt") == {"1/position": 2.0}   # 20,000 counts in 10 ms: 2 per µs
+    mcs2 = [{"seq": 0, "t_us": 0, "conn": 1, "dir": "in", "decoded": {"text": ":CHAN0:MMOD 0;VEL 3000000000"}},
+            {"seq": 1, "t_us": 5, "conn": 1, "dir": "in", "decoded": {"text": ":CHAN1:VEL 1000000"}}]
+    assert position_speeds(mcs2, "mcs2") == {"/CHAN0:POS": 3000.0, "/CHAN1:POS": 1.0}   # pm per µs
+
+
 def record_apt_serial_session(rigsim, tmp_path, unit, requests=((0x0005, 90),) + ((0x0411, 12),) * 10):
     """A client on the tap's pty asking a KDC101 on a serial line (the daemon's pty, with `unit`'s
     link model) for `requests` (header-only requests for channel 1 and their answers' sizes: by
