@@ -353,10 +353,10 @@ void AptDevice::power_cycle(const PowerCycle& how)
     frozen_ = false;
     host_ = kHost;
     last_set_.clear();
-    if (how.keep_saved)
-        restore_from_eeprom();
-    else if (store_)
+    // The unit's own memory (the rig's "eeprom") always comes back; what clients saved only when kept.
+    if (!how.keep_saved && store_)
         store_->erase(config_.name);
+    restore_from_eeprom(false);
     log_->info("control: power cycle ({} saved settings{})", how.keep_saved ? "kept" : "erased",
                how.restore_positions ? ", stages back at their start positions" : "");
     flush();

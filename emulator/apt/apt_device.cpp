@@ -152,7 +152,7 @@ void AptDevice::power_up()
     linked_ = true;
     for (std::size_t bay = 0; bay < modules_.size(); ++bay)
         connect_feedback(bay);
-    restore_from_eeprom();
+    restore_from_eeprom(true);
 }
 
 int AptDevice::power_up_phase() const

@@ -175,8 +175,9 @@ private:
     /// Keep `m` if it is a SET that the bay's module saves (Module::saved_data).
     void remember(std::size_t bay, const msg::Message& m);
     /// Replay the rig's "eeprom" entries, then what the state file holds for this device
-    /// (power-up from non-volatile memory). A rig entry the unit refuses is a ConfigError.
-    void restore_from_eeprom();
+    /// (power-up from non-volatile memory). A rig entry the unit refuses is a ConfigError at the
+    /// first power-up (`first`), a warning at a power cycle (the rig was taken at start).
+    void restore_from_eeprom(bool first);
     /// Replays one entry (key "bay0/0x0413", its data in hex) from `from` ("rig", "state file":
     /// the peer of the request) as if a client had sent the SET; why it is not one the bay saves and takes, if not.
     std::optional<std::string> restore_entry(const std::string& key, const std::string& hex, const char* from);

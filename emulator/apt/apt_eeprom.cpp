@@ -93,7 +93,7 @@ std::optional<std::string> AptDevice::restore_entry(const std::string& key, cons
     return std::nullopt;
 }
 
-void AptDevice::restore_from_eeprom()
+void AptDevice::restore_from_eeprom(bool first)
 {
     // Keys sort by message ID, but a mode may need a setting of a higher ID: a closed loop
     // (PZ_SET_POSCONTROLMODE 0x0640) its feedback input (TPZ_IOSETTINGS 0x07D4, p. 115; D-19).
@@ -107,9 +107,14 @@ void AptDevice::restore_from_eeprom()
     for (const bool modes : {false, true})
         for (const auto& [key, hex] : config_of(config_).eeprom)
             if (is_mode(key) == modes)
-                if (const auto why = restore_entry(key, hex, "rig"))
-                    throw ConfigError(config_.source + ": " + pointer_to(config_.pointer + "/apt/eeprom", key) + ": "
-                                      + *why);
+                if (const auto why = restore_entry(key, hex, "rig")) {
+                    const auto where = config_.source + ": " + pointer_to(config_.pointer + "/apt/eeprom", key);
+                    if (first)
+                        throw ConfigError(where + ": " + *why);
+                    // A power cycle: the rig was taken at start, and a client changed what this
+                    // entry needs (a gauge's routing): the unit comes back without it.
+                    log_->warn("{}: not restored at this power cycle: {}", where, *why);
+                }
     if (!store_)
         return;
     // A copy: reject() drops the entry from the store.

@@ -79,7 +79,7 @@ public:
             inner.hangup = [this](Hangup how) {
                 if (how == Hangup::Close)
                     begin_close();
-                else
+                else if (state_ != State::Closed)
                     conn_.hangup(how);
             };
         inner.queued_bytes = conn_.queued_bytes;
@@ -91,6 +91,13 @@ public:
     }
     ~LinkSession() override
     {
+        // A client's last writes waiting for the USB frame still reach the unit: the host's driver
+        // sends what was written before the port closes (a script's `printf ... > port`).
+        // Closed first: the device's answers have no client any more, and a hang-up it asks for
+        // has nothing to end.
+        state_ = State::Closed;
+        if (usb_)
+            deliver_held_requests();
         inner_.reset();   // before the link forgets us: it may still send while closing
         link_.held_pieces_ -= held_.size() + in_held_.size() + (usb_ ? usb_->pieces() : 0);
         auto& s = link_.sessions_;
@@ -189,6 +196,7 @@ public:
         in_held_bytes_ = 0;
         line_free_ = 0;
         in_line_free_ = 0;
+        unit_free_ = 0;
         out_free_ = 0;
         in_free_ = 0;
         link_.changed();
@@ -296,8 +304,12 @@ private:
     {
         if (state_ != State::Open)
             return;
+        // What the link model's chip holds for its next frame reaches the device (the client
+        // wrote it before the close), and its answers go out as those before; then nothing more
+        // reaches the device, and what it said goes out first.
+        if (usb_)
+            deliver_held_requests();
         state_ = State::Closing;
-        // Nothing more reaches the device; what it said before goes out first.
         link_.held_pieces_ -= in_held_.size();
         in_held_.clear();
         in_held_bytes_ = 0;
@@ -338,7 +350,7 @@ private:
         }
         if (!bytes.empty()) {
             const Ticks now = link_.clock_.now();
-            const double at = usb_ ? link_.ready(now) : static_cast<double>(link_.due(now));
+            const double at = usb_ ? ready(now) : static_cast<double>(link_.due(now));
             if (link_.slice_.id == 0) {
                 place(bytes, at, now);
             } else {
@@ -423,6 +435,18 @@ private:
         return static_cast<Ticks>(std::ceil(in_line_free_ - 1e-9));
     }
 
+    /// When an answer the unit begins now is ready: after the answers before it on this
+    /// connection and the link model's processing time.
+    double ready(Ticks now)
+    {
+        const auto at = static_cast<double>(link_.due(now));
+        const auto processing = link_.model_->processing_us;
+        if (processing == 0)
+            return at;
+        unit_free_ = std::max(unit_free_, at) + processing * link_.clock_.tick_hz() / 1e6;
+        return unit_free_;
+    }
+
     /// The tick of the first USB frame after `now`.
     Ticks next_frame(Ticks now) const
     {
@@ -501,6 +525,19 @@ private:
         in_free_ = t;
         hold_in(piece_at, std::string(bytes.substr(start)));
     }
+    /// The client bytes held for the link model's USB frame, to the device now.
+    void deliver_held_requests()
+    {
+        const Ticks now = link_.clock_.now();
+        while (!in_held_.empty()) {
+            in_held_bytes_ -= in_held_.front().second.size();
+            --link_.held_pieces_;
+            const auto bytes = std::move(in_held_.front().second);
+            in_held_.pop_front();
+            deliver(bytes, now);
+        }
+    }
+
     void hold_in(Ticks at, std::string bytes)
     {
         if (in_held_bytes_ + bytes.size() > kMaxHeldBytes) {
@@ -513,8 +550,13 @@ private:
         }
         dropping_in_ = false;
         in_held_bytes_ += bytes.size();
+        at = std::max(at, in_held_.empty() ? at : in_held_.back().first);
+        if (!in_held_.empty() && in_held_.back().first == at) {   // one piece per tick, however many writes
+            in_held_.back().second += bytes;
+            return;
+        }
         ++link_.held_pieces_;
-        in_held_.emplace_back(std::max(at, in_held_.empty() ? at : in_held_.back().first), std::move(bytes));
+        in_held_.emplace_back(at, std::move(bytes));
         link_.changed();
     }
 
@@ -553,6 +595,7 @@ private:
     double out_free_ = 0;    ///< the same for a bandwidth fault, device to client
     double in_free_ = 0;     ///< and client to device
     double in_line_free_ = 0;   ///< the link model's chip has sent the unit all it was given
+    double unit_free_ = 0;      ///< the link model: the unit has processed this connection's messages by then
     bool sliced_ = false;    ///< a slice went out (slice_last_ holds when)
     Ticks slice_last_ = 0;
     std::deque<std::pair<Ticks, std::string>> held_;      ///< to the client
@@ -696,7 +739,6 @@ void Link::reset()
     baud_ = BaudMismatchFault{};
     for (auto* s : sessions_)
         s->drop_held();
-    unit_free_ = 0;
     dropped_ = 0;
     corrupted_ = 0;
 }
@@ -757,15 +799,6 @@ Ticks Link::due(Ticks now)
     if (latency_.jitter > 0)
         jitter = std::uniform_int_distribution<Ticks>(0, latency_.jitter)(latency_rng_);
     return now + latency_.latency + jitter;
-}
-
-double Link::ready(Ticks now)
-{
-    const auto at = static_cast<double>(due(now));
-    if (!model_ || model_->processing_us == 0)
-        return at;
-    unit_free_ = std::max(unit_free_, at) + model_->processing_us * clock_.tick_hz() / 1e6;
-    return unit_free_;
 }
 
 Ticks Link::next_change(Ticks now) const

@@ -176,9 +176,6 @@ private:
     std::string filter(std::string_view bytes, bool inbound);
     /// When bytes sent now go out (now with no latency fault).
     Ticks due(Ticks now);
-    /// When an answer the unit begins now is ready: after the answers before it and its
-    /// processing time (the link model's); `due` without a model.
-    double ready(Ticks now);
     /// The active closing fault of `kind`, or nullptr.
     const ActiveClose* close_fault(CloseKind kind) const;
     /// Something moved the link's next change outside its tick.
@@ -197,7 +194,6 @@ private:
     OverrunFault overrun_;          ///< id 0: none
     BaudMismatchFault baud_;        ///< id 0: none
     std::optional<LinkModel> model_;
-    double unit_free_ = 0;          ///< the unit has processed every message by this tick
     std::vector<LinkSession*> sessions_;
     std::size_t held_pieces_ = 0;   ///< pieces held by all sessions together, both ways
     std::uint64_t dropped_ = 0;

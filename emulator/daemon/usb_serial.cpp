@@ -55,7 +55,8 @@ std::size_t UsbSerialBuffer::come_by(double t, std::size_t limit) const
         const auto left = p.bytes.size() - p.sent;
         std::size_t k = left;
         if (p.per_byte > 0) {
-            const auto upto = static_cast<std::size_t>(std::floor((t - p.first) / p.per_byte + kSlack)) + 1;
+            const double came = std::floor(std::max(0.0, t - p.first + kSlack) / p.per_byte);
+            const auto upto = static_cast<std::size_t>(came) + 1;
             k = upto > p.sent ? std::min(left, upto - p.sent) : 0;
         }
         n += k;
@@ -81,11 +82,12 @@ std::pair<double, std::size_t> UsbSerialBuffer::next() const
     // The timer expires every latency period while only status bytes go; the first expiry at or
     // after the first buffered byte came sends what has come by then.
     const double first = arrival(0);
-    const double periods = std::max(1.0, std::ceil((first - timer_start_) / timing_.latency_ticks - kSlack));
+    const double periods = std::max(1.0, std::ceil((first - timer_start_ - kSlack) / timing_.latency_ticks));
     const double timer_at = frame_at_or_after(timer_start_ + periods * timing_.latency_ticks);
     if (full_at <= timer_at + kSlack)
         return {full_at, full};
-    return {timer_at, come_by(timer_at, full)};
+    // The first byte has come by then (the expiry is at or after it): at least it goes.
+    return {timer_at, std::max<std::size_t>(1, come_by(timer_at, full))};
 }
 
 Ticks UsbSerialBuffer::next_packet() const

@@ -8,7 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -167,7 +169,7 @@ Recorder::~Recorder()
 Stream& Recorder::stream(std::uint64_t conn, Direction dir)
 {
     if (conn != conn_ || !in_) {
-        asked_ = false;
+        asked_.clear();
         in_ = std::make_unique<Stream>(*this, protocol_, Direction::In);
         out_ = std::make_unique<Stream>(*this, protocol_, Direction::Out);
         conn_ = conn;
@@ -183,6 +185,18 @@ void Recorder::bytes(std::uint64_t conn, Direction dir, std::string_view data, s
 }
 
 namespace {
+
+/// An APT frame's message ID, as the wire log's decoding gives it ("0x0411"), or -1.
+int apt_id(const nlohmann::json& decoded)
+{
+    const auto id = decoded.find("id");
+    if (id == decoded.end() || !id->is_string())
+        return -1;
+    const auto& text = id->get_ref<const std::string&>();
+    char* end = nullptr;
+    const auto value = std::strtol(text.c_str(), &end, 16);
+    return end != text.c_str() && *end == '\0' && value >= 0 && value <= 0xFFFF ? static_cast<int>(value) : -1;
+}
 
 /// Whether the client's frame asks for an answer: an APT request (its name has _REQ_), every
 /// MCS command (the unit acknowledges each in its default synchronous mode, manual 2.3), an
@@ -210,17 +224,22 @@ void Recorder::latency(nlohmann::json& line, Direction dir, const nlohmann::json
 {
     const auto seq = line["seq"].get<std::uint64_t>();
     const auto t_us = line["t_us"].get<std::int64_t>();
+    const int id = protocol_ == Protocol::Apt ? apt_id(decoded) : -1;
     if (dir == Direction::In) {
-        asked_ = asks(protocol_, decoded);
-        asked_seq_ = seq;
-        asked_t_us_ = t_us;
+        if (!asks(protocol_, decoded))
+            return;
+        if (asked_.size() == kMaxAsked)
+            asked_.pop_front();
+        asked_.push_back(Asked{seq, t_us, id < 0 ? -1 : id + 1});
         return;
     }
-    if (!asked_)
-        return;
-    asked_ = false;
-    line["reply_to"] = asked_seq_;
-    line["latency_us"] = t_us - asked_t_us_;
+    const auto it = std::find_if(asked_.begin(), asked_.end(),
+                                 [&](const Asked& a) { return a.reply_id < 0 || a.reply_id == id; });
+    if (it == asked_.end())
+        return;   // unprompted (a status update, a move's end)
+    line["reply_to"] = it->seq;
+    line["latency_us"] = t_us - it->t_us;
+    asked_.erase(it);
 }
 
 void Recorder::flush_partial(std::uint64_t conn, std::int64_t t_us)
@@ -239,7 +258,7 @@ void Recorder::event(std::string_view name, std::uint64_t conn, std::int64_t t_u
     if (name == "disconnect") {   // the next connection's frames start afresh
         in_.reset();
         out_.reset();
-        asked_ = false;
+        asked_.clear();
     }
     nlohmann::json line = extra.is_object() ? extra : nlohmann::json::object();
     line["seq"] = seq_++;

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -55,9 +56,11 @@ private:
     void write(const nlohmann::json& line);
     void flush_partial(std::uint64_t conn, std::int64_t t_us);
     Stream& stream(std::uint64_t conn, Direction dir);
-    /// A frame line's reply timing: a client frame that asks for an answer is remembered; the
-    /// unit's next frame on the connection is its reply, with "reply_to" (the request's seq) and
-    /// "latency_us" (from the request's line to the reply's).
+    /// A frame line's reply timing: each client frame that asks for an answer waits, in order, for
+    /// its reply (APT: the unit's next frame whose ID is the request's + 1, MGMSG_..._GET_ to
+    /// _REQ_; MCS and MCS2: the unit's next frame), which gets "reply_to" (the request's seq) and
+    /// "latency_us" (from the request's line to the reply's). At most kMaxAsked wait; the oldest
+    /// goes first.
     void latency(nlohmann::json& line, Direction dir, const nlohmann::json& decoded);
 
     Protocol protocol_;
@@ -68,9 +71,13 @@ private:
     std::uint64_t conn_ = 0;                 ///< the connection the streams below belong to
     std::unique_ptr<Stream> in_;
     std::unique_ptr<Stream> out_;
-    bool asked_ = false;                     ///< the connection's last client frame awaits its reply
-    std::uint64_t asked_seq_ = 0;
-    std::int64_t asked_t_us_ = 0;
+    struct Asked {
+        std::uint64_t seq = 0;
+        std::int64_t t_us = 0;
+        int reply_id = -1;   ///< APT: the reply's message ID; -1: the next frame
+    };
+    static constexpr std::size_t kMaxAsked = 64;
+    std::deque<Asked> asked_;                ///< the connection's requests awaiting their replies
 };
 
 } // namespace rigsim::tap

@@ -368,7 +368,9 @@ class Rigsim:
                     with open(value) as f:
                         self.token = f.readline().strip()
                 return []
-        self.token = secrets.token_urlsafe(32)
+        # Hex, not base64url: a token starting with "-" would read as a flag when passed on to
+        # a command line (`rigsimctl --token -x...`: one run in 64 failed so).
+        self.token = secrets.token_hex(32)
         path = self._path("control-token")
         fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         with os.fdopen(fd, "w") as f:

@@ -31,12 +31,14 @@ import select
 import socket
 import sys
 import termios
+import time
 import tty
 from collections.abc import Sequence
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
-from rigsim.daemon import Rigsim
+from rigsim.control import ControlError
+from rigsim.daemon import Rigsim, RigsimError
 
 DEFAULT_IGNORED = ("serial_number",)
 PROTOCOLS = ("apt", "mcs", "mcs2")
@@ -169,6 +171,20 @@ def _read_frame(conn: _Connection, protocol: str, buf: bytearray) -> bytes | Non
     return frame
 
 
+def _until_read(rig: Rigsim, device: str, before: int, timeout_s: float) -> None:
+    """Waits until the daemon has read a frame sent after wire log entry `before`: its entry is
+    in the log, or the link holds it for the next USB frame. A step sent sooner could reach the
+    daemon first and move the clock under the request."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if rig.log_cursor(device) > before:
+            return
+        link = rig.state(device).get("link") or {}
+        if link.get("held_requests", 0) > 0:
+            return
+        time.sleep(0.001)
+
+
 # A step of the clock while a reply is awaited, and how long the replay waits for rigsim's bytes
 # after each: the step's answer comes after the bytes it released are written.
 _AWAIT_STEP_MS = 1
@@ -249,9 +265,14 @@ def position_speeds(records: list[dict[str, Any]], protocol: str) -> dict[str, f
     last: dict[str, tuple[int, float]] = {}
     queries: list[list[str]] = []
     for r in records:
+        if "event" in r:   # a new connection: a power cycle or a reset may lie between
+            last.clear()
+            continue
         if "decoded" not in r:
             continue
         if r["dir"] == "in":
+            if _sets_position(r["decoded"], protocol):   # a jump, not a speed
+                last.clear()
             if protocol == "mcs2":
                 commands = _mcs2_commands(r["decoded"].get("text", ""))
                 queries = [p for p, q, _ in commands if q]
@@ -274,9 +295,26 @@ def position_speeds(records: list[dict[str, Any]], protocol: str) -> dict[str, f
     return speed
 
 
+def _sets_position(decoded: dict[str, Any], protocol: str) -> bool:
+    """Whether a client frame sets a position counter (APT MOT_SET_POSCOUNTER, ENCCOUNTER; MCS
+    `SP`; MCS2 `:CHAN#:POS <value>`) or resets the unit (MCS2 `*RST`)."""
+    if protocol == "apt":
+        return decoded.get("name") in ("MGMSG_MOT_SET_POSCOUNTER", "MGMSG_MOT_SET_ENCCOUNTER")
+    if protocol == "mcs":
+        return decoded.get("command") == "SP"
+    text = str(decoded.get("text", ""))
+    return "*RST" in text.upper() or any(not q and p[-1:] == ["POS"] for p, q, _ in _mcs2_commands(text))
+
+
 # What the replay's clock may be off from the unit's when a reading is taken: the part of a
 # millisecond its steps do not reproduce.
 POSITION_WINDOW_US = 1000
+
+
+def _fields_differ(unit: dict[str, Any], ours: dict[str, Any]) -> bool:
+    """Whether some field of the two answers differs (reported, or let pass by a rule: ignored,
+    within a tolerance): then their bytes differ for that reason."""
+    return any(unit.get(f) != ours.get(f) for f in set(unit) | set(ours))
 
 
 def _same(field: str, unit: Any, ours: Any, tolerance: dict[str, float]) -> bool:
@@ -365,7 +403,10 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                     conn_id = r["conn"]
                     buf = bytearray()
                 if r["dir"] == "in":
+                    before = rig.log_cursor(device) if not r.get("partial") else None
                     conn.send(r["raw"])
+                    if before is not None:
+                        _until_read(rig, device, before, timeout_s)
                     sent_us[r["seq"]] = clock_us
                     if protocol == "mcs2":
                         queries = _mcs2_queries(r["decoded"].get("text", "")) if "decoded" in r else []
@@ -412,6 +453,7 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
             k += 1
             if got == r["raw"]:
                 continue
+            found = len(differences)
             for field in sorted(set(unit) | set(ours)):
                 rules = tolerance
                 if _is_position(field) and _rule(field, tolerance) is None:
@@ -423,6 +465,10 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
                     continue
                 differences.append(dict(where, message=name, field=field, unit=unit.get(field),
                                         rigsim=ours.get(field)))
+            if len(differences) == found and not _fields_differ(unit, ours):
+                # The bytes differ where the codec reads no field (a reserved word, the tail of a
+                # string after its end): the bytes themselves.
+                differences.append(dict(where, message=name, field="(bytes)", unit=r["bytes"], rigsim=got.hex()))
         differences.sort(key=lambda d: int(d["seq"]))
         return differences, len(pairs)
 
@@ -515,8 +561,14 @@ def _learn_mcs(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
         if r.get("dir") != "out" or r.get("partial"):
             continue
         text = r["decoded"].get("text", "").strip(":\n")
+        version = text[2:].split(",") if text.startswith("IV") else []
         if text.startswith("ID") and text[2:].isdigit():
             section["system_id"] = int(text[2:])
+        elif len(version) == 3 and all(v.isdigit() for v in version):
+            section["interface_version"] = ".".join(version)
+            # The newest firmware generation whose version is not above the unit's (docs/config.md).
+            numbers = tuple(int(v) for v in version)
+            device["firmware"] = "2.0.1" if numbers >= (2, 0, 1) else "1.2.44"
         elif text.startswith("N") and text[1:].isdigit():
             count = max(count, int(text[1:]))
     section["channels"] = [{} for _ in range(count)]
@@ -526,6 +578,8 @@ def _learn_mcs(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
 # The parameter blocks a motor controller keeps in its EEPROM (MOT_SET_EEPROMPARAMS, p. 60), whose
 # GET a learnt rig's "eeprom" replays as the SET (its ID is the GET's less 2): MotorModule::Saved
 # in emulator/apt/motor_module.hpp.
+# HW_GET_INFO's stage type word (data 76) of a TDC001/KDC101 at the later issue: the stage it drives.
+_DC_STAGE_TYPES = {6: "PRM1-Z8", 7: "MTS25-Z8", 8: "MTS50-Z8", 9: "Z825B", 10: "Z812B"}
 _MOTOR_MODELS = ("TDC001", "KDC101", "TST001", "KST101", "BSC203", "BBD203", "K10CR1", "LTS150", "LTS300", "KBD101")
 _MOTOR_SAVED = tuple("MGMSG_MOT_GET_" + n for n in (
     "VELPARAMS", "JOGPARAMS", "GENMOVEPARAMS", "MOVERELPARAMS", "MOVEABSPARAMS", "HOMEPARAMS", "LIMSWITCHPARAMS",
@@ -553,6 +607,16 @@ def _learn_apt(records: list[dict[str, Any]], device: dict[str, Any]) -> None:
                 device["model"] = fields["model_number"]
             if isinstance(fields.get("serial_number"), int):
                 section["serial_number"] = fields["serial_number"]
+            data = r["raw"][6:]
+            if len(data) >= 84:
+                # The later protocol issue's fields (docs/protocol/apt.md, "Firmware generations"):
+                # the stage type word at data 76 and the hardware version at 78, where the 2012
+                # manual's 64-character notes end in zeros.
+                stage_type = int.from_bytes(data[76:78], "little")
+                if stage_type or int.from_bytes(data[78:80], "little"):
+                    device["firmware"] = "issue-44.1"
+                if stage_type in _DC_STAGE_TYPES:
+                    section["stage"] = _DC_STAGE_TYPES[stage_type]
         elif name in _MOTOR_SAVED and name not in set_first and len(r["raw"]) > 6:
             source = int(str(decoded.get("source", "0x50")), 16)
             bay = source - 0x21 if 0x21 <= source <= 0x2A else 0
@@ -580,6 +644,10 @@ def learn(recording: str, name: str | None = None) -> dict[str, Any]:
     return {"devices": [device]}
 
 
+# Replies of one kind of request --learn needs to see the latency timer in their spread.
+_LEARN_MIN_REPLIES = 5
+
+
 def _learn_link(header: dict[str, Any], records: list[dict[str, Any]], device: dict[str, Any]) -> None:
     """A unit on a serial line answers through a USB-serial chip, whose latency timer spreads the
     replies to one kind of request over a window as wide as the timer (a reply waits for the
@@ -587,11 +655,24 @@ def _learn_link(header: dict[str, Any], records: list[dict[str, Any]], device: d
     (docs/config.md, "The link model"). The line's pace as well where the rate is the unit's own
     (APT: 115200; MCS: its factory 9600)."""
     to = str(header.get("to", ""))
-    spread = latency_spread(records, header["protocol"])
-    if not to.startswith("serial:") or not spread:
+    if not to.startswith("serial:") or not any("latency_us" in r for r in records):
         return
-    timer_ms = min(255, max(1, round(max(hi - lo for lo, hi in spread.values()) / 1000)))
-    link: dict[str, Any] = {"latency_timer_ms": timer_ms}
+    link: dict[str, Any] = {}
+    # The timer from the kinds of request asked often enough to show it: the spread of their
+    # latencies up to the 90th percentile (one reply the machine delayed does not count), of which
+    # a uniform phase shows 90 %. With too few, Linux's default (16 ms) stays.
+    by_seq = {r["seq"]: r for r in records}
+    kinds: dict[str, list[int]] = {}
+    for r in records:
+        if "latency_us" in r and r["reply_to"] in by_seq:
+            kinds.setdefault(_request_key(by_seq[r["reply_to"]], header["protocol"]), []).append(r["latency_us"])
+    widths = []
+    for latencies in kinds.values():
+        if len(latencies) >= _LEARN_MIN_REPLIES:
+            ordered = sorted(latencies)
+            widths.append((ordered[(len(ordered) - 1) * 9 // 10] - ordered[0]) / 0.9)
+    if widths:
+        link["latency_timer_ms"] = min(255, max(1, round(max(widths) / 1000)))
     if not str(header.get("listen", "")).startswith("pty:"):
         link["tcp"] = True   # the client came over TCP: the replay will too
     device["link"] = link
@@ -659,6 +740,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"rigsim-replay: --tolerance: expected FIELD=AMOUNT, got {t!r}", file=sys.stderr)
             return 2
         tolerance[name] = float(_number(amount) or 0)
+    if not 0 <= args.timing_slack <= 60_000:   # also refuses nan
+        print(f"rigsim-replay: --timing-slack: expected 0..60000 ms, got {args.timing_slack}", file=sys.stderr)
+        return 2
     if not args.rig or not args.device:
         print("rigsim-replay: --rig and --device are required (or --learn --out)", file=sys.stderr)
         return 2
@@ -666,7 +750,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
                                        list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance, args.via,
                                        round(args.timing_slack * 1000))
-    except RecordingError as e:
+    except (RecordingError, RigsimError, ControlError, OSError, termios.error) as e:
         print(f"rigsim-replay: {e}", file=sys.stderr)
         return 2
     timing = [d for d in differences if d.get("timing")]

@@ -224,4 +224,22 @@ TEST_CASE("link model: on TCP on request, and the unit's processing time per ans
     CHECK(reads == Reads{{3, 12}, {5, 12}});
 }
 
+TEST_CASE("link model: what a client wrote before it closed the port still reaches the unit", "[device][apt][timing][link]")
+{
+    Clock clock;
+    ModelledTdc001 unit(clock, LinkModel{});
+    {
+        auto pty = unit.link.open_session([](std::string_view) {}, "pty /tmp/x/tdc001");
+        pty->receive(bytes(move_absolute(kTwoMm)));   // held for the next USB frame...
+    }                                                 // ...when the client closes the port
+    CHECK(unit.link.held_requests() == 0);
+    run_to(clock, 5000);
+    std::string answer;
+    auto again = unit.link.open_session([&](std::string_view b) { answer.append(b); }, "pty /tmp/x/tdc001");
+    again->receive(bytes("11 04 01 00 50 01"));
+    run_to(clock, 5100);
+    REQUIRE(answer.size() == 12);
+    CHECK(position_of(hex(answer)) == kTwoMm);        // the move was made
+}
+
 } // namespace test_apt_timing

@@ -133,4 +133,15 @@ TEST_CASE("usb serial: feeds keep their order even when one claims an earlier ti
     CHECK(packets(chip, 32).at(0) == "later");
 }
 
+TEST_CASE("usb serial: a byte a hair after an expiry, at a fine clock, still goes at the next one", "[unit][daemon][usb]")
+{
+    // 1 MHz ticks: a 16 ms timer is 16,000 ticks, a frame 1,000.
+    UsbSerialBuffer chip(UsbSerialTiming{16'000, 1'000, 62}, 0);
+    chip.feed(16'000 + 1e-8, 0, "x");
+    CHECK(chip.next_packet() == 32'000);
+    std::vector<std::string> out;
+    chip.release(32'000, [&](const std::string& p) { out.push_back(p); });
+    CHECK(out == std::vector<std::string>{"x"});
+}
+
 } // namespace test_usb_serial
