@@ -177,6 +177,24 @@ TEST_CASE("rig eeprom: apt.eeprom holds the unit's power-up parameters, under wh
     }
 }
 
+TEST_CASE("rig eeprom: a power cycle brings the rig's memory back, with or without what was saved",
+          "[device][apt][eeprom][state]")
+{
+    auto config = tdc001();
+    config_of(config).eeprom = {{"bay0/0x0413", kVelParams_acc16_max4096}};
+    StateFileFixture f(R"({"cube": {"bay0/0x043a": "010000000d00"}})");
+    AptHarness h(config, &f.store());
+    const std::string rig_velparams = "15 04 0E 00 81 50 01 00 00 00 00 00 10 00 00 00 00 10 00 00";
+    CHECK(h.send("13 04 0E 00 D0 01 01 00 00 00 00 00 20 00 00 00 00 20 00 00") == "");   // a client's VELPARAMS
+    CHECK(h.send("14 04 01 00 50 01") != rig_velparams);
+    h.device().power_cycle(PowerCycle{true, false});
+    CHECK(h.send("14 04 01 00 50 01") == rig_velparams);                                   // the unsaved SET is gone
+    CHECK(h.send("3B 04 01 00 50 01") == "3C 04 06 00 81 50 01 00 00 00 0D 00");           // the saved one stays
+    h.device().power_cycle(PowerCycle{false, false});
+    CHECK(h.send("14 04 01 00 50 01") == rig_velparams);                                   // the unit's own memory
+    CHECK(h.send("3B 04 01 00 50 01") == "3C 04 06 00 81 50 01 00 00 00 00 00");           // what was saved: erased
+}
+
 TEST_CASE("rig eeprom: an entry the unit does not save or take is a config error naming its pointer",
           "[device][apt][eeprom][state]")
 {
