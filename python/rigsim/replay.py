@@ -1,13 +1,15 @@
 """rigsim-replay: play the client side of a rigsim-tap recording against rigsim and compare every
 answer with the unit's (docs/conformance.md, "Replaying a recording").
 
-    python3 -m rigsim.replay FILE --rig RIG.json --device NAME [--rigsimd PATH] [--junit OUT]
+    python3 -m rigsim.replay FILE (--rig RIG.json [--rigsimd PATH] | --control URL [--token-file F])
+                             --device NAME [--junit OUT]
                              [--ignore FIELD]... [--tolerance FIELD=AMOUNT]... [--timeout S]
                              [--via tcp|pty] [--timing]
     python3 -m rigsim.replay FILE --learn --out RIG.json [--device NAME]
 
-Starts rigsimd on RIG.json with its clock paused, connects to device NAME once per connection of
-the recording (over its pty when the client used one, else TCP; --via chooses), and walks the
+Starts rigsimd on RIG.json with its clock paused (or pauses the running daemon at URL), connects
+to device NAME once per connection of the recording (over its pty when the client used one, else
+TCP; --via chooses), and walks the
 recording in order: the clock is stepped to each line's time (the gaps between the recorded
 times), each frame the client sent is sent, and each frame the unit sent is read from rigsim and
 compared with it, field by field as rigsim's codec reads both (the daemon's wire log decodes
@@ -25,6 +27,7 @@ file and line named). --junit OUT writes a JUnit XML report, one test case per a
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import select
@@ -33,12 +36,12 @@ import sys
 import termios
 import time
 import tty
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Iterator, Sequence
+from typing import Any, Callable, Union
 from xml.sax.saxutils import escape, quoteattr
 
-from rigsim.control import ControlError
-from rigsim.daemon import Rigsim, RigsimError
+from rigsim.control import ControlClient, ControlError
+from rigsim.daemon import Endpoint, Rigsim, RigsimError
 
 DEFAULT_IGNORED = ("serial_number",)
 PROTOCOLS = ("apt", "mcs", "mcs2")
@@ -171,7 +174,38 @@ def _read_frame(conn: _Connection, protocol: str, buf: bytearray) -> bytes | Non
     return frame
 
 
-def _until_read(rig: Rigsim, device: str, before: int, timeout_s: float) -> None:
+# What the replay drives: a rigsimd it started (Rigsim), or a running daemon's control API.
+_Daemon = Union[Rigsim, ControlClient]
+
+
+@contextlib.contextmanager
+def _daemon(rig_path: str | None, rigsimd: str | None, control: str | None,
+            token: str | None) -> Iterator[tuple[_Daemon, Callable[[str], Endpoint]]]:
+    """The daemon to replay against, its clock paused, and how to find a device's endpoints: a
+    rigsimd started on `rig_path`, or the running one whose control API is at `control` (its
+    clock is paused for the replay and set running again after it if it ran)."""
+    if control is None:
+        with Rigsim(rig_path, rigsimd=rigsimd, args=["--paused"]) as rig:
+            yield rig, rig.endpoint
+        return
+    client = ControlClient(control, token=token)
+
+    def endpoint(name: str) -> Endpoint:
+        for d in client.rig().get("devices", []):
+            if d.get("name") == name:
+                return Endpoint(name, d.get("protocol", ""), d.get("model", ""), d.get("tcp", ""), d.get("pty", ""))
+        raise RecordingError(f"the daemon at {client.url} has no device {name!r}")
+
+    ran = not client.clock().get("paused", False)
+    client.pause()
+    try:
+        yield client, endpoint
+    finally:
+        if ran:
+            client.resume()
+
+
+def _until_read(rig: _Daemon, device: str, before: int, timeout_s: float) -> None:
     """Waits until the daemon has read a frame sent after wire log entry `before`: its entry is
     in the log, or the link holds it for the next USB frame. A step sent sooner could reach the
     daemon first and move the clock under the request."""
@@ -191,7 +225,7 @@ _AWAIT_STEP_MS = 1
 _AWAIT_PROBE_S = 0.01
 
 
-def _await_frame(conn: _Connection, protocol: str, buf: bytearray, rig: Rigsim,
+def _await_frame(conn: _Connection, protocol: str, buf: bytearray, rig: _Daemon,
                  limit_ms: int) -> tuple[bytes | None, int]:
     """A reply: the clock stepped a millisecond at a time until a whole frame has come (or
     `limit_ms` have passed); the frame and the milliseconds stepped."""
@@ -355,12 +389,14 @@ def latency_spread(records: list[dict[str, Any]], protocol: str) -> dict[str, tu
 TIMING_SLACK_US = 1000
 
 
-def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = None,
+def replay(recording: str, rig_path: str | None, device: str, rigsimd: str | None = None,
            ignore: Sequence[str] = DEFAULT_IGNORED, timeout_s: float = 2.0,
            tolerance: dict[str, float] | None = None, via: str | None = None,
-           timing_slack_us: int = TIMING_SLACK_US) -> tuple[list[dict[str, Any]], int]:
-    """The differences, and the number of answers compared. A reply whose latency on rigsim's clock
-    falls outside the unit's spread is a difference with "timing": True."""
+           timing_slack_us: int = TIMING_SLACK_US, control: str | None = None,
+           token: str | None = None) -> tuple[list[dict[str, Any]], int]:
+    """The differences, and the number of answers compared, replaying against a rigsimd started
+    on `rig_path` or the running daemon whose control API is at `control`. A reply whose latency
+    on rigsim's clock falls outside the unit's spread is a difference with "timing": True."""
     tolerance = tolerance or {}
     header, records = read_recording(recording)
     protocol = header["protocol"]
@@ -368,8 +404,8 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
     by_seq = {r["seq"]: r for r in records}
     if via is None:
         via = "pty" if str(header.get("listen", "")).startswith("pty:") else "tcp"
-    with Rigsim(rig_path, rigsimd=rigsimd, args=["--paused"]) as rig:
-        endpoint = rig.endpoint(device)
+    with _daemon(rig_path, rigsimd, control, token) as (rig, endpoint_of):
+        endpoint = endpoint_of(device)
         if endpoint.protocol != protocol:
             raise RecordingError(f"{recording}:1: a recording of protocol {protocol}, but device {device} "
                                  f"speaks {endpoint.protocol}")
@@ -447,12 +483,17 @@ def replay(recording: str, rig_path: str, device: str, rigsimd: str | None = Non
             if got is None:
                 differences.append(dict(where, message=name, field="(answer)", unit=r["bytes"], rigsim="none"))
                 continue
-            while k < len(outs) and bytes.fromhex(outs[k]["hex"]) != got:
-                k += 1
-            ours = _fields(outs[k].get("decoded", {}), protocol, r.get("queries")) if k < len(outs) else {}
-            k += 1
             if got == r["raw"]:
                 continue
+            at = k
+            while at < len(outs) and bytes.fromhex(outs[at]["hex"]) != got:
+                at += 1
+            if at == len(outs):
+                # Not in the wire log (it keeps the last 1000 frames each way): the bytes alone.
+                differences.append(dict(where, message=name, field="(bytes)", unit=r["bytes"], rigsim=got.hex()))
+                continue
+            ours = _fields(outs[at].get("decoded", {}), protocol, r.get("queries"))
+            k = at + 1
             found = len(differences)
             for field in sorted(set(unit) | set(ours)):
                 rules = tolerance
@@ -700,7 +741,12 @@ def write_junit(path: str, recording: str, differences: list[dict[str, Any]], co
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="rigsim-replay", description=__doc__.split("\n\n")[0])
     parser.add_argument("recording")
-    parser.add_argument("--rig", help="the rig JSON to replay against")
+    parser.add_argument("--rig", help="the rig JSON to replay against (a rigsimd is started on it)")
+    parser.add_argument("--control", metavar="URL",
+                        help="instead of --rig: a running rigsimd's control API (http://HOST:PORT); its clock is "
+                             "paused for the replay")
+    parser.add_argument("--token", help="--control: the daemon's control token (default: $RIGSIM_CONTROL_TOKEN)")
+    parser.add_argument("--token-file", metavar="FILE", help="--control: read the control token from FILE")
     parser.add_argument("--device", help="the device of the rig the recording's unit is (--learn: its name)")
     parser.add_argument("--learn", action="store_true", help="write a rig learnt from the recording to --out")
     parser.add_argument("--out", help="--learn: the rig JSON to write")
@@ -743,13 +789,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not 0 <= args.timing_slack <= 60_000:   # also refuses nan
         print(f"rigsim-replay: --timing-slack: expected 0..60000 ms, got {args.timing_slack}", file=sys.stderr)
         return 2
-    if not args.rig or not args.device:
-        print("rigsim-replay: --rig and --device are required (or --learn --out)", file=sys.stderr)
+    if not args.device or bool(args.rig) == bool(args.control):
+        print("rigsim-replay: --device and one of --rig and --control are required (or --learn --out)",
+              file=sys.stderr)
         return 2
+    token = args.token
+    if args.token_file:
+        try:
+            with open(args.token_file, encoding="utf-8") as f:
+                token = f.readline().strip()
+        except OSError as e:
+            print(f"rigsim-replay: --token-file: cannot read {args.token_file}: {e.strerror}", file=sys.stderr)
+            return 2
     try:
         differences, compared = replay(args.recording, args.rig, args.device, args.rigsimd,
                                        list(DEFAULT_IGNORED) + args.ignore, args.timeout, tolerance, args.via,
-                                       round(args.timing_slack * 1000))
+                                       round(args.timing_slack * 1000), args.control, token)
     except (RecordingError, RigsimError, ControlError, OSError, termios.error) as e:
         print(f"rigsim-replay: {e}", file=sys.stderr)
         return 2

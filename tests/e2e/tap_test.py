@@ -476,3 +476,19 @@ def test_a_learnt_mcs_rig_has_the_units_identity(rigsim, rigsimd_path, tmp_path)
     assert run.returncode == 1
     assert {line.split(": ")[1] for line in run.stdout.splitlines() if not line.startswith("timing: ")} == {
         "id", "channels", "versionHigh", "versionLow", "versionUpdate"}, run.stdout
+
+
+def test_replay_against_a_running_daemon_through_its_control_api(rigsim, tmp_path):
+    """--control URL: the recording replays against a daemon already running (its clock paused
+    for the replay, running again after it); a wrong token or both --rig and --control: exit 2."""
+    record = record_mcs2_session(rigsim, tmp_path)
+    target = rigsim(MCS2_RIG)
+    run = run_replay(str(record), "--control", target.control.url, "--token", target.token, "--device", "mcs2")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert target.clock()["paused"] is False
+    bad = run_replay(str(record), "--control", target.control.url, "--token", "nope", "--device", "mcs2")
+    assert bad.returncode == 2 and "401" in bad.stderr and "Traceback" not in bad.stderr, bad.stderr
+    missing = run_replay(str(record), "--control", target.control.url, "--token", target.token, "--device", "nope")
+    assert missing.returncode == 2 and "no device 'nope'" in missing.stderr, missing.stderr
+    both = run_replay(str(record), "--rig", MCS2_RIG, "--control", target.control.url, "--device", "mcs2")
+    assert both.returncode == 2 and "one of --rig and --control" in both.stderr
