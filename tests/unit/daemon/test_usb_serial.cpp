@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -142,6 +144,56 @@ TEST_CASE("usb serial: a byte a hair after an expiry, at a fine clock, still goe
     std::vector<std::string> out;
     chip.release(32'000, [&](const std::string& p) { out.push_back(p); });
     CHECK(out == std::vector<std::string>{"x"});
+}
+
+TEST_CASE("usb serial: random feeds at any clock rate come out whole, in order, in packets no larger than full",
+          "[unit][daemon][usb]")
+{
+    std::mt19937 rng(20261206);
+    for (const double hz : {1.0, 100.0, 1000.0, 48'000.0, 1'000'000.0}) {
+        INFO("tick_hz " << hz);
+        for (int round = 0; round < 20; ++round) {
+            const double latency_ms = 1 + rng() % 255;
+            const double frame_us = 125 + rng() % 876;
+            const std::size_t packet = 1 + rng() % 64;
+            UsbSerialBuffer chip(UsbSerialTiming{latency_ms * hz / 1e3, frame_us * hz / 1e6, packet}, rng() % 1000);
+            std::string in;
+            std::string out;
+            Ticks last_release = 0;
+            double t = 0;
+            for (int op = 0; op < 200; ++op) {
+                if (rng() % 3 != 0) {
+                    t += std::uniform_real_distribution<double>(0, 50 * hz / 1e3)(rng);
+                    const std::string bytes(1 + rng() % 100, static_cast<char>('a' + op % 26));
+                    const double per_byte = rng() % 2 ? 0.0 : 10.0 * hz / 115200;
+                    chip.feed(t, per_byte, bytes);
+                    in += bytes;
+                } else {
+                    const Ticks now = last_release + static_cast<Ticks>(rng() % static_cast<unsigned>(1 + 40 * hz / 1e3));
+                    REQUIRE((chip.bytes() == 0 || chip.next_packet() != kNever));
+                    chip.release(now, [&](const std::string& p) {
+                        CHECK(!p.empty());
+                        CHECK(p.size() <= packet);
+                        out += p;
+                    });
+                    last_release = now;
+                }
+            }
+            // Everything goes in the end, however far its timer.
+            for (int guard = 0; chip.bytes() > 0 && guard < 100'000; ++guard) {
+                const auto next = chip.next_packet();
+                REQUIRE(next != kNever);
+                const Ticks at = std::max(next, last_release);
+                const auto before = chip.bytes();
+                chip.release(at, [&](const std::string& p) { out += p; });
+                REQUIRE(chip.bytes() < before);   // a packet went at the time it named
+                last_release = at;
+            }
+            CHECK(chip.bytes() == 0);
+            CHECK(chip.pieces() == 0);
+            CHECK(out == in);
+        }
+    }
 }
 
 } // namespace test_usb_serial
