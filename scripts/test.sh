@@ -9,8 +9,8 @@
 #     "Build options") and is a second compiler's warnings on every file. The same objects are
 #     instrumented for libFuzzer (RIGSIM_FUZZ), so that the fuzz programs of tests/fuzz link
 #     against them: the libraries are built once for both.
-#  3. Fuzzing: every target of tests/fuzz for 25 s (scripts/fuzz.sh, twice as many at a time as
-#     there are cores: each still runs 25 s, the stage takes half the wall time), from seeds generated from the golden transcripts and test inputs; any crash,
+#  3. Fuzzing: every target of tests/fuzz for 20 s (scripts/fuzz.sh, twice as many at a time as
+#     there are cores: each still runs 20 s, the stage takes half the wall time), from seeds generated from the golden transcripts and test inputs; any crash,
 #     leak, undefined behaviour, slow input or memory exhaustion fails the run
 #     (docs/reliability.md).
 # CI runs exactly this (.ci/run).
@@ -42,9 +42,9 @@ mark "sanitizer tests: unit, device, e2e, fuzz regressions"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/asan -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'unit|device|e2e|fuzz'
 
-mark "fuzzing: every target 25 s"
-# Two rounds of 25 s, however many targets: half of them (rounded up) at a time.
+mark "fuzzing: every target 20 s"
+# Two rounds of 20 s, however many targets: half of them (rounded up) at a time.
 fuzz_targets=$(ls tests/fuzz/fuzz_*.cpp | wc -l)
-bash scripts/fuzz.sh --no-build --time 25 --jobs "$(( (fuzz_targets + 1) / 2 ))"
+bash scripts/fuzz.sh --no-build --time 20 --jobs "$(( (fuzz_targets + 1) / 2 ))"
 
 mark "all tests passed"
