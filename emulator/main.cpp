@@ -73,8 +73,9 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
   --check-config FILE    validate FILE and exit: 0 if valid, 2 with a message naming the
                          JSON pointer if not
   --endpoints-json FILE  once every endpoint listens, write FILE (atomically) with
-                         {"devices":[{"name","protocol","model","tcp","pty"}]}, and
-                         "control": "http://HOST:PORT" when the control API is on
+                         {"devices":[{"name","protocol","model","tcp","pty"}]} ("rfc2217"
+                         too for a device that has one), and "control":
+                         "http://HOST:PORT" when the control API is on
   --pty-dir DIR          put each device's pty symlink at DIR/<name> unless the config
                          names a path (default /tmp/rigsim; created if missing); a
                          link's directory must be this user's or root's, writable by
@@ -82,7 +83,11 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
   --replace-links        take over pty symlinks that a running rigsimd holds (it runs on
                          without them); without it such a link stops start-up (exit 2).
                          Links left by a daemon that died are replaced either way
-  --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port)
+  --ephemeral-ports      give every TCP endpoint an ephemeral port (ignore tcp_port and
+                         rfc2217_port)
+  --rfc2217              give every device an RFC 2217 endpoint (a serial port over TCP,
+                         pyserial's rfc2217://HOST:PORT), on its rfc2217_port or an
+                         ephemeral one; listed in --endpoints-json as "rfc2217"
   --bind ADDR            listen for TCP on ADDR (default 127.0.0.1)
   --control ADDR:PORT    serve the HTTP control API (docs/control-api.md) on ADDR:PORT;
                          ADDR an IP address ([::1] for IPv6), PORT 0 picks a free port;
@@ -254,6 +259,9 @@ void parse_option(const std::string& arg, Value& value, NoValue& no_value, Optio
     } else if (arg == "--ephemeral-ports") {
         no_value();
         o.rig.ephemeral_ports = true;
+    } else if (arg == "--rfc2217") {
+        no_value();
+        o.rig.rfc2217 = true;
     } else if (arg == "--bind") {
         const auto v = value();
         boost::system::error_code ec;
@@ -386,10 +394,15 @@ std::optional<std::string> control_port_clash(const rigsim::RigConfig& config, c
 {
     if (!opts.control || opts.control->port == 0 || opts.rig.ephemeral_ports)
         return std::nullopt;
-    for (std::size_t i = 0; i < config.devices.size(); ++i)
-        if (config.devices[i].tcp_port == opts.control->port)
-            return "--control: port " + std::to_string(opts.control->port) + " is device \"" + config.devices[i].name
-                   + "\"'s tcp_port (/devices/" + std::to_string(i) + "/tcp_port); choose another, or add --ephemeral-ports";
+    for (std::size_t i = 0; i < config.devices.size(); ++i) {
+        const auto& d = config.devices[i];
+        const char* key = d.tcp_port == opts.control->port                ? "tcp_port"
+                          : d.rfc2217_port == std::optional<std::uint16_t>(opts.control->port) ? "rfc2217_port"
+                                                                                                : nullptr;
+        if (key)
+            return "--control: port " + std::to_string(opts.control->port) + " is device \"" + d.name + "\"'s " + key
+                   + " (/devices/" + std::to_string(i) + "/" + key + "); choose another, or add --ephemeral-ports";
+    }
     return std::nullopt;
 }
 

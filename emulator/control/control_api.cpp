@@ -239,6 +239,8 @@ HttpReply ControlApi::get_device(const ControlledDevice& d)
                {"model", d.endpoints.model},
                {"firmware", d.endpoints.firmware},
                {"endpoints", {{"tcp", d.endpoints.tcp}, {"pty", d.endpoints.pty}}}};
+    if (!d.endpoints.rfc2217.empty())
+        state["endpoints"]["rfc2217"] = d.endpoints.rfc2217;
     if (d.surface)
         describe_device(*d.surface, world_, state);
     state["faults"] = faults_.list(&d.endpoints.name);
@@ -504,6 +506,8 @@ HttpReply ControlApi::get_rig()
         const auto& e = d.endpoints;
         json entry{{"name", e.name}, {"protocol", e.protocol}, {"model", e.model},
                    {"firmware", e.firmware}, {"tcp", e.tcp}, {"pty", e.pty}};
+        if (!e.rfc2217.empty())
+            entry["rfc2217"] = e.rfc2217;
         if (d.surface) {
             auto state = json::object();
             d.surface->describe(state);

@@ -98,6 +98,13 @@ void power_up_in_phases(Range& entries, DeviceOf device_of)
         d->power_up();
 }
 
+/// Whether the connection named `peer` is a serial line to the unit: the pty ("pty ...") or an
+/// RFC 2217 port ("rfc2217 ..."), where a TCP socket is not.
+inline bool is_serial_peer(std::string_view peer)
+{
+    return peer.substr(0, 3) == "pty" || peer.substr(0, 8) == "rfc2217 ";
+}
+
 /// Printable form of client bytes for log lines (non-printable bytes as \xNN, at most `max` bytes).
 std::string printable(std::string_view bytes, std::size_t max = 80);
 

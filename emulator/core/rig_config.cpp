@@ -39,8 +39,9 @@ constexpr std::size_t kMaxConfigDepth = 64;
 constexpr std::array<std::string_view, 5> kRigKeys{"tick_hz", "devices", "control", "clock", "kinematics"};
 constexpr std::array<std::string_view, 1> kControlKeys{"port"};
 constexpr std::array<std::string_view, 2> kClockKeys{"time_scale", "paused"};
-constexpr std::array<std::string_view, 8> kDeviceKeys{"name",     "protocol", "model",           "firmware",
-                                                      "tcp_port", "pty",      "faithful_timing", "link"};
+constexpr std::array<std::string_view, 9> kDeviceKeys{"name",     "protocol", "model",           "firmware",
+                                                      "tcp_port", "pty",      "faithful_timing", "link",
+                                                      "rfc2217_port"};
 constexpr std::array<std::string_view, 5> kLinkKeys{"latency_timer_ms", "packet_bytes", "usb_frame_us",
                                                     "processing_us", "tcp"};
 
@@ -163,6 +164,13 @@ private:
             if (d.tcp_port != 0)
                 claim(ports_, std::to_string(d.tcp_port), port_pointer, pointer,
                       "port " + std::to_string(d.tcp_port));
+        }
+        if (const auto* p = find(v, "rfc2217_port")) {
+            const auto port_pointer = pointer_to(pointer, "rfc2217_port");
+            d.rfc2217_port = static_cast<std::uint16_t>(get_int(*p, port_pointer, 0, 65535));
+            if (*d.rfc2217_port != 0)
+                claim(ports_, std::to_string(*d.rfc2217_port), port_pointer, pointer,
+                      "port " + std::to_string(*d.rfc2217_port));
         }
         if (const auto* p = find(v, "pty")) {
             const auto pty_pointer = pointer_to(pointer, "pty");

@@ -39,6 +39,9 @@ struct DeviceConfig {
     /// the name and sets the default, so after loading it always names a generation.
     std::string firmware;
     std::uint16_t tcp_port = 0;       ///< 0 = ephemeral
+    /// An RFC 2217 endpoint's port ("rfc2217_port"): 0 = ephemeral; absent = none (unless
+    /// --rfc2217 gives every device one).
+    std::optional<std::uint16_t> rfc2217_port;
     std::string pty;                  ///< symlink path; empty = <pty dir>/<name>
     /// Pace the pty's output at the controller's baud rate (MCS: CB, effective after R).
     bool faithful_timing = false;

@@ -63,7 +63,7 @@ std::string uart_resample(std::string_view sent, std::uint32_t sent_baud, std::u
 class Link::LinkSession : public Session {
 public:
     LinkSession(Link& link, SendFn send, Connection conn, std::string peer)
-        : link_(link), send_(std::move(send)), conn_(std::move(conn)), serial_(peer.rfind("pty ", 0) == 0),
+        : link_(link), send_(std::move(send)), conn_(std::move(conn)), serial_(is_serial_peer(peer)),
           peer_(peer)
     {
         link_.sessions_.push_back(this);
@@ -393,7 +393,7 @@ private:
             hand(static_cast<double>(piece_at), 0, piece.substr(start), now);
             return piece_at;
         }
-        // Faithful timing (a PtyEndpoint names its session "pty <path>"): the bytes arrive when
+        // Faithful timing (a serial line: the pty, "pty <path>", or an RFC 2217 port): the bytes arrive when
         // the line has carried them, 10 bits per byte at the device's baud rate, after
         // whatever it still carries.
         if (baud > 0) {

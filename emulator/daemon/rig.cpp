@@ -3,6 +3,7 @@
 
 #include "emulator/daemon/rig_families.hpp"
 #include "emulator/daemon/rig_kinematics.hpp"
+#include "emulator/transport/rfc2217_device.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +26,7 @@ public:
     PacedDevice(Device& inner, Ticker& ticker, MemoryTrim& trim) : inner_(inner), ticker_(ticker), trim_(trim) {}
 
     std::uint32_t serial_baud() const override { return inner_.serial_baud(); }
+    std::uint32_t line_baud() const override { return inner_.line_baud(); }
 
     std::unique_ptr<Session> open_session(SendFn send, std::string peer) override
     {
@@ -119,6 +121,8 @@ struct Rig::Entry {
     std::unique_ptr<Device> paced;   ///< a PacedDevice around the link
     std::unique_ptr<TcpEndpoint> tcp;
     std::unique_ptr<PtyEndpoint> pty;
+    std::unique_ptr<Rfc2217Device> rfc2217_device;   ///< the serial port over RFC 2217, if any
+    std::unique_ptr<TcpEndpoint> rfc2217;
 };
 
 Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions& options)
@@ -180,12 +184,26 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
             throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
         }
 
+        std::string rfc2217;
+        if (dc.rfc2217_port || options.rfc2217) {
+            const std::uint16_t rport = options.ephemeral_ports ? 0 : dc.rfc2217_port.value_or(0);
+            e.rfc2217_device = std::make_unique<Rfc2217Device>(*e.paced, log);
+            try {
+                e.rfc2217 = std::make_unique<TcpEndpoint>(io, *e.rfc2217_device, options.bind, rport, log, tcp_budget_);
+            } catch (const std::exception& ex) {
+                throw std::runtime_error("device \"" + dc.name + "\": cannot listen for RFC 2217 on tcp "
+                                         + tcp_address_text(options.bind, rport) + ": " + ex.what());
+            }
+            const auto rep = e.rfc2217->local_endpoint();
+            rfc2217 = tcp_address_text(client_address(rep.address()), rep.port());
+        }
+
         const auto ep = e.tcp->local_endpoint();
         endpoints_.push_back(DeviceEndpoints{dc.name, dc.protocol, dc.model,
                                              tcp_address_text(client_address(ep.address()), ep.port()),
-                                             e.pty->symlink_path(), dc.firmware});
-        log->info("listening on tcp {} and pty {} -> {}", endpoints_.back().tcp, pty_path,
-                  e.pty->device_path());
+                                             e.pty->symlink_path(), dc.firmware, rfc2217});
+        log->info("listening on tcp {} and pty {} -> {}{}", endpoints_.back().tcp, pty_path, e.pty->device_path(),
+                  rfc2217.empty() ? "" : ", RFC 2217 on tcp " + rfc2217);
     }
 }
 
@@ -226,6 +244,8 @@ void Rig::start()
     for (auto& e : entries_) {
         e->tcp->start();
         e->pty->start();
+        if (e->rfc2217)
+            e->rfc2217->start();
     }
 }
 
@@ -235,6 +255,8 @@ void Rig::stop()
     for (auto& e : entries_) {
         e->tcp->stop();
         e->pty->stop();
+        if (e->rfc2217)
+            e->rfc2217->stop();
     }
     watcher_.stop();
 }
@@ -260,9 +282,12 @@ std::vector<ControlledDevice> Rig::controlled()
 std::string endpoints_json(const std::vector<DeviceEndpoints>& endpoints, const std::string& control_url)
 {
     auto devices = nlohmann::json::array();
-    for (const auto& e : endpoints)
+    for (const auto& e : endpoints) {
         devices.push_back({{"name", e.name}, {"protocol", e.protocol},
                            {"model", e.model}, {"tcp", e.tcp}, {"pty", e.pty}});
+        if (!e.rfc2217.empty())
+            devices.back()["rfc2217"] = e.rfc2217;
+    }
     nlohmann::json doc{{"devices", devices}};
     if (!control_url.empty())
         doc["control"] = control_url;

@@ -33,6 +33,7 @@ namespace rigsim {
 struct RigOptions {
     std::string pty_dir = "/tmp/rigsim";   ///< where pty symlinks go unless the config names one
     bool ephemeral_ports = false;           ///< every TCP endpoint on port 0
+    bool rfc2217 = false;                   ///< --rfc2217: every device gets an RFC 2217 endpoint
     boost::asio::ip::address bind = boost::asio::ip::make_address("127.0.0.1");
     double time_scale = 1.0;
     bool paused = false;                    ///< the clock starts paused (--paused, "clock": {"paused"})
@@ -51,6 +52,7 @@ struct DeviceEndpoints {
     std::string tcp;   ///< "127.0.0.1:40100", "[::1]:40100" (where a local client connects)
     std::string pty;   ///< symlink path
     std::string firmware;   ///< the firmware generation the device follows (DeviceConfig::firmware)
+    std::string rfc2217;    ///< its RFC 2217 endpoint, as `tcp`; empty: none
 };
 
 /// A device as the control API steers it.

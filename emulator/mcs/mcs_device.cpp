@@ -17,7 +17,7 @@ class McsSession : public Session {
 public:
     McsSession(McsDevice& device, SendFn send, std::string peer, spdlog::logger& log, Clock& clock)
         : device_(device), send_(std::move(send)), peer_(std::move(peer)), log_(log), clock_(clock),
-          paced_(peer_.rfind("pty", 0) == 0)
+          paced_(is_serial_peer(peer_))
     {
         device_.attach(this);
         clock_.changed(device_);

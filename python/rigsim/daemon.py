@@ -33,11 +33,20 @@ class Endpoint:
     model: str
     tcp: str        # "127.0.0.1:40100"
     pty: str        # the pty's symlink path
+    rfc2217: str = ""   # the RFC 2217 endpoint ("127.0.0.1:40101"; --rfc2217, "rfc2217_port"), or ""
 
     @property
     def url(self) -> str:
         """pyserial's URL for the TCP endpoint: serial.serial_for_url(endpoint.url)."""
         return "socket://" + self.tcp
+
+    @property
+    def rfc2217_url(self) -> str:
+        """pyserial's URL for the RFC 2217 endpoint: serial.serial_for_url(endpoint.rfc2217_url)
+        sets baud rate, data bits, parity, stop bits, RTS and DTR as on a serial port."""
+        if not self.rfc2217:
+            raise ValueError(f"device {self.name} has no RFC 2217 endpoint (rigsimd --rfc2217, or its rfc2217_port)")
+        return "rfc2217://" + self.rfc2217
 
     @property
     def address(self) -> tuple[str, int]:
@@ -394,5 +403,6 @@ class Rigsim:
         if "control" not in doc:
             raise RigsimError("the endpoints file names no control API: is this rigsimd older than --control?")
         self.control = ControlClient(doc["control"], token=self.token)
-        self.endpoints = {d["name"]: Endpoint(d["name"], d["protocol"], d["model"], d["tcp"], d["pty"])
+        self.endpoints = {d["name"]: Endpoint(d["name"], d["protocol"], d["model"], d["tcp"], d["pty"],
+                                              d.get("rfc2217", ""))
                           for d in doc["devices"]}

@@ -113,7 +113,7 @@ struct Harness {
         for (std::size_t i = 0; i < config.devices.size(); ++i) {
             const auto& dc = config.devices[i];
             devices.push_back(ControlledDevice{DeviceEndpoints{dc.name, dc.protocol, dc.model, "127.0.0.1:1",
-                                                               "/nonexistent/rigsim-fuzz/" + dc.name, dc.firmware},
+                                                               "/nonexistent/rigsim-fuzz/" + dc.name, dc.firmware, ""},
                                                rig.device(i).control(), &rig.link(i)});
         }
         control::FrameSource frames{rig.kinematics(), control::joint_axes(rig.bindings(), devices), {}};

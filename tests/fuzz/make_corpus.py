@@ -384,8 +384,29 @@ def tap_seeds(src, corpus):
                 corpus.add("tap_recorder", chunks(2, [(0, l) for l in lines]))
 
 
+def rfc2217_seeds(src, corpus):
+    """The RFC 2217 codec: pyserial's opening (its Telnet options, the port's settings, RTS/DTR,
+    a modem state poll), then each MCS transcript's commands as Telnet data, and the byte strings
+    of the codec's unit test."""
+    iac = b"\xff"
+    def sb(command, value):
+        return iac + b"\xfa\x2c" + bytes([command]) + value.replace(iac, iac + iac) + iac + b"\xf0"
+    opening = (iac + b"\xfd\x01" + iac + b"\xfb\x03" + iac + b"\xfd\x03" + iac + b"\xfd\x2c" + iac + b"\xfb\x2c"
+               + sb(1, (115200).to_bytes(4, "big")) + sb(2, b"\x08") + sb(3, b"\x01") + sb(4, b"\x01")
+               + sb(5, b"\x01") + sb(5, b"\x0b") + sb(5, b"\x08") + sb(7, b"") + sb(12, b"\x03"))
+    corpus.add("rfc2217", b"\x00" + opening)
+    for name, header, steps, answers in mcs_transcripts(src):
+        data = b"".join(s[1] for s in steps if s[0] == "send")
+        corpus.add("rfc2217", b"\x03" + opening + data.replace(iac, iac + iac))
+    path = src / "tests/unit/transport/test_rfc2217.cpp"
+    if path.exists():
+        for m in re.findall(r'bytes\(\{([0-9, ]+)\}\)', path.read_text()):
+            corpus.add("rfc2217", b"\x00" + bytes(int(v) for v in m.split(",") if v.strip()))
+
+
 def write_corpus(src, out):
     corpus = Corpus(out)
+    rfc2217_seeds(src, corpus)
     tap_seeds(src, corpus)
     mcs2_seeds(src, corpus)
     mcs2_session_seeds(src, corpus)

@@ -74,8 +74,8 @@ struct Fixture {
     Motion motion;
     Ticker ticker{io, clock, 1.0, Ticker::Start::Paused};
     ControlApi api{clock, ticker, [this] { return clock.next_wakeup() != kNever; },
-                   {DeviceEndpoints{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/rigsim/mcs0", "1.2.44"},
-                    DeviceEndpoints{"tdc0", "apt", "TDC001", "127.0.0.1:40101", "/tmp/rigsim/tdc0", "issue-44.1"}}};
+                   {DeviceEndpoints{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/rigsim/mcs0", "1.2.44", ""},
+                    DeviceEndpoints{"tdc0", "apt", "TDC001", "127.0.0.1:40101", "/tmp/rigsim/tdc0", "issue-44.1", ""}}};
 };
 
 } // namespace

@@ -58,7 +58,7 @@ TEST_CASE("rig config: a bad control object names the pointer", "[unit][config][
 
 TEST_CASE("endpoints json: control appears only when the control API is on", "[unit][control]")
 {
-    const std::vector<rigsim::DeviceEndpoints> devices{{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/x/mcs0", "1.2.44"}};
+    const std::vector<rigsim::DeviceEndpoints> devices{{"mcs0", "mcs", "MCS-3D", "127.0.0.1:40100", "/tmp/x/mcs0", "1.2.44", ""}};
     const auto off = json::parse(rigsim::endpoints_json(devices));
     CHECK(off == json{{"devices", json::array({json{{"name", "mcs0"}, {"protocol", "mcs"}, {"model", "MCS-3D"},
                                                       {"tcp", "127.0.0.1:40100"}, {"pty", "/tmp/x/mcs0"}}})}});

@@ -113,7 +113,7 @@ struct Fixture {
         api = std::make_unique<ControlApi>(
             clock, ticker, [] { return false; },
             std::vector<ControlledDevice>{ControlledDevice{
-                DeviceEndpoints{"dev", "mcs", "MCS-3D", "127.0.0.1:1", "/tmp/x/dev", "1.2.44"}, &stage, &link}},
+                DeviceEndpoints{"dev", "mcs", "MCS-3D", "127.0.0.1:1", "/tmp/x/dev", "1.2.44", ""}, &stage, &link}},
             &bus, std::move(source));
     }
     /// The "frames" events written to `text` so far, as their data.
@@ -285,9 +285,9 @@ TEST_CASE("joint_axes: each binding's device and channel, found by the world bod
     Mounts mcs(clock, {"mcs/0", "mcs/1"});
     Mounts apt(clock, {"apt/1", ""});   // an APT bay's body key counts from 1; bay 1 moves nothing
     const std::vector<ControlledDevice> devices{
-        ControlledDevice{DeviceEndpoints{"mcs", "mcs", "MCS-2D", "", "", "1.2.44"}, &mcs, nullptr},
-        ControlledDevice{DeviceEndpoints{"apt", "apt", "BBD202", "", "", "issue-3"}, &apt, nullptr},
-        ControlledDevice{DeviceEndpoints{"bare", "mcs", "MCS-1D", "", "", "1.2.44"}, nullptr, nullptr}};
+        ControlledDevice{DeviceEndpoints{"mcs", "mcs", "MCS-2D", "", "", "1.2.44", ""}, &mcs, nullptr},
+        ControlledDevice{DeviceEndpoints{"apt", "apt", "BBD202", "", "", "issue-3", ""}, &apt, nullptr},
+        ControlledDevice{DeviceEndpoints{"bare", "mcs", "MCS-1D", "", "", "1.2.44", ""}, nullptr, nullptr}};
     std::vector<JointBinding> bindings(4);
     bindings[1].body_key = "apt/1";
     bindings[2].body_key = "mcs/1";

@@ -116,7 +116,7 @@ struct Fixture {
     Link link{null_device, clock};
     ControlApi api{clock, ticker, [] { return false; },
                    std::vector<ControlledDevice>{ControlledDevice{
-                       DeviceEndpoints{"dev", "mcs", "MCS-3D", "127.0.0.1:1", "/tmp/x/dev", "1.2.44"}, &surface, &link}},
+                       DeviceEndpoints{"dev", "mcs", "MCS-3D", "127.0.0.1:1", "/tmp/x/dev", "1.2.44", ""}, &surface, &link}},
                    &bus, {}, &world};
 };
 

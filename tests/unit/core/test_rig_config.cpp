@@ -51,7 +51,7 @@ std::string error_of(const json& rig)
     return error_of_text(rig.dump());
 }
 
-const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, link, mcs, apt, mcs2)";
+const std::string kDeviceKeys = "(allowed: name, protocol, model, firmware, tcp_port, pty, faithful_timing, link, rfc2217_port, mcs, apt, mcs2)";
 
 } // namespace
 
@@ -662,6 +662,23 @@ TEST_CASE("rig config: faithful_timing is a boolean", "[unit][config]")
     } catch (const rigsim::ConfigError& e) {
         CHECK(std::string(e.what()) == "rig.json: /devices/0/faithful_timing: expected true or false, got 1");
     }
+}
+
+TEST_CASE("rig config: rfc2217_port asks for an RFC 2217 endpoint, 0 an ephemeral one, a port once", "[unit][config]")
+{
+    const auto none = rigsim::parse_rig_config(R"({"devices":[{"name":"a","protocol":"mcs","mcs":{"channels":[{}]}}]})", "rig.json");
+    CHECK_FALSE(none.devices[0].rfc2217_port.has_value());
+    const auto some = rigsim::parse_rig_config(
+        R"({"devices":[{"name":"a","protocol":"mcs","rfc2217_port":0,"mcs":{"channels":[{}]}},
+                       {"name":"b","protocol":"mcs","tcp_port":5000,"rfc2217_port":5001,"mcs":{"channels":[{}]}}]})",
+        "rig.json");
+    CHECK(some.devices[0].rfc2217_port == std::optional<std::uint16_t>(0));
+    CHECK(some.devices[1].rfc2217_port == std::optional<std::uint16_t>(5001));
+    CHECK(error_of_text(R"({"devices":[{"name":"a","protocol":"mcs","rfc2217_port":70000,"mcs":{"channels":[{}]}}]})")
+          == "rig.json: /devices/0/rfc2217_port: expected an integer 0..65535, got 70000");
+    CHECK(error_of_text(R"({"devices":[{"name":"a","protocol":"mcs","tcp_port":5000,"mcs":{"channels":[{}]}},
+                                      {"name":"b","protocol":"mcs","rfc2217_port":5000,"mcs":{"channels":[{}]}}]})")
+          == "rig.json: /devices/1/rfc2217_port: port 5000 is already used by /devices/0");
 }
 
 TEST_CASE("rig config: link is the link model, every key optional and checked", "[unit][config]")

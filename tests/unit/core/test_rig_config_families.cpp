@@ -63,7 +63,7 @@ TEST_CASE("rig config: core loads a device's section with the family its protoco
           == "rig.json: /devices/0/protocol: unknown protocol \"mcs\" (expected \"lamp\" or \"fan\")");
     CHECK(error_of(R"({"devices":[{"name":"l","protocol":"lamp","mcs":{}}]})", families)
           == "rig.json: /devices/0: unknown key \"mcs\" (allowed: name, protocol, model, firmware, tcp_port, "
-             "pty, faithful_timing, link, lamp, fan)");
+             "pty, faithful_timing, link, rfc2217_port, lamp, fan)");
     CHECK(error_of(R"({"devices":[{"name":"f","protocol":"fan","lamp":{}}]})", families)
           == "rig.json: /devices/0/lamp: an \"lamp\" object belongs to a lamp, not to protocol \"fan\"");
     CHECK(error_of(R"({"devices":[{"name":"l","protocol":"lamp","lamp":{"watts":0}}]})", families)
