@@ -176,9 +176,12 @@ def _frame_table(frame: JsonObject) -> str:
 def render_table(kind: str, answer: Any) -> str | None:
     """A short table for the answers that have one, else None (JSON is printed)."""
     if kind == "rig":
-        out = table(answer.get("devices", []), [("name", "name"), ("protocol", "protocol"),
-                                                ("model", "model"), ("firmware", "firmware"),
-                                                ("tcp", "tcp"), ("pty", "pty")])
+        devices = answer.get("devices", [])
+        columns = [("name", "name"), ("protocol", "protocol"), ("model", "model"), ("firmware", "firmware"),
+                   ("tcp", "tcp"), ("pty", "pty")]
+        if any(d.get("rfc2217") for d in devices):   # rigsimd --rfc2217, a device's rfc2217_port
+            columns.append(("rfc2217", "rfc2217"))
+        out = table(devices, columns)
         return out + "\n\n" + _clock_table(answer.get("clock", {}))
     if kind == "clock":
         return _clock_table(answer)

@@ -64,8 +64,22 @@ def test_a_baud_rate_set_over_rfc2217_is_the_rate_the_device_sees(rigsim):
         port.close()
 
 
+def test_the_endpoint_is_listed_by_the_control_api_and_rigsimctl(rigsim):
+    from rigsim.cli import render_table
+    rig = rigsim(args=["--rfc2217"])
+    state = rig.rig_state()
+    address = rig.endpoint("kdc101").rfc2217
+    assert [d for d in state["devices"] if d["name"] == "kdc101"][0]["rfc2217"] == address
+    assert rig.state("kdc101")["endpoints"]["rfc2217"] == address
+    table = render_table("rig", state)
+    assert table.splitlines()[0].split()[-1] == "rfc2217" and address in table
+
+
 def test_without_the_flag_or_the_key_no_device_has_one(rigsim):
+    from rigsim.cli import render_table
     rig = rigsim()
     assert rig.endpoint("kdc101").rfc2217 == ""
+    assert "rfc2217" not in rig.rig_state()["devices"][0]
+    assert "rfc2217" not in render_table("rig", rig.rig_state())
     with pytest.raises(ValueError, match="no RFC 2217 endpoint"):
         rig.endpoint("kdc101").rfc2217_url

@@ -65,6 +65,12 @@ TEST_CASE("endpoints json: control appears only when the control API is on", "[u
     const auto on = json::parse(rigsim::endpoints_json(devices, "http://127.0.0.1:40200"));
     CHECK(on["control"] == "http://127.0.0.1:40200");
     CHECK(on["devices"] == off["devices"]);
+    // An RFC 2217 endpoint is listed beside the others, only where there is one.
+    const std::vector<rigsim::DeviceEndpoints> with{{"a", "apt", "KDC101", "127.0.0.1:1", "/tmp/x/a", "issue-3", "127.0.0.1:2"},
+                                                    {"b", "mcs", "MCS-3D", "127.0.0.1:3", "/tmp/x/b", "1.2.44", ""}};
+    const auto listed = json::parse(rigsim::endpoints_json(with));
+    CHECK(listed["devices"][0]["rfc2217"] == "127.0.0.1:2");
+    CHECK_FALSE(listed["devices"][1].contains("rfc2217"));
 }
 
 namespace {
