@@ -4,6 +4,6 @@
 # See bench/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release
+bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release -DRIGSIM_BENCH=ON
 cmake --build build/release -j2 --target rigsim_bench
 exec build/release/bench/rigsim_bench "$@"
