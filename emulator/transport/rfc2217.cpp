@@ -237,56 +237,14 @@ void Rfc2217Codec::com_port(std::uint8_t command, std::string_view value, Out& o
         if (value.empty())
             send(out, kSignature + kServer, kServerSignature);
         return;
-    case kSetBaudRate: {
-        if (value.size() != 4) {
-            out.notes.push_back("SET-BAUDRATE with " + std::to_string(value.size()) + " value bytes, not 4: ignored");
-            return;
-        }
-        std::uint32_t baud = 0;
-        for (const char c : value)
-            baud = baud << 8 | static_cast<std::uint8_t>(c);
-        if (baud != 0 && baud != settings_.baud) {   // 0 asks for the current rate
-            settings_.baud = baud;
-            out.line_changed = true;
-        }
-        const std::uint32_t b = settings_.baud;
-        const char be[4] = {static_cast<char>(b >> 24), static_cast<char>(b >> 16), static_cast<char>(b >> 8),
-                            static_cast<char>(b)};
-        send(out, kSetBaudRate + kServer, std::string_view(be, 4));
+    case kSetBaudRate:
+        set_baud(value, out);
         return;
-    }
     case kSetDataSize:
-        if (!one_byte("SET-DATASIZE"))
-            return;
-        if (byte >= 5 && byte <= 8 && byte != settings_.data_bits) {
-            settings_.data_bits = byte;
-            out.line_changed = true;
-        } else if (byte != 0 && (byte < 5 || byte > 8)) {
-            out.notes.push_back("SET-DATASIZE " + std::to_string(byte) + " (5..8): the size stays");
-        }
-        send(out, kSetDataSize + kServer, settings_.data_bits);
-        return;
     case kSetParity:
-        if (!one_byte("SET-PARITY"))
-            return;
-        if (byte >= 1 && byte <= 5 && byte != settings_.parity) {
-            settings_.parity = byte;
-            out.line_changed = true;
-        } else if (byte > 5) {
-            out.notes.push_back("SET-PARITY " + std::to_string(byte) + " (1..5): the parity stays");
-        }
-        send(out, kSetParity + kServer, settings_.parity);
-        return;
     case kSetStopSize:
-        if (!one_byte("SET-STOPSIZE"))
-            return;
-        if (byte >= 1 && byte <= 3 && byte != settings_.stop_bits) {
-            settings_.stop_bits = byte;
-            out.line_changed = true;
-        } else if (byte > 3) {
-            out.notes.push_back("SET-STOPSIZE " + std::to_string(byte) + " (1..3): the stop bits stay");
-        }
-        send(out, kSetStopSize + kServer, settings_.stop_bits);
+        if (one_byte(command == kSetDataSize ? "SET-DATASIZE" : command == kSetParity ? "SET-PARITY" : "SET-STOPSIZE"))
+            line_setting(command, byte, out);
         return;
     case kSetControl:
         if (one_byte("SET-CONTROL"))
@@ -332,6 +290,52 @@ void Rfc2217Codec::com_port(std::uint8_t command, std::string_view value, Out& o
         out.notes.push_back("COM-PORT-OPTION command " + std::to_string(command) + " (0..12): ignored");
         return;
     }
+}
+
+void Rfc2217Codec::set_baud(std::string_view value, Out& out)
+{
+    if (value.size() != 4) {
+        out.notes.push_back("SET-BAUDRATE with " + std::to_string(value.size()) + " value bytes, not 4: ignored");
+        return;
+    }
+    std::uint32_t baud = 0;
+    for (const char c : value)
+        baud = baud << 8 | static_cast<std::uint8_t>(c);
+    if (baud != 0 && baud != settings_.baud) {   // 0 asks for the current rate
+        settings_.baud = baud;
+        out.line_changed = true;
+    }
+    const std::uint32_t b = settings_.baud;
+    const char be[4] = {static_cast<char>(b >> 24), static_cast<char>(b >> 16), static_cast<char>(b >> 8),
+                        static_cast<char>(b)};
+    send(out, kSetBaudRate + kServer, std::string_view(be, 4));
+}
+
+void Rfc2217Codec::line_setting(std::uint8_t command, std::uint8_t value, Out& out)
+{
+    // Each: its name, its field, its range and what stays when a value is out of it.
+    struct Setting {
+        const char* name;
+        std::uint8_t SerialSettings::*field;
+        std::uint8_t lo;
+        std::uint8_t hi;
+        const char* stays;
+    };
+    static constexpr Setting kSettings[] = {
+        {"SET-DATASIZE", &SerialSettings::data_bits, 5, 8, "the size stays"},
+        {"SET-PARITY", &SerialSettings::parity, 1, 5, "the parity stays"},
+        {"SET-STOPSIZE", &SerialSettings::stop_bits, 1, 3, "the stop bits stay"},
+    };
+    const auto& s = kSettings[command - kSetDataSize];
+    auto& field = settings_.*s.field;
+    if (value >= s.lo && value <= s.hi && value != field) {
+        field = value;
+        out.line_changed = true;
+    } else if (value != 0 && (value < s.lo || value > s.hi)) {   // 0 asks for the current value
+        out.notes.push_back(std::string(s.name) + " " + std::to_string(value) + " (" + std::to_string(s.lo) + ".."
+                            + std::to_string(s.hi) + "): " + s.stays);
+    }
+    send(out, command + kServer, field);
 }
 
 void Rfc2217Codec::set_control(std::uint8_t value, Out& out)

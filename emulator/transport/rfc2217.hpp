@@ -79,6 +79,10 @@ private:
     void negotiate(std::uint8_t verb, std::uint8_t option, Out& out);
     void subnegotiation(Out& out);
     void com_port(std::uint8_t command, std::string_view value, Out& out);
+    /// SET-BAUDRATE: 4 bytes, big-endian; 0 asks.
+    void set_baud(std::string_view value, Out& out);
+    /// SET-DATASIZE, SET-PARITY, SET-STOPSIZE: set within RFC 2217's range, acknowledged.
+    void line_setting(std::uint8_t command, std::uint8_t value, Out& out);
     void set_control(std::uint8_t value, Out& out);
     /// IAC SB COM-PORT-OPTION `command` `value` IAC SE, the value's 0xFF doubled.
     static void send(Out& out, std::uint8_t command, std::string_view value);
