@@ -176,7 +176,10 @@ TEST_CASE("wire faults: slow_close answers until delay_ms, then the client reads
     CHECK(r.end == Reads::End::Eof);
     CHECK(r.bytes.empty());
     mcs.send(":GS0\n");   // half-closed: the client may still write; nothing answers
-    CHECK(read_to_end(pty.fd()).end == Reads::End::Eof);
+    // A hung-up pty ends as end of stream or, when the hang-up overtakes the read, EIO: either
+    // is the end (one CI run under load read EIO).
+    const auto pty_end = read_to_end(pty.fd());
+    CHECK((pty_end.end == Reads::End::Eof || (pty_end.end == Reads::End::Error && pty_end.error == EIO)));
     CHECK(rig.daemon.running());
 }
 
