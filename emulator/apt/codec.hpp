@@ -274,7 +274,8 @@ struct PiezoMessage
 
 namespace codec_detail {
 template <class T, class V> struct IsIn : std::false_type {};
-template <class T, class... Ts> struct IsIn<T, std::variant<Ts...>> : std::disjunction<std::is_same<T, Ts>...> {};
+// A fold of is_same_v (a compiler built-in), not std::disjunction of 166 is_same classes per message.
+template <class T, class... Ts> struct IsIn<T, std::variant<Ts...>> : std::bool_constant<(std::is_same_v<T, Ts> || ...)> {};
 /// The chapter (Group) whose variant holds message T; no `type` if none does.
 template <class T, class... Groups> struct GroupOf {};
 template <class T, class G, class... Groups>
@@ -307,17 +308,42 @@ struct Message : std::variant<GenericMessage, MotorTrioMessage, PmdTrioMessage, 
     Message(Untyped m) : variant(std::in_place_type<Untyped>, std::move(m)) {}
 };
 
+namespace codec_detail {
+template <class R, class F, class V, std::size_t I> R call_alternative(F& f, const V& v)
+{
+    return f(*std::get_if<I>(&v));
+}
+/// f called with the alternative `v` holds, through a table of one function per alternative.
+/// libstdc++'s std::visit (C++17) also checks every alternative's invoke_result against the
+/// others' and builds its table through templates of its own: with 166 messages visited by every
+/// module kind, that was most of what the APT library cost to compile
+/// (docs/architecture.md#build-options). R is f's result for the first alternative; every
+/// alternative's must convert to it.
+template <class F, class V, std::size_t... I> decltype(auto) visit_alternatives(F& f, const V& v, std::index_sequence<I...>)
+{
+    using R = decltype(f(*std::get_if<0>(&v)));
+    using Call = R (*)(F&, const V&);
+    static constexpr Call table[] = {&call_alternative<R, F, V, I>...};
+    if (v.valueless_by_exception())
+        throw std::bad_variant_access{};
+    return table[v.index()](f, v);
+}
+template <class F, class... Ts> decltype(auto) visit_variant(F& f, const std::variant<Ts...>& v)
+{
+    return visit_alternatives(f, v, std::index_sequence_for<Ts...>{});
+}
+} // namespace codec_detail
+
 /// Calls f with the typed message (or Untyped) `m` holds; f returns one type for all.
 template <class F> decltype(auto) visit(F&& f, const Message& m)
 {
-    return std::visit(
-        [&f](const auto& group) -> decltype(auto) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(group)>, Untyped>)
-                return f(group);
-            else
-                return std::visit(f, static_cast<const typename std::decay_t<decltype(group)>::variant&>(group));
-        },
-        static_cast<const Message::variant&>(m));
+    auto in_group = [&f](const auto& group) -> decltype(auto) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(group)>, Untyped>)
+            return f(group);
+        else
+            return codec_detail::visit_variant(f, static_cast<const typename std::decay_t<decltype(group)>::variant&>(group));
+    };
+    return codec_detail::visit_variant(in_group, static_cast<const Message::variant&>(m));
 }
 
 /// The message T that `m` holds, or nullptr.
