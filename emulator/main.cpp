@@ -13,6 +13,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -27,6 +28,7 @@
 #include <string_view>
 #include <vector>
 
+#include <grp.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -80,6 +82,9 @@ its control API on 127.0.0.1:40200 (where rigsimctl looks by default).
                          names a path (default /tmp/rigsim; created if missing); a
                          link's directory must be this user's or root's, writable by
                          no one else unless sticky (exit 2 otherwise)
+  --pty-group GROUP      give each device's pty to GROUP (a name or number), mode 0660,
+                         so that its members open it as they open a serial port (e.g.
+                         dialout); this user must be root or a member of GROUP
   --replace-links        take over pty symlinks that a running rigsimd holds (it runs on
                          without them); without it such a link stops start-up (exit 2).
                          Links left by a daemon that died are replaced either way
@@ -236,6 +241,38 @@ void set_control_token(const std::string& flag, const std::string& value, rigsim
     access.token = value;
 }
 
+/// --pty-group GROUP: a group name or number that this process may give its ptys to (root, or a
+/// member of it: fchown allows no other).
+long parse_pty_group(const std::string& v)
+{
+    const std::string flag = "--pty-group";
+    if (v.empty())
+        throw UsageError{flag + ": expected a group name or number, got \"\""};
+    gid_t gid = 0;
+    std::string shown = v;
+    if (v.find_first_not_of("0123456789") == std::string::npos) {
+        if (v.size() > 9)
+            throw UsageError{flag + ": expected a group name or number, got " + echo(v)};
+        gid = static_cast<gid_t>(std::stoul(v));
+    } else {
+        std::vector<char> buffer(16384);
+        struct group entry {};
+        struct group* found = nullptr;
+        if (::getgrnam_r(v.c_str(), &entry, buffer.data(), buffer.size(), &found) != 0 || found == nullptr)
+            throw UsageError{flag + ": no group " + echo(v) + " on this system"};
+        gid = found->gr_gid;
+        shown = v + " (" + std::to_string(gid) + ")";
+    }
+    if (::geteuid() != 0 && ::getegid() != gid) {
+        std::vector<gid_t> groups(static_cast<std::size_t>(std::max(::getgroups(0, nullptr), 0)) + 1);
+        const int n = ::getgroups(static_cast<int>(groups.size()), groups.data());
+        if (std::find(groups.begin(), groups.begin() + std::max(n, 0), gid) == groups.begin() + std::max(n, 0))
+            throw UsageError{flag + ": this user is not a member of group " + shown
+                             + ", so it cannot give its ptys to it (add it to the group, or run as a member)"};
+    }
+    return static_cast<long>(gid);
+}
+
 /// One option of the command line other than --help and --version; `value` takes its value,
 /// `no_value` refuses one.
 template <class Value, class NoValue>
@@ -253,6 +290,8 @@ void parse_option(const std::string& arg, Value& value, NoValue& no_value, Optio
             throw UsageError{"--pty-dir: expected a directory, got \"\""};
         while (o.rig.pty_dir.size() > 1 && o.rig.pty_dir.back() == '/')
             o.rig.pty_dir.pop_back();
+    } else if (arg == "--pty-group") {
+        o.rig.pty_group = parse_pty_group(value());
     } else if (arg == "--replace-links") {
         no_value();
         o.replace_links = true;

@@ -179,7 +179,7 @@ Rig::Rig(boost::asio::io_context& io, const RigConfig& config, const RigOptions&
         }
         const auto pty_path = dc.pty.empty() ? options.pty_dir + "/" + dc.name : dc.pty;
         try {
-            e.pty = std::make_unique<PtyEndpoint>(io, *e.paced, pty_path, log, watcher_);
+            e.pty = std::make_unique<PtyEndpoint>(io, *e.paced, pty_path, log, watcher_, options.pty_group);
         } catch (const std::exception& ex) {
             throw std::runtime_error("device \"" + dc.name + "\": cannot open its pty: " + ex.what());
         }

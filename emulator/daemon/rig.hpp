@@ -32,6 +32,7 @@ namespace rigsim {
 
 struct RigOptions {
     std::string pty_dir = "/tmp/rigsim";   ///< where pty symlinks go unless the config names one
+    long pty_group = -1;                    ///< --pty-group: the ptys' group (mode 0660), or -1
     bool ephemeral_ports = false;           ///< every TCP endpoint on port 0
     bool rfc2217 = false;                   ///< --rfc2217: every device gets an RFC 2217 endpoint
     boost::asio::ip::address bind = boost::asio::ip::make_address("127.0.0.1");

@@ -71,9 +71,9 @@ std::uint32_t baud_of(speed_t speed)
 } // namespace
 
 PtyEndpoint::PtyEndpoint(asio::io_context& io, Device& device, std::string symlink_path,
-                         std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher)
+                         std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher, long group)
     : device_(device), master_(io), watcher_(watcher), pacing_timer_(io), hangup_timer_(io),
-      symlink_path_(std::move(symlink_path)), log_(std::move(log))
+      symlink_path_(std::move(symlink_path)), group_(group), log_(std::move(log))
 {
     make_pty();
     open_session();
@@ -86,6 +86,16 @@ void PtyEndpoint::make_pty()
     if (::openpty(&master, &slave_fd_, name, nullptr, nullptr) != 0)
         throw_errno("openpty failed");
     slave_name_ = name;
+    // --pty-group: the group's members open it as they open a serial port (root:dialout 0660).
+    if (group_ >= 0
+        && (::fchown(slave_fd_, static_cast<uid_t>(-1), static_cast<gid_t>(group_)) != 0 || ::fchmod(slave_fd_, 0660) != 0)) {
+        const int e = errno;
+        ::close(master);
+        ::close(slave_fd_);
+        slave_fd_ = -1;
+        errno = e;
+        throw_errno("cannot give " + slave_name_ + " to group " + std::to_string(group_));
+    }
     // Raw: no echo, no line editing, no CR/LF mapping. A client's own termios settings
     // (it opens the slave) replace these; the daemon resets only ECHO behind its back.
     struct termios tio {};

@@ -74,9 +74,12 @@ public:
     static constexpr std::chrono::seconds kHangupDrain{2};
 
     /// Creates the pty, its watch on `watcher` and the symlink at once (throws
-    /// std::system_error if it cannot). `watcher` must outlive the endpoint.
+    /// std::system_error if it cannot). `watcher` must outlive the endpoint. With `group` >= 0
+    /// (--pty-group), the pty device belongs to that group with mode 0660, as a serial port does
+    /// (every pty the endpoint makes: a hang-up's replacement too); -1 leaves it as openpty made
+    /// it (the daemon's user's, mode 0620).
     PtyEndpoint(boost::asio::io_context& io, Device& device, std::string symlink_path,
-                std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher);
+                std::shared_ptr<spdlog::logger> log, InotifyWatcher& watcher, long group = -1);
     ~PtyEndpoint();
     PtyEndpoint(const PtyEndpoint&) = delete;
     PtyEndpoint& operator=(const PtyEndpoint&) = delete;
@@ -143,6 +146,7 @@ private:
     int slave_fd_ = -1;
     std::string slave_name_;
     std::string symlink_path_;
+    long group_ = -1;   ///< --pty-group: the pty device's group, or -1
     std::shared_ptr<spdlog::logger> log_;
     std::unique_ptr<Session> session_;
     std::array<char, 4096> buffer_{};

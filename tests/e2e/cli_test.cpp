@@ -146,6 +146,17 @@ TEST_CASE("cli: a pty directory others may write in exits 2 before any link is m
     CHECK_FALSE(path_exists(ptys + "/.mcs0.lock"));
 }
 
+TEST_CASE("cli: --pty-group naming no group exits 2 naming the flag", "[e2e][cli]")
+{
+    TempDir dir;
+    const auto r = run_rigsimd({"--pty-group", "no-such-group-rigsim", "--pty-dir", dir.file("ptys")});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exited);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err == "rigsimd: --pty-group: no group \"no-such-group-rigsim\" on this system\n");
+    CHECK_FALSE(path_exists(dir.file("ptys")));
+}
+
 TEST_CASE("cli: an unknown flag exits 2 naming the flag", "[e2e][cli]")
 {
     const auto r = run_rigsimd({"--no-such-flag"});
@@ -162,7 +173,7 @@ TEST_CASE("cli: --help lists every flag and exits 0", "[e2e][cli]")
     REQUIRE(r.exited);
     CHECK(r.exit_code == 0);
     for (const char* flag : {"--config", "--check-config", "--endpoints-json", "--pty-dir", "--replace-links",
-                             "--ephemeral-ports", "--bind", "--max-connections", "--max-connections-per-device",
+                             "--ephemeral-ports", "--rfc2217", "--pty-group", "--bind", "--max-connections", "--max-connections-per-device",
                              "--time-scale", "--tick-hz", "--state-file",
                              "--log-level", "--help"}) {
         INFO("flag " << flag);

@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -58,6 +59,21 @@ TEST_CASE("pty: a session survives close, reopen and baud changes", "[e2e][pty]"
     CHECK(p.request(":GP0\n") == ":P0,1500000\n");
     TcpClient t(ep);
     CHECK(t.request(":GP0\n") == ":P0,1500000\n");
+    CHECK(p.request(":GNC\n") == ":N3\n");
+}
+
+TEST_CASE("pty: --pty-group gives the pty to the group, mode 0660, as a serial port", "[e2e][pty]")
+{
+    Daemon::Options options;
+    options.extra_args = {"--pty-group", std::to_string(::getegid())};
+    Daemon daemon(options);
+    const Endpoint ep = daemon.endpoint();
+    struct stat st {};
+    REQUIRE(::stat(ep.pty.c_str(), &st) == 0);   // the pty device behind the link
+    CHECK(S_ISCHR(st.st_mode));
+    CHECK(st.st_gid == ::getegid());
+    CHECK((st.st_mode & 07777) == 0660);
+    PtyClient p(ep.pty);
     CHECK(p.request(":GNC\n") == ":N3\n");
 }
 
