@@ -9,12 +9,17 @@
 #                            (the tests of python/rigsim and its plugin), python3-venv (the
 #                            offline `pip install ./python` test), python3-mypy (the package's
 #                            type hints, checked with mypy --strict)
+#   scripts/deps.sh --package  what scripts/package.sh needs besides the build's: dpkg-dev
+#                            (dpkg-shlibdeps finds the package's library dependencies) and file
+#                            (CPack's DEB generator finds the programs to strip with it)
 set -euo pipefail
 
 packages=(g++ make cmake ninja-build libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
   python3)
 if [ "${1:-}" = "--test" ]; then
   packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv python3-mypy)
+elif [ "${1:-}" = "--package" ]; then
+  packages+=(dpkg-dev file)
 fi
 
 missing=()
