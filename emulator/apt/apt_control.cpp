@@ -116,6 +116,13 @@ nlohmann::json AptDevice::channel_json(std::size_t bay) const
         if (model_.kind == UnitKind::Piezo)
             out["kind"] = "linear";
         modules_[bay]->describe(out);
+        // A solenoid's, piezo's or gauge's status dword by its bits' names too, in the unit's own
+        // table (the wire log's). A flipper's is the motor table's read otherwise (its positions in
+        // the limit bits): its object names its position instead.
+        const auto status = out.find("status");
+        if (status != out.end() && status->is_number_integer()
+            && (model_.kind == UnitKind::Solenoid || model_.kind == UnitKind::Piezo || model_.kind == UnitKind::StrainGauge))
+            out["status_set"] = status_bit_names(status->get<std::uint32_t>(), log_context(model_).unit);
         return out;
     }
     const MotorChannel& ch = *channels_[bay];

@@ -119,6 +119,8 @@ TEST_CASE("control units: every APT channel names its unit, kind stays the motio
     AptHarness sol(unit("sol", "TSC001"));
     CHECK(channel(sol)["unit"] == "solenoid");
     CHECK(!channel(sol).contains("kind"));
+    CHECK(channel(sol)["status_set"] == json::array({"interlock"}));   // the default interlock mode (D-4)
+    CHECK(!channel(motor).contains("status_set"));   // a motor's status object names its bits in "set"
 
     AptHarness h(tpz001());
     REQUIRE(h.add_device(tsg001("tpz")) == 1);
@@ -136,7 +138,13 @@ TEST_CASE("control units: every APT channel names its unit, kind stays the motio
     CHECK(piezo["trig_in"].is_null());
     CHECK(piezo["lut"]["running"] == false);
     CHECK(piezo["lut"]["params"]["mode"] == 1);
+    // The status dword by its bits' names, as the wire log names them (p. 101-104).
+    const auto piezo_bits = piezo["status"].get<std::uint32_t>();
+    CHECK(piezo_bits == 0x101);
+    CHECK(piezo["status_set"] == json::array({"actuator_connected", "gauge_connected"}));
     const auto gauge = channel(h, 0, 1);
+    CHECK(gauge["status"] == 1);
+    CHECK(gauge["status_set"] == json::array({"gauge_connected"}));
     CHECK(gauge["unit"] == "strain_gauge");
     CHECK(!gauge.contains("kind"));
     CHECK(gauge["position_um"].get<double>() == Approx(x));
