@@ -8,7 +8,8 @@
 #                            for the ASan + UBSan pass, python3-serial (the pyserial e2e test), python3-pytest
 #                            (the tests of python/rigsim and its plugin), python3-venv (the
 #                            offline `pip install ./python` test), python3-mypy (the package's
-#                            type hints, checked with mypy --strict)
+#                            type hints, checked with mypy --strict), chromium and chromium-driver
+#                            (the live view in a headless browser, tests/e2e/live_view_browser.py)
 #   scripts/deps.sh --package  what scripts/package.sh needs besides the build's: dpkg-dev
 #                            (dpkg-shlibdeps finds the package's library dependencies) and file
 #                            (CPack's DEB generator finds the programs to strip with it)
@@ -17,7 +18,8 @@ set -euo pipefail
 packages=(g++ make cmake ninja-build libboost-dev libeigen3-dev libspdlog-dev nlohmann-json3-dev catch2
   python3)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv python3-mypy)
+  packages+=(clang libclang-rt-14-dev llvm lld python3-serial python3-pytest python3-venv python3-mypy
+    chromium chromium-driver)
 elif [ "${1:-}" = "--package" ]; then
   packages+=(dpkg-dev file)
 fi

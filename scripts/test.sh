@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Build and run the whole test suite (installing Debian packages if missing):
 #  1. Release build with GCC, warnings as errors: the daemon users run, rigsim-tap and the e2e
-#     client, and the e2e, Python and docs tests against them. The unit and device tests are not
+#     client, and the e2e, Python, docs and browser tests against them (the live view in Debian's
+#     headless Chromium). The unit and device tests are not
 #     compiled here: they test the libraries' code, which the sanitizer pass builds and runs them
 #     against with the sanitizers watching; compiling them twice was 250 of the 1,400 CPU seconds
 #     of a CI run (docs/architecture.md#build-options). `cmake --build build/release` builds them
@@ -33,8 +34,8 @@ bash scripts/configure.sh build/release -DCMAKE_BUILD_TYPE=Release -DRIGSIM_WERR
 cmake --build build/release -j"$jobs" --target rigsimd rigsim-tap rigsim_modemlines e2e_tests
 # The tests wait on sockets, ptys and child processes more than they compute: twice as many at
 # once as there are cores keeps the cores busy (release: 21 s against 31 s at -j2).
-mark "release tests: e2e, python, docs"
-ctest --test-dir build/release -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'e2e|python|docs'
+mark "release tests: e2e, python, docs, browser"
+ctest --test-dir build/release -j"$((jobs * 2))" --output-on-failure --no-tests=error -L 'e2e|python|docs|browser'
 
 # Line tables are all a sanitizer report needs to name every frame's file and line (15 % less
 # compile time than full -g on the largest batch); lld links the sanitized programs in a fifth of

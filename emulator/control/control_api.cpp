@@ -3,6 +3,7 @@
 #include "emulator/control/body_state.hpp"
 
 #include "emulator/control/json_reply.hpp"
+#include "emulator/control/live_view.hpp"
 #include "emulator/core/control_surface.hpp"
 #include "emulator/core/wire_log.hpp"
 
@@ -89,6 +90,18 @@ std::vector<std::string> split_path(std::string_view path)
     return parts;
 }
 
+/// A file of the live view, with the headers that keep it to itself (live_view.hpp).
+HttpReply live_view(const LiveViewFile& file)
+{
+    HttpReply reply{200, std::string(file.body), {}, {}, {}};
+    reply.headers = {{"Content-Type", std::string(file.content_type)},
+                     {"Content-Security-Policy", std::string(kLiveViewPolicy)},
+                     {"X-Frame-Options", "DENY"},
+                     {"Referrer-Policy", "no-referrer"},
+                     {"Cache-Control", "no-cache"}};
+    return reply;
+}
+
 HttpReply not_allowed(std::string_view method, std::string_view path, const char* allowed)
 {
     return error(405, std::string(method) + " " + std::string(path) + ": method not allowed (" + allowed + ")");
@@ -151,6 +164,8 @@ HttpReply ControlApi::route(std::string_view method, std::string_view target, st
     const auto path = path_of(target);
     const auto parts = split_path(path);
     const auto p = [&](std::size_t i) -> std::string_view { return i < parts.size() ? parts[i] : std::string_view{}; };
+    if (const auto* file = live_view_file(path))
+        return method == "GET" ? live_view(*file) : not_allowed(method, path, "GET");
     if (parts.size() < 2 || parts[0] != "api")
         return error(404, "no route " + dump(json(std::string(path))));
     if (parts.size() == 2 && p(1) == "rig")

@@ -1,4 +1,5 @@
 #include "emulator/control/http_access.hpp"
+#include "emulator/control/live_view.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -108,7 +109,7 @@ std::optional<AccessRefusal> check_origin(const RequestHead& head)
 
 std::optional<AccessRefusal> check_token(const HttpAccess& access, const RequestHead& head)
 {
-    if (access.token.empty())
+    if (access.token.empty() || is_live_view_request(head))
         return std::nullopt;
     const std::string_view scheme = "bearer ";
     if (head.authorization) {
@@ -159,6 +160,13 @@ std::optional<std::string> host_name_of(std::string_view host_header)
     if (name.size() > 1 && name.back() == '.')
         name.pop_back();   // "localhost." is "localhost"
     return name;
+}
+
+bool is_live_view_request(const RequestHead& head)
+{
+    if (head.method != "GET")
+        return false;
+    return live_view_file(head.target.substr(0, head.target.find('?'))) != nullptr;
 }
 
 std::optional<AccessRefusal> check_access(const HttpAccess& access, const RequestHead& head)

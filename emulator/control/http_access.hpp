@@ -33,6 +33,7 @@ struct RequestHead {
     std::optional<std::string_view> sec_fetch_site;
     std::optional<std::string_view> content_type;
     std::optional<std::string_view> authorization;
+    std::string_view target;   ///< the request target ("/api/rig?x=1")
     bool has_body = false;   ///< a Content-Length above 0
     bool chunked = false;    ///< Transfer-Encoding: chunked
 };
@@ -45,6 +46,12 @@ struct AccessRefusal {
 
 /// The refusal of `head` under `access`, or nothing when the request may go on.
 std::optional<AccessRefusal> check_access(const HttpAccess& access, const RequestHead& head);
+
+/// Whether `head` is a GET of one of the live view's files ("/", "/ui/app.js", "/ui/style.css"):
+/// the only requests that need no token (a browser cannot send one with a page it opens; the files
+/// hold no state of the rig: the page asks for the token before it reads anything). The Host and
+/// Origin checks still apply.
+bool is_live_view_request(const RequestHead& head);
 
 /// The host part of a Host header value ("[::1]:8080" -> "::1", "Example:80" -> "example"),
 /// lower case; nullopt when it is not of the form host[:port].

@@ -65,6 +65,7 @@ RequestHead head_of(const http::request_parser<http::string_body>& parser)
     head.sec_fetch_site = field(req, "Sec-Fetch-Site");
     head.content_type = field(req, http::field::content_type);
     head.authorization = field(req, http::field::authorization);
+    head.target = std::string_view(req.target().data(), req.target().size());
     head.chunked = parser.chunked();
     head.has_body = parser.content_length().value_or(0) > 0;
     return head;

@@ -468,7 +468,7 @@ def http_dict(src):
               "Sec-Fetch-Site: same-origin\r\n", "Sec-Fetch-Site: cross-site\r\n",
               "Authorization: Bearer fuzz-token\r\n", "/api/", "/api/rig", "/api/clock", "/api/devices/",
               "/channels/", "/api/faults", "/api/reset", "/api/events", "/api/frames", "/log", "/trace", "?", "&",
-              "=", "%", "xyz", "rot", "tpz", "tsg"]
+              "=", "%", "xyz", "rot", "tpz", "tsg", "/ui/app.js", "/ui/style.css"]
     lines += [dict_line("http_%d" % i, t.encode()) for i, t in enumerate(tokens)]
     lines += [dict_line("word_" + w, w.encode()) for w in sorted(words)]
     return lines

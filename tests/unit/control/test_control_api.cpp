@@ -162,10 +162,41 @@ TEST_CASE("control api: an unknown route is 404, a wrong method 405", "[unit][co
 {
     Fixture f;
     CHECK(f.error_of("GET", "/api/nothing", "", 404) == "no route \"/api/nothing\"");
-    CHECK(f.error_of("GET", "/", "", 404) == "no route \"/\"");
+    CHECK(f.error_of("GET", "/index.html", "", 404) == "no route \"/index.html\"");
+    CHECK(f.error_of("GET", "/ui/", "", 404) == "no route \"/ui/\"");
     CHECK(f.error_of("GET", "/api/\xff\xfe", "", 404) == "no route \"/api/\xef\xbf\xbd\xef\xbf\xbd\"");
     CHECK(f.error_of("POST", "/api/rig", "{}", 405) == "POST /api/rig: method not allowed (GET)");
     CHECK(f.error_of("DELETE", "/api/clock", "", 405) == "DELETE /api/clock: method not allowed (GET, POST)");
+}
+
+TEST_CASE("control api: the live view's page and files at /, /ui/app.js, /ui/style.css, GET only", "[unit][control]")
+{
+    Fixture f;
+    const struct {
+        const char* target;
+        const char* type;
+        const char* start;
+    } files[] = {{"/", "text/html; charset=utf-8", "<!doctype html>"},
+                 {"/?token=ignored", "text/html; charset=utf-8", "<!doctype html>"},
+                 {"/ui/app.js", "text/javascript; charset=utf-8", "// rigsim live view"},
+                 {"/ui/style.css", "text/css; charset=utf-8", ":root"}};
+    for (const auto& file : files) {
+        INFO(file.target);
+        const auto reply = f.api.handle("GET", file.target, "");
+        CHECK(reply.status == 200);
+        CHECK(reply.body.rfind(file.start, 0) == 0);
+        const auto header = [&](const std::string& name) {
+            for (const auto& [n, v] : reply.headers)
+                if (n == name)
+                    return v;
+            return std::string();
+        };
+        CHECK(header("Content-Type") == file.type);
+        CHECK(header("Content-Security-Policy").rfind("default-src 'none'; script-src 'self';", 0) == 0);
+        CHECK(header("X-Frame-Options") == "DENY");
+    }
+    CHECK(f.error_of("POST", "/", "{}", 405) == "POST /: method not allowed (GET)");
+    CHECK(f.error_of("DELETE", "/ui/app.js", "", 405) == "DELETE /ui/app.js: method not allowed (GET)");
 }
 
 TEST_CASE("control api: a bad POST /api/clock body is 400 naming the key", "[unit][control]")

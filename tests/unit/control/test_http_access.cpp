@@ -142,6 +142,32 @@ TEST_CASE("http access: a token is a bearer token compared whole", "[unit][contr
     CHECK(status_of(access, head) == 403);
 }
 
+TEST_CASE("http access: the live view's files alone need no token, and only by GET", "[unit][control][security]")
+{
+    HttpAccess access;
+    access.token = "abc123";
+    for (const char* target : {"/", "/?x=1", "/ui/app.js", "/ui/style.css"}) {
+        INFO(target);
+        auto head = get("localhost");
+        head.target = target;
+        CHECK(status_of(access, head) == 0);
+        head.method = "HEAD";
+        CHECK(status_of(access, head) == 401);
+        head.method = "GET";
+        head.host = "evil.example";   // the Host and Origin rules still hold
+        CHECK(status_of(access, head) == 403);
+    }
+    for (const char* target : {"/api/rig", "/ui/", "/ui/../api/rig", "/index.html", "//", "/api/events"}) {
+        INFO(target);
+        auto head = get("localhost");
+        head.target = target;
+        CHECK(status_of(access, head) == 401);
+    }
+    auto post = post_json("localhost");
+    post.target = "/";
+    CHECK(status_of(access, post) == 401);
+}
+
 TEST_CASE("http access: tokens and token files", "[unit][control][security]")
 {
     using rigsim::control::bad_token;
