@@ -78,7 +78,9 @@ class WebDriver:
         self.process = subprocess.Popen([chromedriver, f"--port={self.port}"], stdout=self.log, stderr=self.log)
         self.base = f"http://127.0.0.1:{self.port}"
         self._wait(lambda: self._call("GET", "/status").get("ready"), 20, "chromedriver ready")
-        args = ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+        # --remote-debugging-pipe: chromedriver talks to the browser over a pipe, not a "localhost"
+        # port (a root without /etc/hosts resolved it elsewhere: "unable to connect to renderer").
+        args = ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--remote-debugging-pipe",
                 "--window-size=1500,1150", "--hide-scrollbars", "--force-device-scale-factor=1"]
         caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome",
                                                  "goog:chromeOptions": {"binary": chromium, "args": args}}}}
@@ -189,6 +191,29 @@ def main():
             shot = os.path.join(args.out, "live-view.png")
             driver.screenshot(shot)
             print("screenshot:", shot, os.path.getsize(shot), "bytes")
+
+            # The fault buttons: a stage's fault on the chosen channel, a wire fault with the typed
+            # parameters; each listed, in the daemon too, and removed by its button.
+            click = "document.querySelector(arguments[0]).click(); return true;"
+            driver.script("document.getElementById('fault-device').value = 'coarse_y';"
+                          "document.getElementById('fault-params').value = '{}'; return true;")
+            driver.script(click, "#fault-kinds [data-kind=stall]")
+            driver.wait_for("return document.querySelectorAll('#fault-list li').length === 1;", 30, "the stall listed")
+            driver.script("document.getElementById('fault-params').value = '{\"latency_ms\": 20}'; return true;")
+            driver.script(click, "#fault-kinds [data-kind=latency]")
+            driver.wait_for("return document.querySelectorAll('#fault-list li').length === 2;", 30, "the latency listed")
+            message = driver.script("return document.getElementById('message').textContent;")
+            assert message == "", message
+            faults = rig.faults()
+            print("faults injected from the page:", [(f["kind"], f["device"], f["channel"], f["params"]) for f in faults])
+            assert sorted((f["kind"], f["device"], f["channel"]) for f in faults) == \
+                [("latency", "coarse_y", None), ("stall", "coarse_y", 0)], faults
+            assert [f["params"] for f in faults if f["kind"] == "latency"] == [{"latency_ms": 20}], faults
+            for left in (1, 0):
+                driver.script(click, "#fault-list li button")
+                driver.wait_for("return document.querySelectorAll('#fault-list li').length === arguments[0];", 30,
+                                f"{left} fault(s) listed", left)
+            assert rig.faults() == []
         except Exception:
             # What the page says, for the log of a failure.
             try:

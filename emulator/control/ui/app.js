@@ -6,6 +6,7 @@ const SVG = "http://www.w3.org/2000/svg";
 const FAULT_KINDS = ["stall", "slip", "sensor_failure", "reference_lost", "limit_switch", "unplugged",
   "drop_bytes", "corrupt_bytes", "latency", "slicer", "bandwidth", "reset", "slow_close", "hang_close",
   "cut_after", "garbage_close", "overrun", "baud_mismatch", "power_cycle"];
+const CHANNEL_FAULTS = new Set(["stall", "slip", "sensor_failure", "reference_lost", "limit_switch"]);
 const WIRE_KEPT = 60;          // wire entries shown
 const TRAJECTORY_KEPT = 240;   // samples per channel's trajectory
 const ALARM_WORDS = /limit|error|fault|stall|overcurrent|interlock|lost|fail/i;
@@ -16,6 +17,8 @@ const state = {
   devices: new Map(),        // name -> GET /api/devices/{name}
   trajectories: new Map(),   // "device/channel" -> [[time_ms, position_si], ...]
   luts: new Map(),           // "device/channel" -> trace samples
+  traceReads: new Map(),     // "device/channel" -> {next_from, at}: where the next trace read starts
+  following: false,          // the event stream and the poll loop run (once)
   clock: null,
   refreshing: new Set(),
   moving: false,
@@ -177,7 +180,9 @@ function render_clock() {
 function render_wire(entry) {
   const list = $("wire");
   const d = entry.decoded || {};
-  const text = d.text !== undefined ? d.text : (d.name ? `${d.name} (0x${(d.id || 0).toString(16).padStart(4, "0")})` : entry.hex);
+  // MCS: the line's text; APT: the message's name and its id ("0x0453", a string in the log).
+  const id = typeof d.id === "number" ? "0x" + d.id.toString(16).padStart(4, "0") : d.id;
+  const text = d.text !== undefined ? d.text : (d.name ? `${d.name} (${id})` : entry.hex);
   const item = el("li", { class: entry.direction }, `${(entry.time_ms || 0).toFixed(1)} ms ${entry.device || ""} ${entry.direction === "in" ? "→" : "←"} ${text}`);
   for (const note of entry.notes || []) item.append(el("span", { class: "wire-note", text: "note: " + note }));
   list.prepend(item);
@@ -244,6 +249,17 @@ function render_frames(answer) {
 
 // ---- keeping it current ----
 
+// A piezo channel's newest samples: only those after the last read (next_from), at most 2,000 a
+// read and 3 reads a second (a whole trace is 16,384 samples, 30-45 ms of the daemon's loop).
+async function refresh_trace(name, index, key) {
+  const last = state.traceReads.get(key) || { next_from: 0, at: 0 };
+  if (Date.now() - last.at < 300) return;
+  const trace = await api("GET", `/api/devices/${encodeURIComponent(name)}/channels/${index}/trace?from=${last.next_from}&max=2000`);
+  const kept = (state.luts.get(key) || []).concat(trace.samples);
+  state.luts.set(key, kept.slice(-2000));
+  state.traceReads.set(key, { next_from: trace.next_from, at: Date.now() });
+}
+
 async function refresh_device(name) {
   if (state.refreshing.has(name)) return;
   state.refreshing.add(name);
@@ -257,12 +273,7 @@ async function refresh_device(name) {
       if (!t.length || t[t.length - 1][1] !== ch.position_si || ch.moving) t.push([time, ch.position_si]);
       while (t.length > TRAJECTORY_KEPT) t.shift();
       state.trajectories.set(key, t);
-      if (ch.unit === "piezo") {
-        try {
-          const trace = await api("GET", `/api/devices/${encodeURIComponent(name)}/channels/${ch.index}/trace?from=0`);
-          state.luts.set(key, trace.samples.slice(-2000));
-        } catch (e) { /* a channel without trace */ }
-      }
+      if (ch.unit === "piezo") await refresh_trace(name, ch.index, key);
     }
     state.devices.set(name, device);
     render_device(name);
@@ -379,7 +390,11 @@ function wire_controls() {
     button.addEventListener("click", () => act(async () => {
       let params;
       try { params = JSON.parse($("fault-params").value || "{}"); } catch (e) { throw new Error("parameters: not JSON"); }
-      const body = { device: $("fault-device").value, kind, params, channel: Number($("fault-channel").value) };
+      if (params === null || typeof params !== "object" || Array.isArray(params)) throw new Error("parameters: not a JSON object");
+      // POST /api/faults: the kind's parameters beside device and kind; a channel for the faults
+      // of a channel's stage only (the others act on the whole device or its wire).
+      const body = Object.assign({}, params, { device: $("fault-device").value, kind });
+      if (CHANNEL_FAULTS.has(kind)) body.channel = Number($("fault-channel").value);
       await api("POST", "/api/faults", body);
     }));
     $("fault-kinds").append(button);
@@ -391,15 +406,21 @@ async function start() {
   state.clock = state.rig.clock;
   render_clock();
   $("fault-device").replaceChildren(...state.rig.devices.map((d) => el("option", { value: d.name, text: d.name })));
+  state.devices.clear();
+  $("devices").replaceChildren();
   for (const d of state.rig.devices) state.devices.set(d.name, Object.assign({ channels: [] }, d));
   await refresh_all();
+  $("wire").replaceChildren();
   for (const d of state.rig.devices) {
     const log = await api("GET", `/api/devices/${encodeURIComponent(d.name)}/log?last=10`);
     for (const entry of log.entries) render_wire(Object.assign({ device: d.name }, entry));
   }
   document.body.dataset.ready = "true";
-  follow_events();
-  poll();
+  if (!state.following) {
+    state.following = true;
+    follow_events();
+    poll();
+  }
 }
 
 const fragment = new URLSearchParams(location.hash.slice(1));
