@@ -14,6 +14,7 @@
 #include <boost/asio/signal_set.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -255,10 +256,18 @@ long parse_pty_group(const std::string& v)
             throw UsageError{flag + ": expected a group name or number, got " + echo(v)};
         gid = static_cast<gid_t>(std::stoul(v));
     } else {
+        // A group with many members (a directory service's) needs a larger buffer: ERANGE, retried
+        // up to 16 MiB.
         std::vector<char> buffer(16384);
         struct group entry {};
         struct group* found = nullptr;
-        if (::getgrnam_r(v.c_str(), &entry, buffer.data(), buffer.size(), &found) != 0 || found == nullptr)
+        int err = 0;
+        while ((err = ::getgrnam_r(v.c_str(), &entry, buffer.data(), buffer.size(), &found)) == ERANGE
+               && buffer.size() < (std::size_t{16} << 20))
+            buffer.resize(buffer.size() * 4);
+        if (err != 0)
+            throw UsageError{flag + ": cannot look up group " + echo(v) + ": " + std::strerror(err)};
+        if (found == nullptr)
             throw UsageError{flag + ": no group " + echo(v) + " on this system"};
         gid = found->gr_gid;
         shown = v + " (" + std::to_string(gid) + ")";

@@ -14,7 +14,7 @@ deb=$(realpath "${1:-$(ls -t build/package/package/rigsim_*.deb | head -n 1)}")
 [ "$(id -u)" -eq 0 ] || { echo "package-test: needs root (debootstrap, chroot)" >&2; exit 2; }
 base=${RIGSIM_DEBIAN_ROOT_CACHE:-/var/tmp/rigsim-debian12-minbase}
 if [ ! -f "$base/.ready" ]; then
-  command -v debootstrap >/dev/null || apt-get install -y -qq debootstrap >/dev/null
+  command -v debootstrap >/dev/null || { apt-get update -qq && apt-get install -y -qq debootstrap >/dev/null; }
   mirror=$(sed -n 's/^URIs: *\(.*\/debian\)$/\1/p' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -n 1)
   [ -n "$mirror" ] || mirror=$(awk '$1=="deb"{print $2; exit}' /etc/apt/sources.list 2>/dev/null)
   [ -n "$mirror" ] || mirror=http://deb.debian.org/debian
@@ -22,13 +22,15 @@ if [ ! -f "$base/.ready" ]; then
   echo "package-test: making a minimal Debian 12 root in $base (once)"
   debootstrap --variant=minbase bookworm "$base" "$mirror" >"$base.log" 2>&1 ||
     { echo "package-test: debootstrap failed, see $base.log" >&2; exit 2; }
-  if [ -f /etc/apt/sources.list.d/debian.sources ]; then
-    cp /etc/apt/sources.list.d/debian.sources "$base/etc/apt/sources.list.d/"; rm -f "$base/etc/apt/sources.list"
-  fi
+  # debootstrap wrote "deb $mirror bookworm main" to its sources.list: the root stays Debian 12
+  # whatever release the host runs.
   touch "$base/.ready"
 fi
 root=$(mktemp -d /var/tmp/rigsim-package-test.XXXXXX)
-cleanup() { for m in dev/pts dev proc sys; do umount -l "$root/$m" 2>/dev/null || true; done; rm -rf "$root"; }
+cleanup() {
+  for m in dev/pts dev proc sys; do umount -l "$root/$m" 2>/dev/null || true; done
+  rm -rf --one-file-system "$root"
+}
 trap cleanup EXIT
 cp -a "$base/." "$root/"
 for m in proc sys dev dev/pts; do mkdir -p "$root/$m"; mount --bind "/$m" "$root/$m"; done
@@ -59,14 +61,15 @@ bash -c 'source /usr/share/bash-completion/completions/rigsimd; COMP_WORDS=(rigs
 step "the default rig from /usr/share/rigsim, as nobody with --pty-group dialout"
 useradd --no-create-home --groups dialout rigsim-client
 install -d -o nobody -m 0755 /run/rigsim-test
+# Ephemeral ports: a rigsimd on the host (rigsim@default) may hold the default rig's.
 setpriv --reuid=nobody --regid=nogroup --groups=dialout --inh-caps=-all \
-  rigsimd --config /usr/share/rigsim/default.json --pty-dir /run/rigsim-test --pty-group dialout \
-  --endpoints-json /run/rigsim-test/endpoints.json 2>/tmp/rigsimd.log &
+  rigsimd --config /usr/share/rigsim/default.json --ephemeral-ports --pty-dir /run/rigsim-test \
+  --pty-group dialout --endpoints-json /run/rigsim-test/endpoints.json 2>/tmp/rigsimd.log &
 pid=$!
 for _ in $(seq 100); do [ -f /run/rigsim-test/endpoints.json ] && break; sleep 0.1; done
-cat /run/rigsim-test/endpoints.json; echo
+[ -f /run/rigsim-test/endpoints.json ] || { echo "rigsimd did not start:"; cat /tmp/rigsimd.log; exit 1; }
 ls -lL /run/rigsim-test/mcs0
-rigsimctl rig --format table
+rigsimctl --endpoints /run/rigsim-test/endpoints.json rig --format table
 setpriv --reuid=rigsim-client --regid=rigsim-client --init-groups python3 - <<'PY'
 import os, select, termios, tty
 fd = os.open("/run/rigsim-test/mcs0", os.O_RDWR | os.O_NOCTTY)

@@ -8,6 +8,7 @@ files (Debian's own Python packages ship theirs the same way).
   scripts/debian/dist_info.py OUT"""
 
 import os
+import shutil
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -21,6 +22,11 @@ def main(out):
     info = rigsim_build._dist_info(project)
     files.pop(f"{info}/WHEEL", None)
     files[f"{info}/INSTALLER"] = b"dpkg\n"
+    # Only this version's: a directory left by an earlier version would be installed beside it.
+    if os.path.isdir(out):
+        for name in os.listdir(out):
+            if name.endswith(".dist-info") and name != info:
+                shutil.rmtree(os.path.join(out, name))
     for path, data in files.items():
         target = os.path.join(out, path)
         os.makedirs(os.path.dirname(target), exist_ok=True)

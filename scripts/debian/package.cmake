@@ -74,7 +74,7 @@ set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3 (>= 3.9)")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-serial, python3-pytest")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
   ${PROJECT_SOURCE_DIR}/scripts/debian/conffiles ${PROJECT_SOURCE_DIR}/scripts/debian/postinst
-  ${PROJECT_SOURCE_DIR}/scripts/debian/postrm)
+  ${PROJECT_SOURCE_DIR}/scripts/debian/prerm ${PROJECT_SOURCE_DIR}/scripts/debian/postrm)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_OUTPUT_FILE_PREFIX ${CMAKE_CURRENT_BINARY_DIR}/package)
 include(CPack)
