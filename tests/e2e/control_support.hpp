@@ -14,6 +14,7 @@ namespace rigsim::e2e {
 struct HttpAnswer {
     int status = 0;
     std::string body;
+    std::string headers;   ///< the header lines in lower case, "name: value\r\n" each
 };
 
 /// The control API's address from the endpoints file's "control": "http://HOST:PORT".
@@ -53,6 +54,7 @@ inline HttpAnswer read_answer(LineClient& c, Millis timeout = kAnswerTimeout)
             lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
         if (lower.rfind(name, 0) == 0)
             length = std::stoul(header->substr(name.size()));
+        a.headers += lower;
     }
     while (a.body.size() < length) {
         const auto line = c.read_line();

@@ -8,7 +8,6 @@
 
 #include <catch2/catch.hpp>
 
-#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -18,40 +17,12 @@ namespace live_view_test {
 
 using namespace rigsim::e2e;
 
-struct Page {
-    int status = 0;
-    std::string headers;   ///< lower case, "name: value\r\n" each
-    std::string body;
-};
-
 /// `head` (request line and header lines, each ending "\r\n") on a new connection; its answer.
-Page fetch(const Endpoint& control, const std::string& head)
+HttpAnswer fetch(const Endpoint& control, const std::string& head)
 {
     TcpClient c(control);
     c.send(head + "\r\n");
-    Page p;
-    const auto status_line = c.read_line(kAnswerTimeout);
-    REQUIRE(status_line);
-    p.status = std::stoi(status_line->substr(9, 3));
-    std::size_t length = 0;
-    for (;;) {
-        const auto header = c.read_line();
-        REQUIRE(header);
-        if (*header == "\r\n")
-            break;
-        std::string lower;
-        for (char ch : *header)
-            lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        if (lower.rfind("content-length:", 0) == 0)
-            length = std::stoul(lower.substr(15));
-        p.headers += lower;
-    }
-    while (p.body.size() < length) {
-        const auto line = c.read_line();
-        REQUIRE(line);
-        p.body += *line;
-    }
-    return p;
+    return read_answer(c);
 }
 
 std::string source_file(const std::string& relative)
