@@ -5,7 +5,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <chrono>
 #include <string>
 
 namespace rigsim::e2e {
@@ -70,6 +76,45 @@ inline HttpAnswer http(LineClient& c, const std::string& method, const std::stri
     c.send(method + " " + path + " HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\n"
            + "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body);
     return read_answer(c);
+}
+
+/// What a client's raw reads gave: the bytes, and how the stream ended.
+struct Reads {
+    std::string bytes;
+    enum class End { Open, Eof, Error } end = End::Open;
+    int error = 0;   ///< errno of End::Error
+};
+
+/// Reads `fd` until `want` bytes have come, the stream ends, or `timeout` passes with nothing
+/// more: never a wait for a fault to act (the steps do that), only for the bytes in flight.
+inline Reads read_fd(int fd, std::size_t want, Millis timeout = Millis(300))
+{
+    Reads r;
+    const auto deadline = SteadyClock::now() + timeout;
+    while (r.bytes.size() < want) {
+        const auto left = std::chrono::duration_cast<Millis>(deadline - SteadyClock::now()).count();
+        if (left <= 0)
+            break;
+        pollfd p{fd, POLLIN, 0};
+        if (::poll(&p, 1, static_cast<int>(left)) <= 0)
+            break;
+        char buf[4096];
+        const auto n = ::read(fd, buf, std::min(sizeof buf, want - r.bytes.size()));
+        if (n > 0) {
+            r.bytes.append(buf, static_cast<std::size_t>(n));
+            continue;
+        }
+        if (n == 0) {
+            r.end = Reads::End::Eof;
+            break;
+        }
+        if (errno == EAGAIN || errno == EINTR)
+            continue;
+        r.end = Reads::End::Error;
+        r.error = errno;
+        break;
+    }
+    return r;
 }
 
 } // namespace rigsim::e2e

@@ -25,22 +25,7 @@ namespace {
 /// they have come).
 std::string read_some(int fd, std::size_t want, Millis timeout = 200ms)
 {
-    std::string out;
-    const auto deadline = SteadyClock::now() + timeout;
-    while (out.size() < want) {
-        const auto left = std::chrono::duration_cast<Millis>(deadline - SteadyClock::now()).count();
-        if (left <= 0)
-            break;
-        pollfd p{fd, POLLIN, 0};
-        if (::poll(&p, 1, static_cast<int>(left)) <= 0)
-            break;
-        char buf[256];
-        const auto n = ::read(fd, buf, std::min(sizeof buf, want - out.size()));
-        if (n <= 0)
-            break;
-        out.append(buf, static_cast<std::size_t>(n));
-    }
-    return out;
+    return read_fd(fd, want, timeout).bytes;
 }
 
 struct Rig {

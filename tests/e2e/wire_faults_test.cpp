@@ -30,45 +30,6 @@ std::string id_of(const std::string& record)
     return record.substr(at + 5, record.find_first_not_of("0123456789", at + 5) - (at + 5));
 }
 
-/// What a client's raw reads gave: the bytes, and how the stream ended.
-struct Reads {
-    std::string bytes;
-    enum class End { Open, Eof, Error } end = End::Open;
-    int error = 0;   ///< errno of End::Error
-};
-
-/// Reads `fd` until `want` bytes have come, the stream ends, or `timeout` passes with nothing
-/// more: never a wait for a fault to act (the steps do that), only for the bytes in flight.
-Reads read_fd(int fd, std::size_t want, Millis timeout = 300ms)
-{
-    Reads r;
-    const auto deadline = SteadyClock::now() + timeout;
-    while (r.bytes.size() < want) {
-        const auto left = std::chrono::duration_cast<Millis>(deadline - SteadyClock::now()).count();
-        if (left <= 0)
-            break;
-        pollfd p{fd, POLLIN, 0};
-        if (::poll(&p, 1, static_cast<int>(left)) <= 0)
-            break;
-        char buf[4096];
-        const auto n = ::read(fd, buf, std::min(sizeof buf, want - r.bytes.size()));
-        if (n > 0) {
-            r.bytes.append(buf, static_cast<std::size_t>(n));
-            continue;
-        }
-        if (n == 0) {
-            r.end = Reads::End::Eof;
-            break;
-        }
-        if (errno == EAGAIN || errno == EINTR)
-            continue;
-        r.end = Reads::End::Error;
-        r.error = errno;
-        break;
-    }
-    return r;
-}
-
 /// Reads until the stream ends (within a generous deadline: the end is due already).
 Reads read_to_end(int fd)
 {
