@@ -145,7 +145,9 @@ function render_device(name) {
     for (const w of words) statusCell.append(el("span", { class: "status-word" + (ALARM_WORDS.test(w) ? " alarm" : ""), text: w }));
     const positionCell = el("td", { class: "num" + (ch.moving ? " moving" : ""), id: `pos-${name}-${ch.index}`,
       "data-si": ch.position_si === undefined || ch.position_si === null ? "" : String(ch.position_si),
-      text: position_text(ch.position_si, ch.si_unit) });
+      // A strain gauge moves nothing: the extension it senses of the actuator it is mounted on.
+      text: ch.position_si === undefined && typeof ch.position_um === "number"
+        ? `${ch.position_um.toFixed(3)} µm sensed` : position_text(ch.position_si, ch.si_unit) });
     // What the protocol reports: a counter, a piezo's output, a gauge's reading.
     let protocolText = "–";
     if (ch.position_protocol !== undefined && ch.position_protocol !== null)
@@ -345,9 +347,9 @@ async function follow_events() {
 }
 
 // While something moves, positions change between events: the moving devices are read 10 times a
-// second (the trajectories' samples); the clock once a second otherwise.
+// second (the trajectories' samples), the others twice; the clock once a second otherwise.
 async function poll() {
-  let last_clock = 0, last_frames = 0;
+  let last_clock = 0, last_frames = 0, last_all = 0;
   for (;;) {
     await new Promise((r) => setTimeout(r, 100));
     const moving = [...state.devices.values()].filter((d) => (d.channels || []).some((c) => c.moving || (c.body && c.body.settling)));
@@ -357,7 +359,11 @@ async function poll() {
         render_clock();
         last_clock = Date.now();
       }
-      await Promise.all(moving.map((d) => refresh_device(d.name)));
+      // The moving devices at every turn; every device twice a second while something moves (a
+      // gauge reads the stack another device drives).
+      const all = moving.length && Date.now() - last_all > 500;
+      await Promise.all((all ? [...state.devices.values()] : moving).map((d) => refresh_device(d.name)));
+      if (all) last_all = Date.now();
       // The frames of moving joints: an event comes only when a motion ends.
       if (moving.length && Date.now() - last_frames > 300) {
         render_frames(await api("GET", "/api/frames"));
