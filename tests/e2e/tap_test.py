@@ -379,10 +379,13 @@ def test_reply_times_through_a_usb_serial_chip_are_recorded_learnt_and_compared(
     assert 1 <= device["link"]["latency_timer_ms"] <= 5 and "tcp" not in device["link"]   # replayed on the pty
     device["apt"]["stage"] = "Z825B"
     learnt.write_text(json.dumps({"devices": [device]}))
-    # The stand-in unit runs in real time: its replies are late by the machine's scheduling (a
-    # few ms under the sanitizers), where the replay's stepped clock is exact.
+    # The stand-in unit runs in real time: its replies are late by the machine's scheduling, where
+    # the replay's stepped clock is exact. Under the sanitizers, with the rest of the suite running
+    # on two cores, one reply came 9.3 ms late (CI at a3a231e: HW_GET_INFO 19.3 ms recorded against
+    # rigsim's 10): 20 ms of slack. How closely the replay compares is what the bare and the 30 ms
+    # rigs below show, which differ from the unit by more than that.
     run = run_replay(str(record), "--rig", str(learnt), "--device", "kdc101", "--rigsimd", rigsimd_path, "--timing",
-                     "--timing-slack", "8")
+                     "--timing-slack", "20")
     assert run.returncode == 0, run.stdout + run.stderr
     assert "11 answers compared, 0 difference(s), 0 reply time(s)" in run.stderr
     # Without the chip and the line's pace rigsim answers in the millisecond the request came,
